@@ -1,0 +1,44 @@
+#pragma once
+/// @file
+/// Every tolerance Cairn uses, named, with its unit, in one struct, scaled to
+/// the scene (after Box2D's B2_LINEAR_SLOP and Drake's ComputeZeroTolerance).
+///
+/// The scale of a scene is its size L (length units: the diagonal of the
+/// bounding box of all parts) and its gravity g (length/s², the norm of the
+/// gravity vector; 1 if the scene has none). The rules:
+///   length       = 1e-6 · L       unless the scene sets "tolerance"
+///   angle        = 1e-6 rad       (parallel/anti-parallel edges, normals)
+///   acceleration = 1e-6 · g       (length/s²; a part whose points accelerate
+///                                  less than this is at rest)
+///   velocity     = 1e-6 · g · Δt  (length/s; the same for one time step)
+///   force        = 1e-9 · W       (force units; W = the scene's largest weight)
+/// The relative factors are the defaults of ToleranceFactors; change them
+/// there, not at the call sites.
+
+namespace cairn {
+
+/// Relative factors from which Tolerances are scaled (dimensionless).
+struct ToleranceFactors {
+  double length = 1e-6;        ///< × scene size L.
+  double angle = 1e-6;         ///< radians, not scaled.
+  double acceleration = 1e-6;  ///< × |g|.
+  double velocity = 1e-6;      ///< × |g| Δt.
+  double force = 1e-9;         ///< × largest weight m|g|.
+};
+
+/// Absolute tolerances for one scene.
+struct Tolerances {
+  double length = 1e-6;        ///< length units: contact distance, overlap allowance.
+  double angle = 1e-6;         ///< radians: parallelism of edges and normals.
+  double acceleration = 1e-6;  ///< length/s²: largest point acceleration called "at rest".
+  double velocity = 1e-6;      ///< length/s: largest point velocity called "at rest".
+  double force = 1e-9;         ///< force units: a contact force below this is zero.
+
+  /// Tolerances for a scene of size `scene_size` (length), gravity magnitude
+  /// `gravity` (length/s²), time step `dt` (s), largest weight `weight`.
+  /// `length_override` > 0 replaces the scaled length tolerance.
+  static Tolerances Scaled(double scene_size, double gravity, double dt, double weight,
+                           double length_override = 0.0, const ToleranceFactors& f = {});
+};
+
+}  // namespace cairn

@@ -1,0 +1,68 @@
+#pragma once
+/// @file
+/// Simple polygons in the plane: orientation, exact mass properties,
+/// simplicity, point queries. A Polygon is a list of vertices; after
+/// MakeCounterClockwise its signed area is positive and its outward edge
+/// normals point to the right of each edge direction.
+
+#include <optional>
+#include <vector>
+
+#include "cairn/core/types.h"
+
+namespace cairn {
+
+/// Vertices of a simple polygon, in order (no repeated closing vertex).
+using Polygon = std::vector<Vector2>;
+
+/// Signed area (positive when counter-clockwise), shoelace formula. (length²)
+double SignedArea(const Polygon& poly);
+
+/// Reverses the vertex order if the polygon is clockwise.
+void MakeCounterClockwise(Polygon& poly);
+
+/// Exact area properties of a simple polygon of unit density.
+struct PolygonMass {
+  double area = 0;           ///< length²
+  Vector2 centroid{0, 0};    ///< length, world frame
+  double polar_moment = 0;   ///< ∫ |r − centroid|² dA about the centroid (length⁴)
+};
+
+/// Exact area, centroid and polar second moment of a simple polygon (either
+/// orientation), by Green's theorem over its edges. A part of mass m has
+/// moment of inertia I = m · polar_moment / area about its centroid.
+PolygonMass ComputePolygonMass(const Polygon& poly);
+
+/// A pair of non-adjacent edges that touch or cross (edge i runs from vertex i
+/// to vertex i+1), or two adjacent edges that fold back onto each other.
+struct SelfIntersection {
+  int edge_a = -1;
+  int edge_b = -1;
+};
+
+/// The first self-intersection of the polygon's boundary, or nullopt when the
+/// polygon is simple. Edges closer than `tol` (length) count as touching.
+std::optional<SelfIntersection> FindSelfIntersection(const Polygon& poly, double tol);
+
+/// Distance from p to the segment [a, b]. (length)
+double DistanceToSegment(const Vector2& p, const Vector2& a, const Vector2& b);
+
+/// Distance from p to the boundary of the polygon. (length)
+double DistanceToBoundary(const Polygon& poly, const Vector2& p);
+
+/// True when p is strictly inside the polygon (crossing-number test; points on
+/// the boundary may go either way: combine with DistanceToBoundary).
+bool ContainsPoint(const Polygon& poly, const Vector2& p);
+
+/// Signed depth of p in the polygon: +distance to the boundary when inside,
+/// −distance when outside. (length)
+double SignedDepth(const Polygon& poly, const Vector2& p);
+
+/// Axis-aligned bounding box corners (min, max).
+std::pair<Vector2, Vector2> BoundingBox(const Polygon& poly);
+
+/// Outward unit normal of edge i (from vertex i to i+1) of a counter-clockwise
+/// polygon.
+Vector2 EdgeNormal(const Polygon& ccw_poly, int i);
+
+}  // namespace cairn

@@ -1,0 +1,31 @@
+#!/usr/bin/env bash
+# Installs everything Cairn needs to build, test and benchmark, from Debian's
+# packages only. Safe to run again: it installs only what is missing.
+# Must run as root (or with sudo available) on Debian 12.
+set -euo pipefail
+
+packages=(
+  build-essential cmake git pkg-config
+  libeigen3-dev          # dense and sparse linear algebra
+  nlohmann-json3-dev     # scene and report JSON
+  libcli11-dev           # command-line parsing
+  libgtest-dev libgmock-dev  # tests
+  libbenchmark-dev       # bench/
+  libsiconos-numerics-dev    # bench/: Siconos' Lemke, the peer we compare against
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+
+if ((${#missing[@]})); then
+  echo "setup: installing ${missing[*]}"
+  sudo_cmd=()
+  if [[ $(id -u) -ne 0 ]]; then sudo_cmd=(sudo); fi
+  export DEBIAN_FRONTEND=noninteractive
+  "${sudo_cmd[@]}" apt-get update -qq
+  "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+else
+  echo "setup: all packages present"
+fi
