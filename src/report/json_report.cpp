@@ -1,1 +1,114 @@
-// placeholder: implemented in this session
+#include <cmath>
+
+#include "cairn/report/report.h"
+
+namespace cairn {
+
+namespace {
+// Rounds away floating-point dust so that reports are stable across
+// platforms: values below 1e-12 of the scale print as 0.
+double Clean(double x, double scale = 1.0) { return std::abs(x) < 1e-12 * scale ? 0.0 : x; }
+nlohmann::json Vec(const Vector2& v, double scale = 1.0) {
+  return nlohmann::json::array({Clean(v.x(), scale), Clean(v.y(), scale)});
+}
+std::string PartName(const Assembly& a, int i) { return i >= 0 ? a.part(i).name : "world"; }
+}  // namespace
+
+std::pair<double, std::string> ForceScale(const Assembly& assembly, const ReportOptions& options) {
+  if (!options.normalize_part) return {1.0, "force units"};
+  const Part& p = assembly.part(*options.normalize_part);
+  return {p.mass * assembly.gravity().norm(), "weight of " + p.name};
+}
+
+nlohmann::json StabilityToJson(const Assembly& assembly, const Configuration& config,
+                               const StabilityResult& result, const ReportOptions& options) {
+  using nlohmann::json;
+  const bool st = result.formulation == Formulation::kStewartTrinkle;
+  const auto [force_scale, force_unit] = ForceScale(assembly, options);
+  const double g = assembly.gravity().norm() > 0 ? assembly.gravity().norm() : 1.0;
+
+  json doc;
+  doc["scene"] = assembly.name();
+  if (!options.scene_file.empty()) doc["scene_file"] = options.scene_file;
+  doc["verdict"] = to_string(result.verdict);
+  doc["stable"] = result.stable();
+  doc["formulation"] = to_string(result.formulation);
+  if (st) doc["dt"] = result.dt;
+  json without = json::array();
+  for (int i : options.without) without.push_back(assembly.part(i).name);
+  doc["without"] = without;
+  json moving = json::array();
+  for (int i : result.moving) moving.push_back(assembly.part(i).name);
+  doc["moving"] = moving;
+  doc["force_unit"] = force_unit;
+
+  // Parts: every present part; movable ones carry their motion.
+  json parts = json::array();
+  std::vector<const PartMotion*> motion_of(assembly.num_parts(), nullptr);
+  for (const PartMotion& m : result.parts) motion_of[m.part] = &m;
+  for (int i = 0; i < assembly.num_parts(); ++i) {
+    if (!config.present[i]) continue;
+    const Part& p = assembly.part(i);
+    json jp;
+    jp["name"] = p.name;
+    jp["fixed"] = p.fixed;
+    jp["mass"] = p.mass;
+    jp["centroid"] = Vec(config.WorldCentroid(assembly, i));
+    if (const PartMotion* m = motion_of[i]) {
+      jp["moving"] = m->moving;
+      jp["motion"] = to_string(m->kind);
+      json mo;
+      mo["linear"] = Vec(m->linear, g);
+      mo["angular"] = Clean(m->angular, g);
+      jp[st ? "velocity" : "acceleration"] = mo;
+      if (m->pivot) jp["pivot"] = Vec(*m->pivot);
+    }
+    parts.push_back(jp);
+  }
+  doc["parts"] = parts;
+
+  json contacts = json::array();
+  for (const ContactReport& cr : result.contacts) {
+    const Contact& c = cr.contact;
+    json jc;
+    jc["parts"] = {PartName(assembly, c.part_a), PartName(assembly, c.part_b)};
+    jc["point"] = Vec(c.p_WC);
+    jc["normal"] = Vec(c.n_W);
+    jc["feature"] = to_string(c.feature);
+    jc["mu"] = c.mu;
+    jc["normal_force"] = Clean(cr.normal_force / force_scale, 1.0);
+    jc["friction_force"] = Clean(cr.friction_force / force_scale, 1.0);
+    jc[st ? "normal_velocity" : "normal_acceleration"] = Clean(cr.normal_motion, g);
+    jc[st ? "sliding_velocity" : "tangential_acceleration"] = Clean(cr.tangent_motion, g);
+    jc["breaks"] = cr.breaking;
+    jc["slides"] = cr.sliding;
+    jc["component"] = cr.component;
+    contacts.push_back(jc);
+  }
+  doc["contacts"] = contacts;
+
+  json comps = json::array();
+  for (const ComponentReport& r : result.components) {
+    json jr;
+    json names = json::array();
+    for (int i : r.parts) names.push_back(assembly.part(i).name);
+    jr["parts"] = names;
+    jr["contacts"] = r.num_contacts;
+    jr["lcp_size"] = r.lcp_size;
+    jr["status"] = to_string(r.status);
+    jr["pivots"] = r.pivots;
+    jr["residual"] = r.residual;
+    jr["consistency_residual"] = r.consistency_residual;
+    if (!r.message.empty()) jr["message"] = r.message;
+    comps.push_back(jr);
+  }
+  doc["components"] = comps;
+  doc["tolerances"] = {{"length", result.tolerances.length},
+                       {"angle", result.tolerances.angle},
+                       {st ? "velocity" : "acceleration",
+                        st ? result.tolerances.velocity : result.tolerances.acceleration}};
+  doc["diagnostics"] = result.diagnostics;
+  return doc;
+}
+
+}  // namespace cairn

@@ -1,1 +1,83 @@
-// placeholder: implemented in this session
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+#include "cairn/report/report.h"
+
+namespace cairn {
+
+namespace {
+std::string Fmt(const char* format, double x) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, format, std::abs(x) < 5e-13 ? 0.0 : x);
+  return buf;
+}
+std::string Pt(const Vector2& v) { return "(" + Fmt("%.4g", v.x()) + ", " + Fmt("%.4g", v.y()) + ")"; }
+std::string PartName(const Assembly& a, int i) { return i >= 0 ? a.part(i).name : "fixture"; }
+}  // namespace
+
+std::string StabilityToText(const Assembly& assembly, const Configuration& config,
+                            const StabilityResult& result, const ReportOptions& options) {
+  const bool st = result.formulation == Formulation::kStewartTrinkle;
+  const auto [force_scale, force_unit] = ForceScale(assembly, options);
+  std::ostringstream os;
+
+  // Headline.
+  os << (assembly.name().empty() ? options.scene_file : assembly.name()) << ": ";
+  switch (result.verdict) {
+    case Verdict::kStable:
+      os << "STABLE";
+      break;
+    case Verdict::kUnstable:
+      os << "UNSTABLE";
+      break;
+    case Verdict::kSolverFailure:
+      os << "UNDECIDED (solver failure)";
+      break;
+  }
+  os << "  [" << (st ? "Coulomb friction, Stewart-Trinkle step" : "frictionless, Baraff") << "]\n";
+  if (!options.without.empty()) {
+    os << "  without:";
+    for (int i : options.without) os << ' ' << assembly.part(i).name;
+    os << '\n';
+  }
+  int movable = 0, pivots = 0, lcp_vars = 0;
+  for (const PartMotion& m : result.parts) (void)m, ++movable;
+  for (const ComponentReport& c : result.components) pivots += c.pivots, lcp_vars += c.lcp_size;
+  os << "  " << movable << " movable part" << (movable == 1 ? "" : "s") << ", "
+     << result.contacts.size() << " contacts, " << result.components.size() << " component"
+     << (result.components.size() == 1 ? "" : "s") << "; LCP " << lcp_vars << " variables, "
+     << pivots << " pivots\n";
+
+  // What moves, and how.
+  for (const PartMotion& m : result.parts) {
+    if (!m.moving) continue;
+    const Part& p = assembly.part(m.part);
+    const char* what = st ? "velocity" : "acceleration";
+    os << "  " << p.name << ' ' << to_string(m.kind);
+    if (m.kind == MotionKind::kTips && m.pivot)
+      os << " about " << Pt(*m.pivot) << (m.angular > 0 ? " counter-clockwise" : " clockwise");
+    else if (m.linear.norm() > 0)
+      os << " along " << Pt(m.linear.normalized());
+    os << ": centroid " << what << ' ' << Pt(m.linear) << ", angular " << Fmt("%.4g", m.angular)
+       << '\n';
+  }
+
+  // Contact forces.
+  os << "  contact forces (" << force_unit << "):\n";
+  for (const ContactReport& cr : result.contacts) {
+    const Contact& c = cr.contact;
+    os << "    " << PartName(assembly, c.part_a) << " on " << PartName(assembly, c.part_b)
+       << " at " << Pt(c.p_WC) << " n=" << Pt(c.n_W) << "  normal "
+       << Fmt("%.6g", cr.normal_force / force_scale);
+    if (c.mu > 0) os << "  friction " << Fmt("%.6g", cr.friction_force / force_scale);
+    if (cr.breaking) os << "  BREAKS";
+    if (cr.sliding) os << "  SLIDES";
+    os << '\n';
+  }
+  if (!result.diagnostics.empty()) os << "  diagnostics: " << result.diagnostics << '\n';
+  (void)config;
+  return os.str();
+}
+
+}  // namespace cairn

@@ -1,1 +1,249 @@
-// placeholder: implemented in this session
+#include "cairn/stability/analyze.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <numeric>
+#include <sstream>
+
+#include "cairn/contact/detect_contacts.h"
+
+namespace cairn {
+
+const char* to_string(MotionKind kind) {
+  switch (kind) {
+    case MotionKind::kAtRest:
+      return "at rest";
+    case MotionKind::kSlides:
+      return "slides";
+    case MotionKind::kTips:
+      return "tips";
+    case MotionKind::kFalls:
+      return "falls";
+  }
+  return "unknown";
+}
+
+const char* to_string(Verdict v) {
+  switch (v) {
+    case Verdict::kStable:
+      return "stable";
+    case Verdict::kUnstable:
+      return "unstable";
+    case Verdict::kSolverFailure:
+      return "solver failure";
+  }
+  return "unknown";
+}
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double Seconds(Clock::time_point since) {
+  return std::chrono::duration<double>(Clock::now() - since).count();
+}
+
+// Union–find over part indices.
+int Find(std::vector<int>& parent, int i) {
+  while (parent[i] != i) i = parent[i] = parent[parent[i]];
+  return i;
+}
+
+struct Component {
+  std::vector<int> parts;     // movable parts, ascending
+  std::vector<int> contacts;  // indices into the contact list, ascending
+};
+
+// Movable parts joined by contacts (contacts with fixed parts or the world
+// join nothing). Ordered by smallest part index: deterministic.
+std::vector<Component> SplitComponents(const Assembly& assembly, const Configuration& config,
+                                       const std::vector<Contact>& contacts) {
+  const int n = assembly.num_parts();
+  const auto movable = [&](int i) { return i >= 0 && config.present[i] && !assembly.part(i).fixed; };
+  std::vector<int> parent(n);
+  std::iota(parent.begin(), parent.end(), 0);
+  for (const Contact& c : contacts)
+    if (movable(c.part_a) && movable(c.part_b)) parent[Find(parent, c.part_a)] = Find(parent, c.part_b);
+  std::vector<int> index_of_root(n, -1);
+  std::vector<Component> out;
+  for (int i = 0; i < n; ++i) {
+    if (!movable(i)) continue;
+    const int r = Find(parent, i);
+    if (index_of_root[r] < 0) {
+      index_of_root[r] = static_cast<int>(out.size());
+      out.emplace_back();
+    }
+    out[index_of_root[r]].parts.push_back(i);
+  }
+  for (int c = 0; c < static_cast<int>(contacts.size()); ++c) {
+    const int owner = movable(contacts[c].part_a) ? contacts[c].part_a : contacts[c].part_b;
+    out[index_of_root[Find(parent, owner)]].contacts.push_back(c);
+  }
+  return out;
+}
+
+// How a part with centroid motion (lin, ang) moves, given whether it keeps any
+// closed contact. `size` is the part's radius about its centroid.
+void ClassifyMotion(PartMotion& m, bool keeps_contact, double size, double scene_size) {
+  if (!m.moving) {
+    m.kind = MotionKind::kAtRest;
+    return;
+  }
+  if (!keeps_contact) {
+    m.kind = MotionKind::kFalls;
+    return;
+  }
+  // The point of zero motion: lin + ang ẑ × r = 0 ⇒ r = (−lin_y, lin_x) / ang.
+  // A part tips when that point lies within the scene (about its own size of
+  // a contact); a far-away pivot is a translation with a little spin.
+  if (m.angular != 0) {
+    const Vector2 r(-m.linear.y() / m.angular, m.linear.x() / m.angular);
+    if (r.norm() <= std::max(2 * size, 0.5 * scene_size)) {
+      m.kind = MotionKind::kTips;
+      m.pivot = r;  // relative to the centroid; made absolute by the caller
+      return;
+    }
+  }
+  m.kind = MotionKind::kSlides;
+}
+
+}  // namespace
+
+StabilityResult AnalyzeConfiguration(const Assembly& assembly, const Configuration& config,
+                                     const StabilityOptions& options) {
+  StabilityResult result;
+  result.dt = options.dt;
+  result.tolerances = options.tolerances ? *options.tolerances : assembly.MakeTolerances(options.dt);
+  result.formulation = options.formulation.value_or(
+      assembly.IsFrictionless() ? Formulation::kBaraff : Formulation::kStewartTrinkle);
+  const Tolerances& tol = result.tolerances;
+  const bool st = result.formulation == Formulation::kStewartTrinkle;
+  const double motion_tol = st ? tol.velocity : tol.acceleration;
+
+  // DetectContacts.
+  auto t0 = Clock::now();
+  const std::vector<Contact> contacts = DetectContacts(assembly, config, tol.length, tol.angle);
+  result.profile.detect = Seconds(t0);
+
+  // SplitComponents.
+  const std::vector<Component> components = SplitComponents(assembly, config, contacts);
+  result.contacts.resize(contacts.size());
+  for (size_t c = 0; c < contacts.size(); ++c) result.contacts[c].contact = contacts[c];
+
+  bool any_moving = false, any_failure = false;
+  std::ostringstream diag;
+  for (int ci = 0; ci < static_cast<int>(components.size()); ++ci) {
+    const Component& comp = components[ci];
+
+    // BuildContactLcp.
+    t0 = Clock::now();
+    std::vector<BodyDynamics> bodies;
+    for (int p : comp.parts) {
+      const Part& part = assembly.part(p);
+      BodyDynamics b;
+      b.part = p;
+      b.mass = part.mass;
+      b.inertia = part.inertia;
+      b.p_WBcm = config.WorldCentroid(assembly, p);
+      b.F_ext = Vector3(part.mass * assembly.gravity().x(), part.mass * assembly.gravity().y(), 0);
+      bodies.push_back(b);
+    }
+    std::vector<Contact> comp_contacts;
+    for (int c : comp.contacts) comp_contacts.push_back(contacts[c]);
+    const ContactLcp lcp = BuildContactLcp(std::move(bodies), std::move(comp_contacts),
+                                           result.formulation, options.dt, /*use_gaps=*/false);
+    result.profile.build += Seconds(t0);
+
+    // SolveLemke, then re-check the answer independently of the status.
+    t0 = Clock::now();
+    const LcpResult sol = SolveLemke(lcp.M, lcp.q, options.lemke);
+    result.profile.solve += Seconds(t0);
+    ComponentReport report;
+    report.parts = comp.parts;
+    report.num_contacts = static_cast<int>(comp.contacts.size());
+    report.lcp_size = lcp.size();
+    report.status = sol.status;
+    report.pivots = sol.pivots;
+    report.residual = sol.residual;
+    report.warm_start_used = sol.warm_start_used;
+    bool solved = sol.status == LcpStatus::kSolved || sol.status == LcpStatus::kTrivial;
+    const double check_tol = options.lemke.solution_tolerance * std::max(1.0, lcp.q.lpNorm<Eigen::Infinity>());
+    if (solved && !IsLcpSolution(lcp.M, lcp.q, sol.z, check_tol)) {
+      solved = false;
+      report.status = LcpStatus::kNumericalFailure;
+      report.message = "the solver's answer failed the independent LCP check";
+    }
+    if (!solved) {
+      if (report.message.empty()) report.message = sol.message;
+      any_failure = true;
+      diag << "component " << ci << " (" << comp.parts.size() << " parts, " << lcp.size()
+           << " LCP variables): " << to_string(report.status)
+           << (report.message.empty() ? "" : ": " + report.message) << "; ";
+      for (int p : comp.parts) {
+        PartMotion m;
+        m.part = p;
+        m.component = ci;
+        result.parts.push_back(m);
+      }
+      for (int c : comp.contacts) result.contacts[c].component = ci;
+      result.components.push_back(report);
+      continue;
+    }
+
+    // RecoverSolution.
+    t0 = Clock::now();
+    const ContactSolution phys = RecoverSolution(lcp, sol.z);
+    report.consistency_residual = phys.consistency_residual;
+
+    // ClassifyMotion: contacts first, then parts.
+    std::vector<bool> keeps_contact(comp.parts.size(), false);
+    for (size_t k = 0; k < comp.contacts.size(); ++k) {
+      ContactReport& cr = result.contacts[comp.contacts[k]];
+      cr.component = ci;
+      cr.normal_force = phys.normal_force(k);
+      cr.friction_force = phys.friction_force(k);
+      cr.normal_motion = phys.normal_motion(k);
+      cr.tangent_motion = phys.tangent_motion(k);
+      cr.breaking = cr.normal_motion > motion_tol;
+      cr.sliding = !cr.breaking && std::abs(cr.tangent_motion) > motion_tol;
+      if (!cr.breaking) {
+        for (size_t b = 0; b < comp.parts.size(); ++b)
+          if (comp.parts[b] == cr.contact.part_a || comp.parts[b] == cr.contact.part_b)
+            keeps_contact[b] = true;
+      }
+    }
+    for (size_t b = 0; b < comp.parts.size(); ++b) {
+      const int p = comp.parts[b];
+      PartMotion m;
+      m.part = p;
+      m.component = ci;
+      m.linear = phys.body_motion[b].head<2>();
+      m.angular = phys.body_motion[b].z();
+      // The fastest point of the part: |lin + ang ẑ × r| over its vertices.
+      const Vector2 c = lcp.bodies[b].p_WBcm;
+      double radius = 0;
+      for (const Vector2& v : config.WorldPolygon(assembly, p)) {
+        m.point_motion = std::max(m.point_motion, (m.linear + CrossZ(m.angular, v - c)).norm());
+        radius = std::max(radius, (v - c).norm());
+      }
+      m.moving = m.point_motion > motion_tol;
+      ClassifyMotion(m, keeps_contact[b], radius, assembly.scene_size());
+      if (m.pivot) m.pivot = *m.pivot + c;
+      if (m.moving) any_moving = true;
+      result.parts.push_back(m);
+    }
+    result.profile.classify += Seconds(t0);
+    result.components.push_back(report);
+  }
+
+  std::sort(result.parts.begin(), result.parts.end(),
+            [](const PartMotion& x, const PartMotion& y) { return x.part < y.part; });
+  for (const PartMotion& m : result.parts)
+    if (m.moving) result.moving.push_back(m.part);
+  result.verdict = any_moving ? Verdict::kUnstable
+                              : (any_failure ? Verdict::kSolverFailure : Verdict::kStable);
+  result.diagnostics = diag.str();
+  return result;
+}
+
+}  // namespace cairn

@@ -1,0 +1,100 @@
+#pragma once
+/// @file
+/// The contact LCPs of one contact-graph component (2-D).
+///
+/// Generalised velocity of body k: ν_k = (v_x, v_y, ω) at its centroid; mass
+/// matrix M_k = diag(m, m, I). For a contact c between a and b with point p,
+/// normal n (from b into a) and tangent t, the normal row is
+///     J_n,c ν = n·v_a + ((p − c_a) × n) ω_a − n·v_b − ((p − c_b) × n) ω_b,
+/// the relative normal velocity of a's material point over b's (a fixed part
+/// or the world contributes nothing); J_t,c is the same with t. The transpose
+/// J_nᵀ f is the wrench of the contact force f on the bodies (the paper's W_n,
+/// W_f = [J_tᵀ, −J_tᵀ] with D = 2 directions in 2-D).
+///
+/// Frictionless (Baraff 1994; the paper's eq. 1), acceleration level, from rest:
+///     0 ≤ f  ⊥  a_n = J_n M⁻¹ J_nᵀ f + J_n M⁻¹ F_ext ≥ 0,
+/// with body accelerations ν̇ = M⁻¹ (F_ext + J_nᵀ f).
+///
+/// With friction (Stewart & Trinkle 1996; the paper's eq. 5), one impulse step
+/// of length Δt, unknowns z = (p_n, p_f, λ):
+///     [ J_n M⁻¹ J_nᵀ  J_n M⁻¹ D   0 ] [p_n]   [J_n (M⁻¹F Δt + ν⁻) + d/Δt]
+///     [ Dᵀ M⁻¹ J_nᵀ   Dᵀ M⁻¹ D    E ] [p_f] + [Dᵀ (M⁻¹F Δt + ν⁻)        ]  ⊥ z ≥ 0
+///     [ μ             −Eᵀ         0 ] [λ  ]   [0                        ]
+/// with ν⁺ = ν⁻ + M⁻¹ (F Δt + J_nᵀ p_n + D p_f). Contacts with μ = 0 carry no
+/// friction unknowns (their p_f would be forced to zero anyway), which keeps
+/// the LCP smaller and better conditioned.
+///
+/// The products G M⁻¹ Gᵀ are formed per body: each row of G touches at most
+/// two bodies, so the cost is Σ_k (rows at body k)², not rows² · bodies.
+
+#include <vector>
+
+#include "cairn/contact/contact.h"
+#include "cairn/core/types.h"
+
+namespace cairn {
+
+/// Which contact model an analysis uses.
+enum class Formulation {
+  kBaraff,          ///< frictionless, acceleration level (paper eq. 1)
+  kStewartTrinkle,  ///< Coulomb friction, impulse-velocity level (paper eq. 5)
+};
+
+/// "baraff", "stewart-trinkle".
+const char* to_string(Formulation f);
+
+/// One movable body of a component.
+struct BodyDynamics {
+  int part = -1;               ///< index into Assembly::parts()
+  double mass = 0;             ///< mass units
+  double inertia = 0;          ///< about the centroid, mass·length²
+  Vector2 p_WBcm{0, 0};        ///< centroid, world frame
+  Vector3 F_ext{0, 0, 0};      ///< (f_x, f_y, τ) external wrench at the centroid
+  Vector3 nu_prev{0, 0, 0};    ///< (v_x, v_y, ω) before the step (Stewart–Trinkle only)
+};
+
+/// A row of G: a linear form on the generalised velocities of at most two bodies.
+struct JacobianRow {
+  int body[2] = {-1, -1};      ///< local body indices, -1 when fixed/world
+  Vector3 g[2];                ///< coefficients on (v_x, v_y, ω) of each body
+  double Dot(const std::vector<Vector3>& nu) const;
+};
+
+/// The LCP of one component, and what is needed to read its solution.
+struct ContactLcp {
+  Formulation formulation = Formulation::kBaraff;
+  double dt = 1.0;                   ///< s (Stewart–Trinkle only)
+  std::vector<BodyDynamics> bodies;  ///< (nb)
+  std::vector<Contact> contacts;     ///< (nc)
+  std::vector<int> friction_of;      ///< (nc) index among frictional contacts, or -1
+  int num_friction = 0;              ///< nf: contacts with μ > 0 (Stewart–Trinkle)
+  std::vector<JacobianRow> normal_rows;   ///< (nc) J_n
+  std::vector<JacobianRow> tangent_rows;  ///< (nc) J_t (every contact, for reporting)
+  VectorX normal_offset;             ///< (nc) d/Δt in the normal rows (S–T with gaps), else 0
+  MatrixX M;                         ///< (n x n) n = nc (Baraff) or nc + 3 nf (Stewart–Trinkle)
+  VectorX q;                         ///< (n)
+  int size() const { return static_cast<int>(q.size()); }
+};
+
+/// Builds the LCP of one component. `gaps` uses each contact's gap (length)
+/// in the Stewart–Trinkle d/Δt term when true, else treats every contact as
+/// closed (d = 0, for a static check).
+ContactLcp BuildContactLcp(std::vector<BodyDynamics> bodies, std::vector<Contact> contacts,
+                           Formulation formulation, double dt, bool use_gaps);
+
+/// The solution of a component's LCP in physical terms.
+struct ContactSolution {
+  std::vector<Vector3> body_motion;  ///< (nb) ν̇ (Baraff, length/s², rad/s²) or ν⁺ (S–T, length/s, rad/s)
+  VectorX normal_force;      ///< (nc) f (Baraff) or p_n / Δt (S–T), force units, ≥ 0
+  VectorX friction_force;    ///< (nc) signed along t_W, force units (0 when frictionless)
+  VectorX normal_motion;     ///< (nc) relative normal acceleration (Baraff) or velocity (S–T)
+  VectorX tangent_motion;    ///< (nc) relative tangential acceleration or velocity along t_W
+  /// max over rows of |(G ν) − w|: the LCP's w recomputed from the body motions.
+  /// Checks the assembled LCP against the direct physics (should be ~1e-12).
+  double consistency_residual = 0;
+};
+
+/// Maps an LCP solution z to body motions and contact forces.
+ContactSolution RecoverSolution(const ContactLcp& lcp, const VectorX& z);
+
+}  // namespace cairn

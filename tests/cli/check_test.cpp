@@ -1,0 +1,155 @@
+// The `cairn check` command, run as a user runs it: the real binary, its
+// stdout, stderr and exit code.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <sys/wait.h>
+
+#include "test_paths.h"
+
+namespace cairn {
+namespace {
+
+using testing::CliPath;
+using testing::ExamplePath;
+
+struct CliRun {
+  int exit_code = -1;
+  std::string out, err;
+};
+
+std::string Slurp(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+CliRun Cairn(const std::string& args) {
+  const auto dir = std::filesystem::temp_directory_path();
+  const std::string tag = std::to_string(::getpid()) + "_" + std::to_string(std::rand());
+  const std::string out = (dir / ("cairn_out_" + tag)).string();
+  const std::string err = (dir / ("cairn_err_" + tag)).string();
+  const std::string cmd = CliPath() + " " + args + " >" + out + " 2>" + err;
+  const int status = std::system(cmd.c_str());
+  CliRun r;
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  r.out = Slurp(out);
+  r.err = Slurp(err);
+  std::filesystem::remove(out);
+  std::filesystem::remove(err);
+  return r;
+}
+
+struct ExampleVerdict {
+  const char* file;
+  const char* without;
+  int exit_code;
+};
+
+class BundledExamples : public ::testing::TestWithParam<ExampleVerdict> {};
+
+TEST_P(BundledExamples, ExitCodeIsTheVerdict) {
+  const ExampleVerdict& e = GetParam();
+  std::string args = "check " + ExamplePath(e.file);
+  if (*e.without) args += std::string(" --without ") + e.without;
+  const CliRun r = Cairn(args);
+  EXPECT_EQ(r.exit_code, e.exit_code) << r.out << r.err;
+  EXPECT_TRUE(r.err.empty()) << r.err;
+  EXPECT_NE(r.out.find(e.exit_code == 0 ? "STABLE" : "UNSTABLE"), std::string::npos) << r.out;
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Verdicts, BundledExamples,
+    ::testing::Values(ExampleVerdict{"incline.json", "", 0}, ExampleVerdict{"incline_slides.json", "", 1},
+                      ExampleVerdict{"overhang.json", "", 0}, ExampleVerdict{"overhang_tips.json", "", 1},
+                      ExampleVerdict{"stack3.json", "", 0}, ExampleVerdict{"stack3_tips.json", "", 1},
+                      ExampleVerdict{"ladder.json", "", 0}, ExampleVerdict{"paper_fig1.json", "", 0},
+                      ExampleVerdict{"paper_fig1.json", "C", 1}, ExampleVerdict{"paper_fig1.json", "D", 0},
+                      ExampleVerdict{"paper_fig1.json", "D,C", 0}, ExampleVerdict{"paper_fig4.json", "", 0},
+                      ExampleVerdict{"paper_fig4.json", "A", 1},
+                      ExampleVerdict{"paper_fig4_fixels.json", "A", 0}));
+
+TEST(CheckJson, HasTheContractKeysAndNamesTheMovingPart) {
+  const CliRun r = Cairn("check " + ExamplePath("paper_fig4.json") + " --without A --json");
+  ASSERT_EQ(r.exit_code, 1) << r.err;
+  const auto doc = nlohmann::json::parse(r.out);
+  EXPECT_EQ(doc["stable"], false);
+  EXPECT_EQ(doc["verdict"], "unstable");
+  // B slides right; C, no longer held, tips after it.
+  EXPECT_EQ(doc["moving"], nlohmann::json::array({"B", "C"}));
+  ASSERT_TRUE(doc["parts"].is_array());
+  bool saw_b = false;
+  for (const auto& p : doc["parts"]) {
+    for (const char* key : {"name", "mass", "centroid", "fixed"}) EXPECT_TRUE(p.contains(key)) << key;
+    if (p["name"] == "A") ADD_FAILURE() << "A was taken away";
+    if (p["name"] == "B") {
+      saw_b = true;
+      EXPECT_EQ(p["motion"], "slides");
+      EXPECT_GT(p["acceleration"]["linear"][0].get<double>(), 0.0);
+    }
+  }
+  EXPECT_TRUE(saw_b);
+  ASSERT_FALSE(doc["contacts"].empty());
+  for (const auto& c : doc["contacts"])
+    for (const char* key : {"parts", "point", "normal", "normal_force", "friction_force", "breaks", "slides"})
+      EXPECT_TRUE(c.contains(key)) << key;
+}
+
+TEST(CheckJson, NormalizeDividesForcesByThatPartsWeight) {
+  // Frictionless Fig. 1 with g = 1: the four table contacts under A carry the
+  // whole weight of A–D; normalised by A's weight they sum to (total / m_A).
+  const CliRun plain = Cairn("check " + ExamplePath("paper_fig1.json") + " --json");
+  const CliRun norm = Cairn("check " + ExamplePath("paper_fig1.json") + " --json --normalize A");
+  ASSERT_EQ(plain.exit_code, 0);
+  ASSERT_EQ(norm.exit_code, 0);
+  const auto a = nlohmann::json::parse(plain.out), b = nlohmann::json::parse(norm.out);
+  EXPECT_EQ(b["force_unit"], "weight of A");
+  double table_load = 0, mass_total = 0, mass_a = 0;
+  for (const auto& p : a["parts"]) {
+    if (p["fixed"]) continue;
+    mass_total += p["mass"].get<double>();
+    if (p["name"] == "A") mass_a = p["mass"].get<double>();
+  }
+  for (size_t i = 0; i < a["contacts"].size(); ++i) {
+    const auto& ca = a["contacts"][i];
+    const auto& cb = b["contacts"][i];
+    EXPECT_NEAR(cb["normal_force"].get<double>() * mass_a, ca["normal_force"].get<double>(), 1e-9);
+    if (ca["parts"][1] == "E") table_load += ca["normal_force"].get<double>();
+  }
+  EXPECT_NEAR(table_load, mass_total, 1e-9);
+}
+
+TEST(CheckErrors, BadArgumentsExitTwoAndWriteNothingToStdout) {
+  for (const std::string& args : std::vector<std::string>
+       {"check " + ExamplePath("paper_fig1.json") + " --without Z",
+        "check " + ExamplePath("paper_fig1.json") + " --normalize nobody",
+        "check " + ExamplePath("does_not_exist.json"), "check", "frobnicate"}) {
+    const CliRun r = Cairn(args);
+    EXPECT_EQ(r.exit_code, 2) << args;
+    EXPECT_TRUE(r.out.empty()) << args << ": " << r.out;
+    EXPECT_FALSE(r.err.empty()) << args;
+  }
+  const CliRun r = Cairn("check " + ExamplePath("paper_fig1.json") + " --without Z");
+  EXPECT_NE(r.err.find("no part named 'Z'"), std::string::npos) << r.err;
+}
+
+TEST(CheckErrors, BadSceneNamesFileAndJsonPath) {
+  const auto path = std::filesystem::temp_directory_path() / "cairn_bad_scene_test.json";
+  std::ofstream(path) << R"({"cairn": 1, "parts": [{"name": "A", "polygon": [[0,0],[1,0],[1,1],[0,1]]},
+    {"name": "B", "polygon": [[0,0],[1,1],[1,0],[0,1]]}]})";
+  const CliRun r = Cairn("check " + path.string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_TRUE(r.out.empty());
+  EXPECT_NE(r.err.find(path.string()), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("parts[1].polygon"), std::string::npos) << r.err;
+  std::filesystem::remove(path);
+}
+
+}  // namespace
+}  // namespace cairn
