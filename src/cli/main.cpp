@@ -15,10 +15,10 @@ int main(int argc, char** argv) {
       app.add_subcommand("check", "Is one configuration of a scene stable under gravity?");
   check_cmd->add_option("scene", check.scene, "Scene file (JSON, format 1)")->required();
   check_cmd->add_flag("--json", check.json, "Print a JSON document instead of a summary");
-  check_cmd->add_option("--normalize", check.normalize,
-                        "Divide forces by the weight of this part");
-  check_cmd->add_option("--without", check.without,
-                        "Check with these parts taken away (comma-separated)")
+  check_cmd->add_option("--normalize", check.normalize, "Divide forces by the weight of this part");
+  check_cmd
+      ->add_option("--without", check.without,
+                   "Check with these parts taken away (comma-separated)")
       ->delimiter(',');
 
   try {

@@ -32,18 +32,15 @@ bool WedgeOutside(const Polygon& poly, int k, const Vector2& n, double tol, doub
   // on a line without penetrating it.
   const double turn = Cross2(-to_prev, to_next);
   if (turn < -angle_tol * to_prev.norm() * to_next.norm()) return false;
-  const auto outside = [&](const Vector2& d) {
-    return d.dot(n) >= -(angle_tol * d.norm() + tol);
-  };
+  const auto outside = [&](const Vector2& d) { return d.dot(n) >= -(angle_tol * d.norm() + tol); };
   return outside(to_prev) && outside(to_next);
 }
 
 // Appends the contacts of every vertex of `vp` touching an edge of `ep`.
 // `n_sign` = +1 when vp is part a (the edge normal of ep points from b into
 // a), −1 when vp is part b.
-void VertexEdgeContacts(const Polygon& vp, const Polygon& ep, int a, int b, double mu,
-                        double tol, double angle_tol, bool vertex_of_a,
-                        std::vector<Contact>& out) {
+void VertexEdgeContacts(const Polygon& vp, const Polygon& ep, int a, int b, double mu, double tol,
+                        double angle_tol, bool vertex_of_a, std::vector<Contact>& out) {
   const int nv = static_cast<int>(vp.size());
   const int ne = static_cast<int>(ep.size());
   for (int e = 0; e < ne; ++e) {
@@ -150,7 +147,8 @@ std::vector<Contact> DetectContacts(const Assembly& assembly, const Configuratio
     c.part_b = kWorld;
     c.p_WC = pose.Apply(fx.point, assembly.part(fx.part).centroid);
     const double cs = std::cos(pose.rotation), sn = std::sin(pose.rotation);
-    c.n_W = Vector2(cs * fx.normal.x() - sn * fx.normal.y(), sn * fx.normal.x() + cs * fx.normal.y());
+    c.n_W =
+        Vector2(cs * fx.normal.x() - sn * fx.normal.y(), sn * fx.normal.x() + cs * fx.normal.y());
     c.mu = 0;
     c.feature = ContactFeature::kFixture;
     c.vertex = f;

@@ -1,1 +1,174 @@
-// placeholder: implemented in this session
+#include "cairn/geometry/polygon.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "cairn/core/check.h"
+
+namespace cairn {
+namespace {
+
+int Size(const Polygon& poly) { return static_cast<int>(poly.size()); }
+
+// Distance between the segments [a0, a1] and [b0, b1]: 0 when they cross,
+// else the least of the four endpoint-to-segment distances.
+double SegmentDistance(const Vector2& a0, const Vector2& a1, const Vector2& b0, const Vector2& b1) {
+  const double s0 = Cross2(a1 - a0, b0 - a0), s1 = Cross2(a1 - a0, b1 - a0);
+  const double t0 = Cross2(b1 - b0, a0 - b0), t1 = Cross2(b1 - b0, a1 - b0);
+  if (((s0 < 0 && s1 > 0) || (s0 > 0 && s1 < 0)) && ((t0 < 0 && t1 > 0) || (t0 > 0 && t1 < 0))) {
+    return 0.0;
+  }
+  return std::min({DistanceToSegment(b0, a0, a1), DistanceToSegment(b1, a0, a1),
+                   DistanceToSegment(a0, b0, b1), DistanceToSegment(a1, b0, b1)});
+}
+
+}  // namespace
+
+double SignedArea(const Polygon& poly) {
+  const int n = Size(poly);
+  if (n < 3) return 0.0;
+  // Shoelace about the first vertex (less cancellation far from the origin).
+  const Vector2& o = poly[0];
+  double twice = 0;
+  for (int i = 1; i + 1 < n; ++i) twice += Cross2(poly[i] - o, poly[i + 1] - o);
+  return 0.5 * twice;
+}
+
+void MakeCounterClockwise(Polygon& poly) {
+  // Keep vertex 0 first so that vertex 0 still names the same point.
+  if (SignedArea(poly) < 0) std::reverse(poly.begin() + 1, poly.end());
+}
+
+// Green's theorem over the edges (p_i, p_{i+1}) with c_i = p_i × p_{i+1}, in
+// coordinates relative to a reference point o (the first vertex):
+//   A      = ½ Σ c_i
+//   A x̄    = ⅙ Σ c_i (p_i + p_{i+1})
+//   J_o    = ¹⁄₁₂ Σ c_i (|p_i|² + p_i·p_{i+1} + |p_{i+1}|²)
+// and the parallel-axis theorem moves J_o to the centroid: J = J_o − A |x̄|².
+// All three are signed by the orientation, so dividing by A and flipping the
+// sign of a clockwise polygon gives the same result for either orientation.
+PolygonMass ComputePolygonMass(const Polygon& poly) {
+  PolygonMass m;
+  const int n = Size(poly);
+  if (n < 3) return m;
+  const Vector2 o = poly[0];
+  double twice_area = 0, j_o = 0;
+  Vector2 first_moment(0, 0);  // 6 · ∫ r dA (relative to o)
+  for (int i = 0; i < n; ++i) {
+    const Vector2 p = poly[i] - o;
+    const Vector2 q = poly[(i + 1) % n] - o;
+    const double c = Cross2(p, q);
+    twice_area += c;
+    first_moment += c * (p + q);
+    j_o += c * (p.squaredNorm() + p.dot(q) + q.squaredNorm());
+  }
+  const double area = 0.5 * twice_area;
+  if (area == 0) {
+    m.centroid = o;
+    return m;
+  }
+  const Vector2 centroid_rel = first_moment / (6.0 * area);
+  j_o /= 12.0;
+  const double sign = area < 0 ? -1.0 : 1.0;
+  m.area = sign * area;
+  m.centroid = o + centroid_rel;
+  m.polar_moment = sign * (j_o - area * centroid_rel.squaredNorm());
+  return m;
+}
+
+std::optional<SelfIntersection> FindSelfIntersection(const Polygon& poly, double tol) {
+  const int n = Size(poly);
+  if (n < 3) return std::nullopt;
+  // A zero-length edge i (a vertex repeated next to itself): its neighbours
+  // i−1 and i+1 meet at the repeated point.
+  for (int i = 0; i < n; ++i) {
+    if ((poly[(i + 1) % n] - poly[i]).norm() <= tol) {
+      const int prev = (i + n - 1) % n, next = (i + 1) % n;
+      return SelfIntersection{std::min(prev, next), std::max(prev, next)};
+    }
+  }
+  for (int i = 0; i < n; ++i) {
+    const Vector2& a0 = poly[i];
+    const Vector2& a1 = poly[(i + 1) % n];
+    for (int j = i + 1; j < n; ++j) {
+      const Vector2& b0 = poly[j];
+      const Vector2& b1 = poly[(j + 1) % n];
+      if (j == i + 1) {
+        // Adjacent, sharing a1 == b0: they fold back when either far end lies
+        // on the other edge.
+        if (DistanceToSegment(b1, a0, a1) <= tol || DistanceToSegment(a0, b0, b1) <= tol) {
+          return SelfIntersection{i, j};
+        }
+      } else if (i == 0 && j == n - 1) {
+        // Adjacent across the closing vertex, sharing a0 == b1.
+        if (DistanceToSegment(b0, a0, a1) <= tol || DistanceToSegment(a1, b0, b1) <= tol) {
+          return SelfIntersection{i, j};
+        }
+      } else if (SegmentDistance(a0, a1, b0, b1) <= tol) {
+        return SelfIntersection{i, j};
+      }
+    }
+  }
+  return std::nullopt;
+}
+
+double DistanceToSegment(const Vector2& p, const Vector2& a, const Vector2& b) {
+  const Vector2 d = b - a;
+  const double len2 = d.squaredNorm();
+  if (len2 == 0) return (p - a).norm();
+  const double t = std::clamp((p - a).dot(d) / len2, 0.0, 1.0);
+  return (p - (a + t * d)).norm();
+}
+
+double DistanceToBoundary(const Polygon& poly, const Vector2& p) {
+  const int n = Size(poly);
+  double best = std::numeric_limits<double>::infinity();
+  for (int i = 0; i < n; ++i) {
+    best = std::min(best, DistanceToSegment(p, poly[i], poly[(i + 1) % n]));
+  }
+  return best;
+}
+
+bool ContainsPoint(const Polygon& poly, const Vector2& p) {
+  // Crossing number: count the edges that cross the horizontal ray to the
+  // right of p (half-open in y, so a vertex on the ray counts once).
+  const int n = Size(poly);
+  bool inside = false;
+  for (int i = 0, j = n - 1; i < n; j = i++) {
+    const Vector2& a = poly[i];
+    const Vector2& b = poly[j];
+    if ((a.y() > p.y()) != (b.y() > p.y())) {
+      const double x = a.x() + (p.y() - a.y()) * (b.x() - a.x()) / (b.y() - a.y());
+      if (p.x() < x) inside = !inside;
+    }
+  }
+  return inside;
+}
+
+double SignedDepth(const Polygon& poly, const Vector2& p) {
+  const double d = DistanceToBoundary(poly, p);
+  return ContainsPoint(poly, p) ? d : -d;
+}
+
+std::pair<Vector2, Vector2> BoundingBox(const Polygon& poly) {
+  if (poly.empty()) return {Vector2(0, 0), Vector2(0, 0)};
+  Vector2 lo = poly[0], hi = poly[0];
+  for (const Vector2& v : poly) {
+    lo = lo.cwiseMin(v);
+    hi = hi.cwiseMax(v);
+  }
+  return {lo, hi};
+}
+
+Vector2 EdgeNormal(const Polygon& ccw_poly, int i) {
+  const int n = Size(ccw_poly);
+  CAIRN_ASSERT(n >= 2 && i >= 0 && i < n);
+  const Vector2 d = ccw_poly[(i + 1) % n] - ccw_poly[i];
+  const double len = d.norm();
+  if (len == 0) return Vector2(0, 0);
+  // Right of the edge direction: outward for a counter-clockwise polygon.
+  return Vector2(d.y(), -d.x()) / len;
+}
+
+}  // namespace cairn

@@ -58,7 +58,8 @@ MatrixX Delassus(const std::vector<const JacobianRow*>& rows,
     const auto& list = at_body[b];
     for (size_t i = 0; i < list.size(); ++i) {
       const Vector3 mg = ApplyMinv(bodies[b], list[i].second);
-      for (size_t j = 0; j < list.size(); ++j) A(list[i].first, list[j].first) += mg.dot(list[j].second);
+      for (size_t j = 0; j < list.size(); ++j)
+        A(list[i].first, list[j].first) += mg.dot(list[j].second);
     }
   }
   return A;
@@ -96,15 +97,17 @@ ContactLcp BuildContactLcp(std::vector<BodyDynamics> bodies, std::vector<Contact
     CAIRN_CHECK(ba >= 0 || bb >= 0);
     lcp.normal_rows.push_back(MakeRow(ct, ct.n_W, ba, bb, lcp.bodies));
     lcp.tangent_rows.push_back(MakeRow(ct, ct.t_W(), ba, bb, lcp.bodies));
-    if (formulation == Formulation::kStewartTrinkle && ct.mu > 0) lcp.friction_of[c] = lcp.num_friction++;
+    if (formulation == Formulation::kStewartTrinkle && ct.mu > 0)
+      lcp.friction_of[c] = lcp.num_friction++;
   }
 
   // The free motion M⁻¹ F (Baraff) or ν⁻ + M⁻¹ F Δt (Stewart–Trinkle).
   std::vector<Vector3> free_motion(nb);
   for (int k = 0; k < nb; ++k) {
     const BodyDynamics& b = lcp.bodies[k];
-    free_motion[k] = formulation == Formulation::kBaraff ? ApplyMinv(b, b.F_ext)
-                                                          : Vector3(b.nu_prev + ApplyMinv(b, b.F_ext) * dt);
+    free_motion[k] = formulation == Formulation::kBaraff
+                         ? ApplyMinv(b, b.F_ext)
+                         : Vector3(b.nu_prev + ApplyMinv(b, b.F_ext) * dt);
   }
 
   if (formulation == Formulation::kBaraff) {
@@ -146,7 +149,7 @@ ContactLcp BuildContactLcp(std::vector<BodyDynamics> bodies, std::vector<Contact
   lcp.q.head(nc) += lcp.normal_offset;
   for (int f = 0; f < nf; ++f) {
     const int lam = nr + f;
-    lcp.M(nc + 2 * f, lam) = 1.0;      // E: λ enters both friction rows
+    lcp.M(nc + 2 * f, lam) = 1.0;  // E: λ enters both friction rows
     lcp.M(nc + 2 * f + 1, lam) = 1.0;
     lcp.M(lam, contact_of[f]) = mu_of[f];  // μ p_n − Eᵀ p_f ≥ 0
     lcp.M(lam, nc + 2 * f) = -1.0;

@@ -12,7 +12,9 @@ std::string Fmt(const char* format, double x) {
   std::snprintf(buf, sizeof buf, format, std::abs(x) < 5e-13 ? 0.0 : x);
   return buf;
 }
-std::string Pt(const Vector2& v) { return "(" + Fmt("%.4g", v.x()) + ", " + Fmt("%.4g", v.y()) + ")"; }
+std::string Pt(const Vector2& v) {
+  return "(" + Fmt("%.4g", v.x()) + ", " + Fmt("%.4g", v.y()) + ")";
+}
 std::string PartName(const Assembly& a, int i) { return i >= 0 ? a.part(i).name : "fixture"; }
 }  // namespace
 
@@ -67,8 +69,8 @@ std::string StabilityToText(const Assembly& assembly, const Configuration& confi
   os << "  contact forces (" << force_unit << "):\n";
   for (const ContactReport& cr : result.contacts) {
     const Contact& c = cr.contact;
-    os << "    " << PartName(assembly, c.part_a) << " on " << PartName(assembly, c.part_b)
-       << " at " << Pt(c.p_WC) << " n=" << Pt(c.n_W) << "  normal "
+    os << "    " << PartName(assembly, c.part_a) << " on " << PartName(assembly, c.part_b) << " at "
+       << Pt(c.p_WC) << " n=" << Pt(c.n_W) << "  normal "
        << Fmt("%.6g", cr.normal_force / force_scale);
     if (c.mu > 0) os << "  friction " << Fmt("%.6g", cr.friction_force / force_scale);
     if (cr.breaking) os << "  BREAKS";

@@ -59,11 +59,14 @@ struct Component {
 std::vector<Component> SplitComponents(const Assembly& assembly, const Configuration& config,
                                        const std::vector<Contact>& contacts) {
   const int n = assembly.num_parts();
-  const auto movable = [&](int i) { return i >= 0 && config.present[i] && !assembly.part(i).fixed; };
+  const auto movable = [&](int i) {
+    return i >= 0 && config.present[i] && !assembly.part(i).fixed;
+  };
   std::vector<int> parent(n);
   std::iota(parent.begin(), parent.end(), 0);
   for (const Contact& c : contacts)
-    if (movable(c.part_a) && movable(c.part_b)) parent[Find(parent, c.part_a)] = Find(parent, c.part_b);
+    if (movable(c.part_a) && movable(c.part_b))
+      parent[Find(parent, c.part_a)] = Find(parent, c.part_b);
   std::vector<int> index_of_root(n, -1);
   std::vector<Component> out;
   for (int i = 0; i < n; ++i) {
@@ -80,6 +83,32 @@ std::vector<Component> SplitComponents(const Assembly& assembly, const Configura
     out[index_of_root[Find(parent, owner)]].contacts.push_back(c);
   }
   return out;
+}
+
+// The LCP of one component: its movable parts under gravity, its contacts.
+ContactLcp BuildComponent(const Assembly& assembly, const Configuration& config,
+                          const std::vector<Contact>& contacts, const Component& comp,
+                          Formulation formulation, double dt) {
+  std::vector<BodyDynamics> bodies;
+  for (int p : comp.parts) {
+    const Part& part = assembly.part(p);
+    BodyDynamics b;
+    b.part = p;
+    b.mass = part.mass;
+    b.inertia = part.inertia;
+    b.p_WBcm = config.WorldCentroid(assembly, p);
+    b.F_ext = Vector3(part.mass * assembly.gravity().x(), part.mass * assembly.gravity().y(), 0);
+    bodies.push_back(b);
+  }
+  std::vector<Contact> comp_contacts;
+  for (int c : comp.contacts) comp_contacts.push_back(contacts[c]);
+  return BuildContactLcp(std::move(bodies), std::move(comp_contacts), formulation, dt,
+                         /*use_gaps=*/false);
+}
+
+Formulation ChooseFormulation(const Assembly& assembly, const StabilityOptions& options) {
+  return options.formulation.value_or(assembly.IsFrictionless() ? Formulation::kBaraff
+                                                                : Formulation::kStewartTrinkle);
 }
 
 // How a part with centroid motion (lin, ang) moves, given whether it keeps any
@@ -109,13 +138,25 @@ void ClassifyMotion(PartMotion& m, bool keeps_contact, double size, double scene
 
 }  // namespace
 
+std::vector<ContactLcp> BuildComponentLcps(const Assembly& assembly, const Configuration& config,
+                                           const StabilityOptions& options) {
+  const Tolerances tol =
+      options.tolerances ? *options.tolerances : assembly.MakeTolerances(options.dt);
+  const std::vector<Contact> contacts = DetectContacts(assembly, config, tol.length, tol.angle);
+  std::vector<ContactLcp> out;
+  for (const Component& comp : SplitComponents(assembly, config, contacts))
+    out.push_back(BuildComponent(assembly, config, contacts, comp,
+                                 ChooseFormulation(assembly, options), options.dt));
+  return out;
+}
+
 StabilityResult AnalyzeConfiguration(const Assembly& assembly, const Configuration& config,
                                      const StabilityOptions& options) {
   StabilityResult result;
   result.dt = options.dt;
-  result.tolerances = options.tolerances ? *options.tolerances : assembly.MakeTolerances(options.dt);
-  result.formulation = options.formulation.value_or(
-      assembly.IsFrictionless() ? Formulation::kBaraff : Formulation::kStewartTrinkle);
+  result.tolerances =
+      options.tolerances ? *options.tolerances : assembly.MakeTolerances(options.dt);
+  result.formulation = ChooseFormulation(assembly, options);
   const Tolerances& tol = result.tolerances;
   const bool st = result.formulation == Formulation::kStewartTrinkle;
   const double motion_tol = st ? tol.velocity : tol.acceleration;
@@ -137,21 +178,8 @@ StabilityResult AnalyzeConfiguration(const Assembly& assembly, const Configurati
 
     // BuildContactLcp.
     t0 = Clock::now();
-    std::vector<BodyDynamics> bodies;
-    for (int p : comp.parts) {
-      const Part& part = assembly.part(p);
-      BodyDynamics b;
-      b.part = p;
-      b.mass = part.mass;
-      b.inertia = part.inertia;
-      b.p_WBcm = config.WorldCentroid(assembly, p);
-      b.F_ext = Vector3(part.mass * assembly.gravity().x(), part.mass * assembly.gravity().y(), 0);
-      bodies.push_back(b);
-    }
-    std::vector<Contact> comp_contacts;
-    for (int c : comp.contacts) comp_contacts.push_back(contacts[c]);
-    const ContactLcp lcp = BuildContactLcp(std::move(bodies), std::move(comp_contacts),
-                                           result.formulation, options.dt, /*use_gaps=*/false);
+    const ContactLcp lcp =
+        BuildComponent(assembly, config, contacts, comp, result.formulation, options.dt);
     result.profile.build += Seconds(t0);
 
     // SolveLemke, then re-check the answer independently of the status.
@@ -167,7 +195,8 @@ StabilityResult AnalyzeConfiguration(const Assembly& assembly, const Configurati
     report.residual = sol.residual;
     report.warm_start_used = sol.warm_start_used;
     bool solved = sol.status == LcpStatus::kSolved || sol.status == LcpStatus::kTrivial;
-    const double check_tol = options.lemke.solution_tolerance * std::max(1.0, lcp.q.lpNorm<Eigen::Infinity>());
+    const double check_tol =
+        options.lemke.solution_tolerance * std::max(1.0, lcp.q.lpNorm<Eigen::Infinity>());
     if (solved && !IsLcpSolution(lcp.M, lcp.q, sol.z, check_tol)) {
       solved = false;
       report.status = LcpStatus::kNumericalFailure;
@@ -240,8 +269,8 @@ StabilityResult AnalyzeConfiguration(const Assembly& assembly, const Configurati
             [](const PartMotion& x, const PartMotion& y) { return x.part < y.part; });
   for (const PartMotion& m : result.parts)
     if (m.moving) result.moving.push_back(m.part);
-  result.verdict = any_moving ? Verdict::kUnstable
-                              : (any_failure ? Verdict::kSolverFailure : Verdict::kStable);
+  result.verdict =
+      any_moving ? Verdict::kUnstable : (any_failure ? Verdict::kSolverFailure : Verdict::kStable);
   result.diagnostics = diag.str();
   return result;
 }

@@ -1,14 +1,15 @@
 // The `cairn check` command, run as a user runs it: the real binary, its
 // stdout, stderr and exit code.
 #include <gtest/gtest.h>
+#include <sys/wait.h>
 
+#include <cctype>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
-#include <sys/wait.h>
 
 #include "test_paths.h"
 
@@ -66,14 +67,23 @@ TEST_P(BundledExamples, ExitCodeIsTheVerdict) {
 
 INSTANTIATE_TEST_SUITE_P(
     Verdicts, BundledExamples,
-    ::testing::Values(ExampleVerdict{"incline.json", "", 0}, ExampleVerdict{"incline_slides.json", "", 1},
-                      ExampleVerdict{"overhang.json", "", 0}, ExampleVerdict{"overhang_tips.json", "", 1},
-                      ExampleVerdict{"stack3.json", "", 0}, ExampleVerdict{"stack3_tips.json", "", 1},
-                      ExampleVerdict{"ladder.json", "", 0}, ExampleVerdict{"paper_fig1.json", "", 0},
-                      ExampleVerdict{"paper_fig1.json", "C", 1}, ExampleVerdict{"paper_fig1.json", "D", 0},
-                      ExampleVerdict{"paper_fig1.json", "D,C", 0}, ExampleVerdict{"paper_fig4.json", "", 0},
-                      ExampleVerdict{"paper_fig4.json", "A", 1},
-                      ExampleVerdict{"paper_fig4_fixels.json", "A", 0}));
+    ::testing::Values(
+        ExampleVerdict{"incline.json", "", 0}, ExampleVerdict{"incline_slides.json", "", 1},
+        ExampleVerdict{"overhang.json", "", 0}, ExampleVerdict{"overhang_tips.json", "", 1},
+        ExampleVerdict{"stack3.json", "", 0}, ExampleVerdict{"stack3_tips.json", "", 1},
+        ExampleVerdict{"ladder.json", "", 0}, ExampleVerdict{"paper_fig1.json", "", 0},
+        ExampleVerdict{"paper_fig1.json", "C", 1}, ExampleVerdict{"paper_fig1.json", "D", 0},
+        ExampleVerdict{"paper_fig1.json", "D,C", 0}, ExampleVerdict{"paper_fig4.json", "", 0},
+        ExampleVerdict{"paper_fig4.json", "A", 1},
+        ExampleVerdict{"paper_fig4_fixels.json", "A", 0}),
+    [](const ::testing::TestParamInfo<ExampleVerdict>& param_info) {
+      std::string name = std::string(param_info.param.file);
+      name = name.substr(0, name.size() - 5);
+      if (*param_info.param.without) name += std::string("_without_") + param_info.param.without;
+      for (char& c : name)
+        if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+      return name;
+    });
 
 TEST(CheckJson, HasTheContractKeysAndNamesTheMovingPart) {
   const CliRun r = Cairn("check " + ExamplePath("paper_fig4.json") + " --without A --json");
@@ -86,7 +96,8 @@ TEST(CheckJson, HasTheContractKeysAndNamesTheMovingPart) {
   ASSERT_TRUE(doc["parts"].is_array());
   bool saw_b = false;
   for (const auto& p : doc["parts"]) {
-    for (const char* key : {"name", "mass", "centroid", "fixed"}) EXPECT_TRUE(p.contains(key)) << key;
+    for (const char* key : {"name", "mass", "centroid", "fixed"})
+      EXPECT_TRUE(p.contains(key)) << key;
     if (p["name"] == "A") ADD_FAILURE() << "A was taken away";
     if (p["name"] == "B") {
       saw_b = true;
@@ -97,7 +108,8 @@ TEST(CheckJson, HasTheContractKeysAndNamesTheMovingPart) {
   EXPECT_TRUE(saw_b);
   ASSERT_FALSE(doc["contacts"].empty());
   for (const auto& c : doc["contacts"])
-    for (const char* key : {"parts", "point", "normal", "normal_force", "friction_force", "breaks", "slides"})
+    for (const char* key :
+         {"parts", "point", "normal", "normal_force", "friction_force", "breaks", "slides"})
       EXPECT_TRUE(c.contains(key)) << key;
 }
 
@@ -126,10 +138,10 @@ TEST(CheckJson, NormalizeDividesForcesByThatPartsWeight) {
 }
 
 TEST(CheckErrors, BadArgumentsExitTwoAndWriteNothingToStdout) {
-  for (const std::string& args : std::vector<std::string>
-       {"check " + ExamplePath("paper_fig1.json") + " --without Z",
-        "check " + ExamplePath("paper_fig1.json") + " --normalize nobody",
-        "check " + ExamplePath("does_not_exist.json"), "check", "frobnicate"}) {
+  for (const std::string& args : std::vector<std::string>{
+           "check " + ExamplePath("paper_fig1.json") + " --without Z",
+           "check " + ExamplePath("paper_fig1.json") + " --normalize nobody",
+           "check " + ExamplePath("does_not_exist.json"), "check", "frobnicate"}) {
     const CliRun r = Cairn(args);
     EXPECT_EQ(r.exit_code, 2) << args;
     EXPECT_TRUE(r.out.empty()) << args << ": " << r.out;
@@ -141,7 +153,8 @@ TEST(CheckErrors, BadArgumentsExitTwoAndWriteNothingToStdout) {
 
 TEST(CheckErrors, BadSceneNamesFileAndJsonPath) {
   const auto path = std::filesystem::temp_directory_path() / "cairn_bad_scene_test.json";
-  std::ofstream(path) << R"({"cairn": 1, "parts": [{"name": "A", "polygon": [[0,0],[1,0],[1,1],[0,1]]},
+  std::ofstream(path)
+      << R"({"cairn": 1, "parts": [{"name": "A", "polygon": [[0,0],[1,0],[1,1],[0,1]]},
     {"name": "B", "polygon": [[0,0],[1,1],[1,0],[0,1]]}]})";
   const CliRun r = Cairn("check " + path.string());
   EXPECT_EQ(r.exit_code, 2);

@@ -107,8 +107,7 @@ TEST(NonConvex, AReflexVertexNeverRestsOnALine) {
   // edge placed above it, but the L's material around it spans more than a
   // half-plane: it cannot be a contact, while the flat top of the L can.
   const Polygon ell = {{0, 0}, {4, 0}, {4, 1}, {1, 1}, {1, 4}, {0, 4}};
-  for (const Contact& c : Touch(ell, Rect(1.5, 1, 3, 2)))
-    EXPECT_NE(c.p_WC, Vector2(1, 1));
+  for (const Contact& c : Touch(ell, Rect(1.5, 1, 3, 2))) EXPECT_NE(c.p_WC, Vector2(1, 1));
 }
 
 TEST(CornerCorner, DiagonalCornersKeepBothNormals) {

@@ -37,7 +37,8 @@ struct BoxOnTable {
 TEST(Baraff, DelassusMatrixOfABoxOnItsCornersMatchesTheHandFormula) {
   // A_ij = 1/m + r_i r_j / I with r = ∓w/2 (the lever of the vertical normal).
   const BoxOnTable box;
-  const ContactLcp lcp = BuildContactLcp(box.Bodies(), box.Contacts(), Formulation::kBaraff, 1, false);
+  const ContactLcp lcp =
+      BuildContactLcp(box.Bodies(), box.Contacts(), Formulation::kBaraff, 1, false);
   const double I = box.m * (box.w * box.w + box.h * box.h) / 12;
   const double r = box.w / 2;
   ASSERT_EQ(lcp.size(), 2);
@@ -75,7 +76,8 @@ TEST(Baraff, DelassusIsSymmetricPsdWithTheRankOfTheBodies) {
 TEST(StewartTrinkle, LcpHasThePapersBlockStructure) {
   BoxOnTable box;
   box.mu = 0.3;
-  const ContactLcp lcp = BuildContactLcp(box.Bodies(), box.Contacts(), Formulation::kStewartTrinkle, 0.5, false);
+  const ContactLcp lcp =
+      BuildContactLcp(box.Bodies(), box.Contacts(), Formulation::kStewartTrinkle, 0.5, false);
   // nc normal + 2 nc friction + nc λ.
   ASSERT_EQ(lcp.size(), 8);
   EXPECT_EQ(lcp.num_friction, 2);
@@ -84,7 +86,7 @@ TEST(StewartTrinkle, LcpHasThePapersBlockStructure) {
     EXPECT_EQ(lcp.M(lam, f), 0.3);         // μ
     EXPECT_EQ(lcp.M(lam, 2 + 2 * f), -1);  // −Eᵀ
     EXPECT_EQ(lcp.M(lam, 3 + 2 * f), -1);
-    EXPECT_EQ(lcp.M(2 + 2 * f, lam), 1);   // E
+    EXPECT_EQ(lcp.M(2 + 2 * f, lam), 1);  // E
     EXPECT_EQ(lcp.M(3 + 2 * f, lam), 1);
     EXPECT_EQ(lcp.M(lam, lam), 0);
   }
@@ -112,8 +114,10 @@ TEST(StewartTrinkle, GapsEnterAsDOverDtWhenAsked) {
   box.mu = 0.2;
   auto cs = box.Contacts();
   cs[0].gap = 1e-3;
-  const ContactLcp with = BuildContactLcp(box.Bodies(), cs, Formulation::kStewartTrinkle, 0.1, true);
-  const ContactLcp without = BuildContactLcp(box.Bodies(), cs, Formulation::kStewartTrinkle, 0.1, false);
+  const ContactLcp with =
+      BuildContactLcp(box.Bodies(), cs, Formulation::kStewartTrinkle, 0.1, true);
+  const ContactLcp without =
+      BuildContactLcp(box.Bodies(), cs, Formulation::kStewartTrinkle, 0.1, false);
   EXPECT_NEAR(with.q(0) - without.q(0), 1e-3 / 0.1, 1e-15);
   EXPECT_EQ(with.q(1), without.q(1));
 }

@@ -26,7 +26,8 @@ StabilityResult Analyze(const Assembly& a, const std::vector<std::string>& witho
   return AnalyzeConfiguration(a, config);
 }
 
-StabilityResult AnalyzeExample(const std::string& file, const std::vector<std::string>& without = {}) {
+StabilityResult AnalyzeExample(const std::string& file,
+                               const std::vector<std::string>& without = {}) {
   return Analyze(ReadScene(ExamplePath(file)), without);
 }
 
@@ -112,7 +113,8 @@ TEST_P(Incline, FrictionlessBlockSlidesWithZeroNormalAccelerations) {
   }
   const PartMotion& m = MotionOf(a, r, "block");
   EXPECT_NEAR(m.linear.norm(), 9.81 * std::sin(theta), 1e-9);
-  EXPECT_NEAR(m.linear.dot(Vector2(std::cos(theta), -std::sin(theta))), 9.81 * std::sin(theta), 1e-9);
+  EXPECT_NEAR(m.linear.dot(Vector2(std::cos(theta), -std::sin(theta))), 9.81 * std::sin(theta),
+              1e-9);
   EXPECT_EQ(m.kind, MotionKind::kSlides);
 }
 
@@ -138,7 +140,8 @@ TEST(Overhang, StableIffCentroidOverTheTable) {
       EXPECT_EQ(m.kind, MotionKind::kTips);
       EXPECT_LT(m.angular, 0.0) << "tips clockwise, over the edge";
       // The table-edge contact stays closed; the inner corner lifts off.
-      for (const ContactReport& cr : r.contacts) EXPECT_EQ(cr.breaking, cr.contact.p_WC.x() < -1e-6);
+      for (const ContactReport& cr : r.contacts)
+        EXPECT_EQ(cr.breaking, cr.contact.p_WC.x() < -1e-6);
     } else {
       ExpectStaticEquilibrium(a, Configuration::Assembled(a), r);
     }
@@ -241,11 +244,14 @@ TEST(PaperFig4, LiftingAMakesBSlideRightAndTwoFixelsHoldIt) {
   const Assembly f = ReadScene(ExamplePath("paper_fig4_fixels.json"));
   const StabilityResult held = Analyze(f, {"A"});
   EXPECT_TRUE(held.stable());
-  ExpectStaticEquilibrium(f, [&] {
-    Configuration c = Configuration::Assembled(f);
-    c.present[f.FindPart("A")] = false;
-    return c;
-  }(), held);
+  ExpectStaticEquilibrium(
+      f,
+      [&] {
+        Configuration c = Configuration::Assembled(f);
+        c.present[f.FindPart("A")] = false;
+        return c;
+      }(),
+      held);
   // The two fixels on one face are statically indeterminate (the split
   // between them is not unique); together they carry C's push on B.
   int fixel_contacts = 0;
@@ -265,8 +271,8 @@ TEST(PaperFig4, LiftingAMakesBSlideRightAndTwoFixelsHoldIt) {
 TEST(Components, SeparateStacksAreSolvedApartWithTheSameAnswer) {
   AssemblyDef def;
   def.gravity = {0, -1};
-  def.parts = {Box("table", -10, -1, 10, 0, true), Box("A", -8, 0, -6, 1), Box("B", -7.5, 1, -6.5, 2),
-               Box("C", 2, 0, 4, 1), Box("D", 3.5, 1, 5.5, 2)};
+  def.parts = {Box("table", -10, -1, 10, 0, true), Box("A", -8, 0, -6, 1),
+               Box("B", -7.5, 1, -6.5, 2), Box("C", 2, 0, 4, 1), Box("D", 3.5, 1, 5.5, 2)};
   const Assembly both = Assembly::Create(def);
   const StabilityResult r = Analyze(both);
   EXPECT_EQ(r.components.size(), 2u);
@@ -297,7 +303,8 @@ TEST(Determinism, SameSceneTwiceGivesBitIdenticalForces) {
 }
 
 TEST(Postconditions, LcpSolutionsAreConsistentWithBodyMotion) {
-  for (const char* file : {"paper_fig1.json", "paper_fig4.json", "ladder.json", "stack3_tips.json"}) {
+  for (const char* file :
+       {"paper_fig1.json", "paper_fig4.json", "ladder.json", "stack3_tips.json"}) {
     const StabilityResult r = AnalyzeExample(file);
     for (const ComponentReport& c : r.components) {
       EXPECT_LT(c.residual, 1e-9) << file;

@@ -21,7 +21,8 @@ inline constexpr int kWorld = -1;
 /// Which boundary features made the contact.
 enum class ContactFeature {
   kVertexOfAOnEdgeOfB,  ///< vertex `vertex` of a touches edge `edge` of b (normal: b's edge normal)
-  kVertexOfBOnEdgeOfA,  ///< vertex `vertex` of b touches edge `edge` of a (normal: −a's edge normal)
+  kVertexOfBOnEdgeOfA,  ///< vertex `vertex` of b touches edge `edge` of a (normal: −a's edge
+                        ///< normal)
   kFixture,             ///< a fixel (index `vertex` into Assembly::fixtures()) pushing on a
 };
 
@@ -30,15 +31,15 @@ const char* to_string(ContactFeature feature);
 
 /// One contact point.
 struct Contact {
-  int part_a = -1;          ///< index of part a (always a part)
-  int part_b = kWorld;      ///< index of part b, or kWorld
-  Vector2 p_WC{0, 0};       ///< contact point, world frame (length)
-  Vector2 n_W{0, 1};        ///< unit normal from b into a, world frame
-  double gap = 0;           ///< signed distance along n_W (length; < 0: penetration within tolerance)
-  double mu = 0;            ///< Coulomb coefficient of the pair
+  int part_a = -1;      ///< index of part a (always a part)
+  int part_b = kWorld;  ///< index of part b, or kWorld
+  Vector2 p_WC{0, 0};   ///< contact point, world frame (length)
+  Vector2 n_W{0, 1};    ///< unit normal from b into a, world frame
+  double gap = 0;       ///< signed distance along n_W (length; < 0: penetration within tolerance)
+  double mu = 0;        ///< Coulomb coefficient of the pair
   ContactFeature feature = ContactFeature::kVertexOfAOnEdgeOfB;
-  int vertex = -1;          ///< vertex index (of a or b, see feature), or fixture index
-  int edge = -1;            ///< edge index (of b or a, see feature); -1 for fixtures
+  int vertex = -1;  ///< vertex index (of a or b, see feature), or fixture index
+  int edge = -1;    ///< edge index (of b or a, see feature); -1 for fixtures
 
   /// t_W = ẑ × n_W, the positive friction direction on a.
   Vector2 t_W() const { return {-n_W.y(), n_W.x()}; }

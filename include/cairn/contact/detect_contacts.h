@@ -31,16 +31,15 @@ namespace cairn {
 
 /// Statistics of one detection pass.
 struct ContactStats {
-  int pairs_tested = 0;   ///< part pairs whose bounding boxes overlapped
-  int pairs_touching = 0; ///< part pairs with at least one contact
+  int pairs_tested = 0;    ///< part pairs whose bounding boxes overlapped
+  int pairs_touching = 0;  ///< part pairs with at least one contact
 };
 
 /// All contacts of `config`, sorted by (part_a, part_b, feature): deterministic.
 /// `tol` is the contact distance tolerance (length), `angle_tol` the angle
 /// tolerance (rad).
 std::vector<Contact> DetectContacts(const Assembly& assembly, const Configuration& config,
-                                    double tol, double angle_tol,
-                                    ContactStats* stats = nullptr);
+                                    double tol, double angle_tol, ContactStats* stats = nullptr);
 
 /// Contacts between the polygons of parts i and j (both present, not both
 /// fixed), appended to `out`. Part i is `a`, part j is `b`.

@@ -17,17 +17,15 @@ namespace cairn::internal {
                                    int line);
 }  // namespace cairn::internal
 
-#define CAIRN_CHECK(cond)                                                        \
-  do {                                                                           \
-    if (!(cond)) ::cairn::internal::AbortWithMessage("CAIRN_CHECK", #cond,       \
-                                                     __FILE__, __LINE__);        \
+#define CAIRN_CHECK(cond)                                                                       \
+  do {                                                                                          \
+    if (!(cond)) ::cairn::internal::AbortWithMessage("CAIRN_CHECK", #cond, __FILE__, __LINE__); \
   } while (0)
 
 #if defined(CAIRN_ENABLE_ASSERTS)
-#define CAIRN_ASSERT(cond)                                                       \
-  do {                                                                           \
-    if (!(cond)) ::cairn::internal::AbortWithMessage("CAIRN_ASSERT", #cond,      \
-                                                     __FILE__, __LINE__);        \
+#define CAIRN_ASSERT(cond)                                                                       \
+  do {                                                                                           \
+    if (!(cond)) ::cairn::internal::AbortWithMessage("CAIRN_ASSERT", #cond, __FILE__, __LINE__); \
   } while (0)
 #else
 #define CAIRN_ASSERT(cond) \
@@ -35,11 +33,11 @@ namespace cairn::internal {
   } while (false && (cond))
 #endif
 
-#define CAIRN_THROW_UNLESS(cond, msg)                                            \
-  do {                                                                           \
-    if (!(cond)) {                                                               \
-      std::ostringstream cairn_throw_os_;                                        \
-      cairn_throw_os_ << msg << " [failed: " #cond "]";                          \
-      throw std::invalid_argument(cairn_throw_os_.str());                        \
-    }                                                                            \
+#define CAIRN_THROW_UNLESS(cond, msg)                     \
+  do {                                                    \
+    if (!(cond)) {                                        \
+      std::ostringstream cairn_throw_os_;                 \
+      cairn_throw_os_ << msg << " [failed: " #cond "]";   \
+      throw std::invalid_argument(cairn_throw_os_.str()); \
+    }                                                     \
   } while (0)

@@ -19,10 +19,10 @@ namespace cairn {
 /// A part as the user describes it (scene file `parts[i]`).
 struct PartDef {
   std::string name;
-  bool fixed = false;              ///< Cannot move (a table, a wall).
-  std::optional<double> density;   ///< mass per unit area; default 1.
-  std::optional<double> mass;      ///< overrides density.
-  Polygon polygon;                 ///< World coordinates of the assembled pose, either orientation.
+  bool fixed = false;             ///< Cannot move (a table, a wall).
+  std::optional<double> density;  ///< mass per unit area; default 1.
+  std::optional<double> mass;     ///< overrides density.
+  Polygon polygon;                ///< World coordinates of the assembled pose, either orientation.
 };
 
 /// A fixel: a frictionless unilateral point contact with the fixed world
@@ -45,10 +45,10 @@ struct FrictionPairDef {
 /// the JSON path.
 struct AssemblyDef {
   std::string name;
-  Vector2 gravity{0, -9.81};   ///< length/s²
-  double friction = 0;         ///< default Coulomb coefficient (dimensionless)
+  Vector2 gravity{0, -9.81};  ///< length/s²
+  double friction = 0;        ///< default Coulomb coefficient (dimensionless)
   std::vector<FrictionPairDef> friction_pairs;
-  double tolerance = 0;        ///< contact distance tolerance (length); ≤ 0: scaled to the scene
+  double tolerance = 0;  ///< contact distance tolerance (length); ≤ 0: scaled to the scene
   std::vector<PartDef> parts;
   std::vector<FixtureDef> fixtures;
 };
@@ -58,18 +58,18 @@ struct AssemblyDef {
 struct Part {
   std::string name;
   bool fixed = false;
-  Polygon polygon;          ///< counter-clockwise, world frame (assembled pose)
-  double area = 0;          ///< length²
-  double mass = 0;          ///< mass units (0 for a fixed part only if the user said so)
-  Vector2 centroid{0, 0};   ///< p_WBcm: centre of mass in the world frame (assembled pose)
-  double inertia = 0;       ///< moment of inertia about the centroid (mass·length²)
+  Polygon polygon;         ///< counter-clockwise, world frame (assembled pose)
+  double area = 0;         ///< length²
+  double mass = 0;         ///< mass units, > 0 (density × area unless the scene gives `mass`)
+  Vector2 centroid{0, 0};  ///< p_WBcm: centre of mass in the world frame (assembled pose)
+  double inertia = 0;      ///< moment of inertia about the centroid (mass·length²)
 };
 
 /// A validated fixture.
 struct Fixture {
-  int part = -1;            ///< index into Assembly::parts()
-  Vector2 point{0, 0};      ///< p_WF, on the part's boundary (assembled pose)
-  Vector2 normal{0, 0};     ///< n_W, unit: the direction the fixel pushes the part
+  int part = -1;         ///< index into Assembly::parts()
+  Vector2 point{0, 0};   ///< p_WF, on the part's boundary (assembled pose)
+  Vector2 normal{0, 0};  ///< n_W, unit: the direction the fixel pushes the part
 };
 
 /// The immutable, validated model.
@@ -112,7 +112,6 @@ class Assembly {
   std::vector<Fixture> fixtures_;
   Vector2 gravity_{0, -9.81};
   double default_friction_ = 0;
-  std::vector<FrictionPairDef> friction_pairs_;  // names resolved below
   std::vector<std::pair<std::pair<int, int>, double>> pair_mu_;  // (min, max) index → μ
   double scene_size_ = 0;
   double tolerance_override_ = 0;

@@ -23,9 +23,9 @@ void MakeCounterClockwise(Polygon& poly);
 
 /// Exact area properties of a simple polygon of unit density.
 struct PolygonMass {
-  double area = 0;           ///< length²
-  Vector2 centroid{0, 0};    ///< length, world frame
-  double polar_moment = 0;   ///< ∫ |r − centroid|² dA about the centroid (length⁴)
+  double area = 0;          ///< length²
+  Vector2 centroid{0, 0};   ///< length, world frame
+  double polar_moment = 0;  ///< ∫ |r − centroid|² dA about the centroid (length⁴)
 };
 
 /// Exact area, centroid and polar second moment of a simple polygon (either

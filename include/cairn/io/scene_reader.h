@@ -3,9 +3,8 @@
 /// Reading scene files, format version 1 (docs/scene-format.md). The format is
 /// a public contract: its key names never change within a version.
 
-#include <string>
-
 #include <nlohmann/json_fwd.hpp>
+#include <string>
 
 #include "cairn/geometry/assembly.h"
 

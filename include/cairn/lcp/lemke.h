@@ -72,13 +72,13 @@ struct LcpBasis {
 /// must not be used as a solution.
 struct LcpResult {
   LcpStatus status = LcpStatus::kNumericalFailure;
-  VectorX z;               ///< (n) the solution.
-  VectorX w;               ///< (n) w = M z + q, recomputed from the data.
-  int pivots = 0;          ///< Pivots made, including the one in which z₀ enters.
-  double residual = 0.0;   ///< max_i |min(z_i, w_i)|, the natural-map residual.
+  VectorX z;                     ///< (n) the solution.
+  VectorX w;                     ///< (n) w = M z + q, recomputed from the data.
+  int pivots = 0;                ///< Pivots made, including the one in which z₀ enters.
+  double residual = 0.0;         ///< max_i |min(z_i, w_i)|, the natural-map residual.
   bool warm_start_used = false;  ///< The warm-start basis solved it with 0 pivots.
-  LcpBasis basis;          ///< The final complementary basis (for a later warm start).
-  std::string message;     ///< Diagnostics for a failure (empty on success).
+  LcpBasis basis;                ///< The final complementary basis (for a later warm start).
+  std::string message;           ///< Diagnostics for a failure (empty on success).
 };
 
 /// Solves LCP(M, q) by Lemke's method with the lexicographic ratio test.

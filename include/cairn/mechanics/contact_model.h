@@ -45,34 +45,34 @@ const char* to_string(Formulation f);
 
 /// One movable body of a component.
 struct BodyDynamics {
-  int part = -1;               ///< index into Assembly::parts()
-  double mass = 0;             ///< mass units
-  double inertia = 0;          ///< about the centroid, mass·length²
-  Vector2 p_WBcm{0, 0};        ///< centroid, world frame
-  Vector3 F_ext{0, 0, 0};      ///< (f_x, f_y, τ) external wrench at the centroid
-  Vector3 nu_prev{0, 0, 0};    ///< (v_x, v_y, ω) before the step (Stewart–Trinkle only)
+  int part = -1;             ///< index into Assembly::parts()
+  double mass = 0;           ///< mass units
+  double inertia = 0;        ///< about the centroid, mass·length²
+  Vector2 p_WBcm{0, 0};      ///< centroid, world frame
+  Vector3 F_ext{0, 0, 0};    ///< (f_x, f_y, τ) external wrench at the centroid
+  Vector3 nu_prev{0, 0, 0};  ///< (v_x, v_y, ω) before the step (Stewart–Trinkle only)
 };
 
 /// A row of G: a linear form on the generalised velocities of at most two bodies.
 struct JacobianRow {
-  int body[2] = {-1, -1};      ///< local body indices, -1 when fixed/world
-  Vector3 g[2];                ///< coefficients on (v_x, v_y, ω) of each body
+  int body[2] = {-1, -1};  ///< local body indices, -1 when fixed/world
+  Vector3 g[2];            ///< coefficients on (v_x, v_y, ω) of each body
   double Dot(const std::vector<Vector3>& nu) const;
 };
 
 /// The LCP of one component, and what is needed to read its solution.
 struct ContactLcp {
   Formulation formulation = Formulation::kBaraff;
-  double dt = 1.0;                   ///< s (Stewart–Trinkle only)
-  std::vector<BodyDynamics> bodies;  ///< (nb)
-  std::vector<Contact> contacts;     ///< (nc)
-  std::vector<int> friction_of;      ///< (nc) index among frictional contacts, or -1
-  int num_friction = 0;              ///< nf: contacts with μ > 0 (Stewart–Trinkle)
+  double dt = 1.0;                        ///< s (Stewart–Trinkle only)
+  std::vector<BodyDynamics> bodies;       ///< (nb)
+  std::vector<Contact> contacts;          ///< (nc)
+  std::vector<int> friction_of;           ///< (nc) index among frictional contacts, or -1
+  int num_friction = 0;                   ///< nf: contacts with μ > 0 (Stewart–Trinkle)
   std::vector<JacobianRow> normal_rows;   ///< (nc) J_n
   std::vector<JacobianRow> tangent_rows;  ///< (nc) J_t (every contact, for reporting)
-  VectorX normal_offset;             ///< (nc) d/Δt in the normal rows (S–T with gaps), else 0
-  MatrixX M;                         ///< (n x n) n = nc (Baraff) or nc + 3 nf (Stewart–Trinkle)
-  VectorX q;                         ///< (n)
+  VectorX normal_offset;  ///< (nc) d/Δt in the normal rows (S–T with gaps), else 0
+  MatrixX M;              ///< (n x n) n = nc (Baraff) or nc + 3 nf (Stewart–Trinkle)
+  VectorX q;              ///< (n)
   int size() const { return static_cast<int>(q.size()); }
 };
 
@@ -84,11 +84,12 @@ ContactLcp BuildContactLcp(std::vector<BodyDynamics> bodies, std::vector<Contact
 
 /// The solution of a component's LCP in physical terms.
 struct ContactSolution {
-  std::vector<Vector3> body_motion;  ///< (nb) ν̇ (Baraff, length/s², rad/s²) or ν⁺ (S–T, length/s, rad/s)
-  VectorX normal_force;      ///< (nc) f (Baraff) or p_n / Δt (S–T), force units, ≥ 0
-  VectorX friction_force;    ///< (nc) signed along t_W, force units (0 when frictionless)
-  VectorX normal_motion;     ///< (nc) relative normal acceleration (Baraff) or velocity (S–T)
-  VectorX tangent_motion;    ///< (nc) relative tangential acceleration or velocity along t_W
+  std::vector<Vector3>
+      body_motion;  ///< (nb) ν̇ (Baraff, length/s², rad/s²) or ν⁺ (S–T, length/s, rad/s)
+  VectorX normal_force;    ///< (nc) f (Baraff) or p_n / Δt (S–T), force units, ≥ 0
+  VectorX friction_force;  ///< (nc) signed along t_W, force units (0 when frictionless)
+  VectorX normal_motion;   ///< (nc) relative normal acceleration (Baraff) or velocity (S–T)
+  VectorX tangent_motion;  ///< (nc) relative tangential acceleration or velocity along t_W
   /// max over rows of |(G ν) − w|: the LCP's w recomputed from the body motions.
   /// Checks the assembled LCP against the direct physics (should be ~1e-12).
   double consistency_residual = 0;

@@ -3,11 +3,10 @@
 /// Turning a StabilityResult into what a user reads: a JSON document (a public
 /// contract: its keys never change within a version) and a short text summary.
 
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "cairn/geometry/assembly.h"
 #include "cairn/stability/analyze.h"
@@ -16,9 +15,9 @@ namespace cairn {
 
 /// What the report says besides the result.
 struct ReportOptions {
-  std::string scene_file;              ///< shown in the report
-  std::optional<int> normalize_part;   ///< divide forces by this part's weight m|g|
-  std::vector<int> without;            ///< parts taken away (shown in the report)
+  std::string scene_file;             ///< shown in the report
+  std::optional<int> normalize_part;  ///< divide forces by this part's weight m|g|
+  std::vector<int> without;           ///< parts taken away (shown in the report)
 };
 
 /// The scale forces are divided by (1, or the weight of the normalising part)

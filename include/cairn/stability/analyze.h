@@ -40,13 +40,15 @@ const char* to_string(MotionKind kind);
 /// The motion of one movable part.
 struct PartMotion {
   int part = -1;
-  int component = -1;           ///< index into StabilityResult::components
+  int component = -1;  ///< index into StabilityResult::components
   bool moving = false;
   MotionKind kind = MotionKind::kAtRest;
-  Vector2 linear{0, 0};         ///< centroid acceleration (length/s², Baraff) or velocity after Δt (length/s, S–T)
-  double angular = 0;           ///< angular acceleration (rad/s²) or velocity (rad/s), counter-clockwise
-  std::optional<Vector2> pivot; ///< for kTips: the point of zero acceleration/velocity (world frame)
-  double point_motion = 0;      ///< largest |acceleration| or |velocity| over the part's vertices
+  Vector2 linear{
+      0, 0};  ///< centroid acceleration (length/s², Baraff) or velocity after Δt (length/s, S–T)
+  double angular = 0;  ///< angular acceleration (rad/s²) or velocity (rad/s), counter-clockwise
+  std::optional<Vector2>
+      pivot;                ///< for kTips: the point of zero acceleration/velocity (world frame)
+  double point_motion = 0;  ///< largest |acceleration| or |velocity| over the part's vertices
 };
 
 /// One contact with its force and motion.
@@ -55,7 +57,8 @@ struct ContactReport {
   int component = -1;
   double normal_force = 0;    ///< force units, ≥ 0, on a along n_W
   double friction_force = 0;  ///< force units, on a along t_W
-  double normal_motion = 0;   ///< relative normal acceleration (Baraff) or velocity (S–T); > 0 separates
+  double normal_motion =
+      0;  ///< relative normal acceleration (Baraff) or velocity (S–T); > 0 separates
   double tangent_motion = 0;  ///< relative tangential acceleration or velocity along t_W
   bool breaking = false;      ///< normal_motion above the tolerance: the contact opens
   bool sliding = false;       ///< |tangent_motion| above the tolerance while closed
@@ -63,7 +66,7 @@ struct ContactReport {
 
 /// One contact-graph component and its solve.
 struct ComponentReport {
-  std::vector<int> parts;     ///< movable parts (indices into Assembly::parts())
+  std::vector<int> parts;  ///< movable parts (indices into Assembly::parts())
   int num_contacts = 0;
   int lcp_size = 0;
   LcpStatus status = LcpStatus::kTrivial;
@@ -71,7 +74,7 @@ struct ComponentReport {
   double residual = 0;              ///< natural-map residual of the LCP solution
   double consistency_residual = 0;  ///< LCP w against the recovered body motions
   bool warm_start_used = false;
-  std::string message;              ///< diagnostics when the solve failed
+  std::string message;  ///< diagnostics when the solve failed
 };
 
 /// The overall answer.
@@ -94,23 +97,29 @@ struct StabilityResult {
   Verdict verdict = Verdict::kStable;
   bool stable() const { return verdict == Verdict::kStable; }
   Formulation formulation = Formulation::kBaraff;
-  double dt = 1.0;                        ///< s (Stewart–Trinkle step)
-  Tolerances tolerances;                  ///< the tolerances used
-  std::vector<PartMotion> parts;          ///< every present movable part, by part index
-  std::vector<ContactReport> contacts;    ///< every contact
+  double dt = 1.0;                      ///< s (Stewart–Trinkle step)
+  Tolerances tolerances;                ///< the tolerances used
+  std::vector<PartMotion> parts;        ///< every present movable part, by part index
+  std::vector<ContactReport> contacts;  ///< every contact
   std::vector<ComponentReport> components;
-  std::vector<int> moving;                ///< indices of the parts that move
+  std::vector<int> moving;  ///< indices of the parts that move
   StageProfile profile;
-  std::string diagnostics;                ///< what went wrong numerically, if anything
+  std::string diagnostics;  ///< what went wrong numerically, if anything
 };
 
 /// Options of AnalyzeConfiguration.
 struct StabilityOptions {
-  double dt = 1.0;                          ///< Stewart–Trinkle step (s); the verdict does not depend on it from rest
-  std::optional<Formulation> formulation;   ///< default: Baraff when the scene is frictionless
-  std::optional<Tolerances> tolerances;     ///< default: Assembly::MakeTolerances(dt)
+  double dt = 1.0;  ///< Stewart–Trinkle step (s); the verdict does not depend on it from rest
+  std::optional<Formulation> formulation;  ///< default: Baraff when the scene is frictionless
+  std::optional<Tolerances> tolerances;    ///< default: Assembly::MakeTolerances(dt)
   LemkeParameters lemke;
 };
+
+/// The contact LCP of every contact-graph component of `config`: the first
+/// stages of AnalyzeConfiguration (DetectContacts → SplitComponents →
+/// BuildContactLcp), for benchmarks and diagnostics.
+std::vector<ContactLcp> BuildComponentLcps(const Assembly& assembly, const Configuration& config,
+                                           const StabilityOptions& options = {});
 
 /// Decides whether the movable parts of `config` stay put under gravity.
 StabilityResult AnalyzeConfiguration(const Assembly& assembly, const Configuration& config,

@@ -1,0 +1,261 @@
+#include "cairn/geometry/assembly.h"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+#include "cairn/core/error.h"
+
+namespace cairn {
+namespace {
+
+using ::testing::HasSubstr;
+
+PartDef Box(const std::string& name, double x0, double y0, double x1, double y1,
+            bool fixed = false) {
+  PartDef p;
+  p.name = name;
+  p.fixed = fixed;
+  p.polygon = {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}};
+  return p;
+}
+
+// A table and two blocks on it.
+AssemblyDef TwoBlocks() {
+  AssemblyDef def;
+  def.name = "two blocks";
+  def.parts = {Box("table", -5, -1, 5, 0, true), Box("A", 0, 0, 2, 1), Box("B", 0, 1, 1, 2)};
+  def.parts[1].density = 2.0;
+  def.parts[2].mass = 1.5;
+  return def;
+}
+
+// Runs Create, expecting an InputError at `path` whose message contains `phrase`.
+void ExpectError(const AssemblyDef& def, const std::string& path, const std::string& phrase) {
+  try {
+    Assembly::Create(def, "scene.json");
+    ADD_FAILURE() << "no error; expected " << path << ": " << phrase;
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.file(), "scene.json");
+    EXPECT_EQ(e.json_path(), path) << e.what();
+    EXPECT_THAT(e.message(), HasSubstr(phrase)) << e.what();
+  }
+}
+
+TEST(Assembly, MassesInertiaAndOrientation) {
+  AssemblyDef def = TwoBlocks();
+  // Give A clockwise: it comes back counter-clockwise.
+  std::reverse(def.parts[1].polygon.begin(), def.parts[1].polygon.end());
+  const Assembly a = Assembly::Create(def);
+  ASSERT_EQ(a.num_parts(), 3);
+  EXPECT_EQ(a.name(), "two blocks");
+  const Part& pa = a.part(1);
+  EXPECT_GT(SignedArea(pa.polygon), 0);
+  EXPECT_DOUBLE_EQ(pa.area, 2.0);
+  EXPECT_DOUBLE_EQ(pa.mass, 4.0);  // density 2 × area 2
+  EXPECT_NEAR(pa.inertia, 4.0 * (4 + 1) / 12.0, 1e-12);
+  EXPECT_TRUE(pa.centroid.isApprox(Vector2(1, 0.5)));
+  const Part& pb = a.part(2);
+  EXPECT_DOUBLE_EQ(pb.mass, 1.5);  // mass given
+  EXPECT_NEAR(pb.inertia, 1.5 * 2 / 12.0, 1e-12);
+  EXPECT_DOUBLE_EQ(a.part(0).mass, 10.0);  // default density 1
+  EXPECT_TRUE(a.part(0).fixed);
+  EXPECT_EQ(a.FindPart("B"), 2);
+  EXPECT_EQ(a.FindPart("nope"), -1);
+}
+
+TEST(Assembly, MassWinsOverDensity) {
+  AssemblyDef def = TwoBlocks();
+  def.parts[1].mass = 7.0;
+  EXPECT_DOUBLE_EQ(Assembly::Create(def).part(1).mass, 7.0);
+}
+
+TEST(Assembly, SceneSizeAndTolerances) {
+  const Assembly a = Assembly::Create(TwoBlocks());
+  // The bounding box of all parts is [-5, 5] × [-1, 2].
+  EXPECT_NEAR(a.scene_size(), std::hypot(10.0, 3.0), 1e-12);
+  EXPECT_NEAR(a.length_tolerance(), 1e-6 * std::hypot(10.0, 3.0), 1e-18);
+  const Tolerances t = a.MakeTolerances(0.5);
+  EXPECT_NEAR(t.acceleration, 1e-6 * 9.81, 1e-15);
+  EXPECT_NEAR(t.velocity, 1e-6 * 9.81 * 0.5, 1e-15);
+  // The heaviest movable part is A (4 mass units); the table does not count.
+  EXPECT_NEAR(t.force, 1e-9 * 4.0 * 9.81, 1e-18);
+
+  AssemblyDef def = TwoBlocks();
+  def.tolerance = 1e-3;
+  EXPECT_DOUBLE_EQ(Assembly::Create(def).length_tolerance(), 1e-3);
+  EXPECT_DOUBLE_EQ(Assembly::Create(def).MakeTolerances().length, 1e-3);
+}
+
+TEST(Assembly, FrictionPairsAreSymmetricAndTheWorldIsFrictionless) {
+  AssemblyDef def = TwoBlocks();
+  def.friction = 0.3;
+  def.friction_pairs = {{"A", "table", 0.05}};
+  const Assembly a = Assembly::Create(def);
+  EXPECT_DOUBLE_EQ(a.Friction(1, 0), 0.05);
+  EXPECT_DOUBLE_EQ(a.Friction(0, 1), 0.05);
+  EXPECT_DOUBLE_EQ(a.Friction(1, 2), 0.3);
+  EXPECT_DOUBLE_EQ(a.Friction(1, -1), 0.0);
+  EXPECT_FALSE(a.IsFrictionless());
+
+  AssemblyDef zero = TwoBlocks();
+  zero.friction_pairs = {{"A", "B", 0.0}};
+  EXPECT_TRUE(Assembly::Create(zero).IsFrictionless());
+  zero.friction_pairs = {{"A", "B", 0.2}};
+  EXPECT_FALSE(Assembly::Create(zero).IsFrictionless());
+}
+
+TEST(Assembly, FixtureNormalIsNormalised) {
+  AssemblyDef def = TwoBlocks();
+  def.fixtures = {{"B", {1, 1.5}, {-3, 0}}};
+  const Assembly a = Assembly::Create(def);
+  ASSERT_EQ(a.fixtures().size(), 1u);
+  EXPECT_EQ(a.fixtures()[0].part, 2);
+  EXPECT_TRUE(a.fixtures()[0].normal.isApprox(Vector2(-1, 0)));
+}
+
+TEST(Assembly, FixtureNormalsAtVertices) {
+  // Square B = [0, 1] × [1, 2]; its top-right corner (1, 2) is convex.
+  const auto with_fixture = [](Vector2 point, Vector2 normal) {
+    AssemblyDef def = TwoBlocks();
+    def.fixtures = {{"B", point, normal}};
+    return def;
+  };
+  // Into the corner's wedge, or along one face pushing on the other: fine.
+  EXPECT_NO_THROW(Assembly::Create(with_fixture({1, 2}, {-1, -1})));
+  EXPECT_NO_THROW(Assembly::Create(with_fixture({1, 2}, {-1, 0})));
+  EXPECT_NO_THROW(Assembly::Create(with_fixture({1, 2}, {0, -1})));
+  // Out of the wedge.
+  ExpectError(with_fixture({1, 2}, {1, -1}), "fixtures[0].normal", "points out of part 'B'");
+  ExpectError(with_fixture({1, 2}, {1, 1}), "fixtures[0].normal", "points out of");
+  // On an edge: tangent or outward is an error.
+  ExpectError(with_fixture({1, 1.5}, {0, 1}), "fixtures[0].normal", "points out of");
+  ExpectError(with_fixture({1, 1.5}, {1, 0}), "fixtures[0].normal", "points out of");
+
+  // The reflex corner (1, 1) of an L-shape: into either face's material is fine.
+  AssemblyDef l;
+  PartDef part;
+  part.name = "L";
+  part.polygon = {{0, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 2}, {0, 2}};
+  l.parts = {part};
+  l.fixtures = {{"L", {1, 1}, {1, -1}}};
+  EXPECT_NO_THROW(Assembly::Create(l));
+  l.fixtures = {{"L", {1, 1}, {-1, -1}}};
+  EXPECT_NO_THROW(Assembly::Create(l));
+  l.fixtures = {{"L", {1, 1}, {1, 1}}};
+  ExpectError(l, "fixtures[0].normal", "points out of part 'L'");
+}
+
+TEST(Assembly, NonFiniteNumbersAreRejected) {
+  const double inf = std::numeric_limits<double>::infinity();
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  AssemblyDef def = TwoBlocks();
+  def.gravity = {0, nan};
+  ExpectError(def, "gravity", "finite");
+  def = TwoBlocks();
+  def.friction = inf;
+  ExpectError(def, "friction", "finite");
+  def = TwoBlocks();
+  def.tolerance = nan;
+  ExpectError(def, "tolerance", "finite");
+  def = TwoBlocks();
+  def.parts[1].polygon[2].x() = inf;
+  ExpectError(def, "parts[1].polygon[2]", "finite");
+  def = TwoBlocks();
+  def.parts[1].density = nan;
+  ExpectError(def, "parts[1].density", "finite");
+  def = TwoBlocks();
+  def.parts[2].mass = inf;
+  ExpectError(def, "parts[2].mass", "finite");
+  def = TwoBlocks();
+  def.friction_pairs = {{"A", "B", nan}};
+  ExpectError(def, "friction_pairs[0].mu", "finite");
+  def = TwoBlocks();
+  def.fixtures = {{"B", {1, nan}, {-1, 0}}};
+  ExpectError(def, "fixtures[0].point", "finite");
+  def.fixtures = {{"B", {1, 1.5}, {-inf, 0}}};
+  ExpectError(def, "fixtures[0].normal", "finite");
+}
+
+TEST(Assembly, Overlaps) {
+  // A vertex deep inside another part.
+  AssemblyDef def = TwoBlocks();
+  def.parts[2] = Box("B", 1, 0.5, 3, 2);
+  ExpectError(def, "parts[2]", "part 'B' overlaps part 'A' (parts[1])");
+  // A cross: edges cross, no vertex of either inside the other.
+  def = TwoBlocks();
+  def.parts[1] = Box("A", 0, 1, 3, 2);
+  def.parts[2] = Box("B", 1, 0.5, 2, 2.5);
+  ExpectError(def, "parts[2]", "overlaps part 'A'");
+  // Coincident shapes.
+  def = TwoBlocks();
+  def.parts[2] = Box("B", 0, 0, 2, 1);
+  ExpectError(def, "parts[2]", "overlaps part 'A'");
+  // Two fixed parts overlap too: a wall built into the table.
+  def = TwoBlocks();
+  def.parts.push_back(Box("wall", 4, -0.5, 5, 3, true));
+  ExpectError(def, "parts[3]", "part 'wall' overlaps part 'table' (parts[0])");
+  // Within the tolerance is touching, not overlap.
+  def = TwoBlocks();
+  def.parts[2] = Box("B", 0, 1 - 1e-7, 1, 2);
+  EXPECT_NO_THROW(Assembly::Create(def));
+  def.parts[2] = Box("B", 0, 1 - 1e-4, 1, 2);
+  ExpectError(def, "parts[2]", "overlaps");
+}
+
+TEST(Assembly, ManyTouchingPartsAreFast) {
+  // A 25 × 25 wall of unit bricks on a table: 626 parts, all touching.
+  AssemblyDef def;
+  def.parts.push_back(Box("table", -1, -1, 26, 0, true));
+  for (int r = 0; r < 25; ++r) {
+    for (int c = 0; c < 25; ++c) {
+      def.parts.push_back(
+          Box("b" + std::to_string(r) + "_" + std::to_string(c), c, r, c + 1, r + 1));
+    }
+  }
+  const auto start = std::chrono::steady_clock::now();
+  const Assembly a = Assembly::Create(def);
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  EXPECT_EQ(a.num_parts(), 626);
+  EXPECT_LT(seconds, 5.0);  // generous: sanitizers are on in the test build
+}
+
+TEST(Pose2, RotatesAboutTheCentroidThenTranslates) {
+  Pose2 pose;
+  pose.rotation = std::numbers::pi / 2;
+  pose.translation = {10, 0};
+  const Vector2 c(1, 1);
+  EXPECT_TRUE(pose.Apply({2, 1}, c).isApprox(Vector2(11, 2)));
+  EXPECT_TRUE(pose.Apply(c, c).isApprox(Vector2(11, 1)));
+}
+
+TEST(Configuration, RotatingASquareByNinetyDegrees) {
+  AssemblyDef def;
+  def.parts = {Box("S", 0, 0, 2, 2)};
+  const Assembly a = Assembly::Create(def);
+  Configuration config = Configuration::Assembled(a);
+  ASSERT_EQ(config.present.size(), 1u);
+  EXPECT_TRUE(config.present[0]);
+  // Assembled: the part's own polygon.
+  EXPECT_EQ(config.WorldPolygon(a, 0), a.part(0).polygon);
+  config.poses[0].rotation = std::numbers::pi / 2;
+  config.poses[0].translation = {3, 0};
+  const Polygon p = config.WorldPolygon(a, 0);
+  // About the centroid (1, 1) each vertex moves to the next one's place.
+  const Polygon expected = {{2 + 3, 0}, {2 + 3, 2}, {0 + 3, 2}, {0 + 3, 0}};
+  ASSERT_EQ(p.size(), 4u);
+  for (int k = 0; k < 4; ++k) {
+    EXPECT_NEAR(p[k].x(), expected[k].x(), 1e-12) << k;
+    EXPECT_NEAR(p[k].y(), expected[k].y(), 1e-12) << k;
+  }
+  EXPECT_GT(SignedArea(p), 0);
+  EXPECT_TRUE(config.WorldCentroid(a, 0).isApprox(Vector2(4, 1)));
+}
+
+}  // namespace
+}  // namespace cairn
