@@ -332,7 +332,8 @@ bool FollowPath(const MatrixX& M, const VectorX& q, double scale, double tol, in
 
   // The tableau's z (z₀ dropped) and the basis it implies.
   tableau.ExtractZ(&result.z);
-  result.w = M * result.z + q;
+  result.w.noalias() = M * result.z;  // no temporary: w = M z, then + q
+  result.w += q;
   result.residual = NaturalMapResidual(result.z, result.w);
   *basis = tableau.Basis();
 
