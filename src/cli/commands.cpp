@@ -1,10 +1,15 @@
 #include "cli/commands.h"
 
 #include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
 #include <iostream>
 
 #include "cairn/core/error.h"
+#include "cairn/io/plan_reader.h"
 #include "cairn/io/scene_reader.h"
+#include "cairn/motion/simulate.h"
 #include "cairn/report/report.h"
 #include "cairn/stability/analyze.h"
 
@@ -38,6 +43,67 @@ int RunCheck(const CheckArgs& args, std::ostream& out, std::ostream& err) {
     else
       out << StabilityToText(assembly, config, result, report);
     return result.stable() ? kExitStable : kExitUnstable;
+  } catch (const InputError& e) {
+    err << "cairn: error: " << e.what() << '\n';
+    return kExitBadInput;
+  }
+}
+
+namespace {
+
+// Writes `text` to `path` whole or not at all: a temporary file beside it,
+// renamed over it once complete. @throws InputError naming the flag.
+void WriteAtomically(const std::string& path, const std::string& text, const std::string& flag) {
+  const std::string tmp = path + ".tmp";
+  {
+    std::ofstream f(tmp, std::ios::binary);
+    if (!(f << text) || !f.flush()) {
+      std::remove(tmp.c_str());
+      throw InputError("", flag, "cannot write '" + path + "'");
+    }
+  }
+  std::error_code ec;
+  std::filesystem::rename(tmp, path, ec);
+  if (ec) {
+    std::remove(tmp.c_str());
+    throw InputError("", flag, "cannot write '" + path + "': " + ec.message());
+  }
+}
+
+}  // namespace
+
+int RunSimulate(const SimulateArgs& args, std::ostream& out, std::ostream& err) {
+  try {
+    const Assembly assembly = ReadScene(args.scene);
+    const Plan plan = ReadPlan(args.plan, assembly);
+    ReportOptions report;
+    report.scene_file = args.scene;
+    if (!args.normalize.empty()) {
+      const int i = assembly.FindPart(args.normalize);
+      if (i < 0)
+        throw InputError("", "--normalize",
+                         "no part named '" + args.normalize + "' in " + args.scene);
+      report.normalize_part = i;
+    }
+    SimulationOptions options;
+    options.continue_after_failure = args.continue_after_failure;
+    options.record_timeline = !args.timeline.empty();
+    const SimulationResult result = SimulatePlan(assembly, plan, options);
+    // Everything is computed before anything is written.
+    const std::string text = args.json
+                                 ? SimulationToJson(assembly, plan, result, report).dump(2) + "\n"
+                                 : SimulationToText(assembly, plan, result, report);
+    if (!args.timeline.empty())
+      WriteAtomically(args.timeline, TimelineToCsv(assembly, result, report), "--timeline");
+    out << text;
+    switch (result.verdict) {
+      case MotionVerdict::kStable:
+        return kExitStable;
+      case MotionVerdict::kInfeasible:
+        return kExitInfeasible;
+      default:
+        return kExitUnstable;
+    }
   } catch (const InputError& e) {
     err << "cairn: error: " << e.what() << '\n';
     return kExitBadInput;

@@ -21,6 +21,18 @@ int main(int argc, char** argv) {
                    "Check with these parts taken away (comma-separated)")
       ->delimiter(',');
 
+  cairn::cli::SimulateArgs sim;
+  CLI::App* sim_cmd = app.add_subcommand(
+      "simulate", "Run a disassembly or assembly plan: is every step stable along its path?");
+  sim_cmd->add_option("scene", sim.scene, "Scene file (JSON, format 1)")->required();
+  sim_cmd->add_option("plan", sim.plan, "Plan file (JSON, plan format 1)")->required();
+  sim_cmd->add_flag("--json", sim.json, "Print a JSON document instead of a summary");
+  sim_cmd->add_option("--timeline", sim.timeline,
+                      "Write one CSV row per time step and contact to this file");
+  sim_cmd->add_option("--normalize", sim.normalize, "Divide forces by the weight of this part");
+  sim_cmd->add_flag("--continue", sim.continue_after_failure,
+                    "Go on after a failure, as if it had been prevented");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -29,5 +41,6 @@ int main(int argc, char** argv) {
     return code == 0 ? 0 : cairn::cli::kExitBadInput;
   }
   if (*check_cmd) return cairn::cli::RunCheck(check, std::cout, std::cerr);
+  if (*sim_cmd) return cairn::cli::RunSimulate(sim, std::cout, std::cerr);
   return cairn::cli::kExitBadInput;
 }

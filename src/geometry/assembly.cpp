@@ -55,24 +55,6 @@ class Validator {
   const std::string& file_;
 };
 
-// Signed distance of p from the line through a, b (positive on the left).
-double LineSide(const Vector2& a, const Vector2& b, const Vector2& p) {
-  const Vector2 d = b - a;
-  const double len = d.norm();
-  return len > 0 ? Cross2(d, p - a) / len : 0.0;
-}
-
-// True when the segments cross properly with margin: each one's endpoints lie
-// on opposite sides of the other's line, farther than tol from it.
-bool CrossProperly(const Vector2& a0, const Vector2& a1, const Vector2& b0, const Vector2& b1,
-                   double tol) {
-  const auto opposite = [tol](double s, double t) {
-    return (s > tol && t < -tol) || (s < -tol && t > tol);
-  };
-  return opposite(LineSide(b0, b1, a0), LineSide(b0, b1, a1)) &&
-         opposite(LineSide(a0, a1, b0), LineSide(a0, a1, b1));
-}
-
 // True when every vertex lies within tol of the line through vertex 0 and the
 // vertex farthest from it (a polygon with no interior).
 bool Collinear(const Polygon& poly, double tol) {
@@ -83,42 +65,6 @@ bool Collinear(const Polygon& poly, double tol) {
   if ((*far - o).norm() <= tol) return true;
   return std::all_of(poly.begin(), poly.end(),
                      [&](const Vector2& v) { return std::abs(LineSide(o, *far, v)) <= tol; });
-}
-
-// A point inside both counter-clockwise polygons at depth more than tol, if
-// there is one: (a) a vertex of one deep inside the other; (b) two edges
-// crossing properly; (c) for coincident shapes, a point just inside an edge
-// midpoint of one lying deep inside the other.
-std::optional<Vector2> FindOverlap(const Polygon& a, const Polygon& b, double tol) {
-  for (const Vector2& v : a) {
-    if (SignedDepth(b, v) > tol) return v;
-  }
-  for (const Vector2& v : b) {
-    if (SignedDepth(a, v) > tol) return v;
-  }
-  const int na = static_cast<int>(a.size()), nb = static_cast<int>(b.size());
-  for (int i = 0; i < na; ++i) {
-    const Vector2 &a0 = a[i], &a1 = a[(i + 1) % na];
-    for (int j = 0; j < nb; ++j) {
-      const Vector2 &b0 = b[j], &b1 = b[(j + 1) % nb];
-      if (CrossProperly(a0, a1, b0, b1, tol)) {
-        // The crossing point, as the witness.
-        const double s0 = LineSide(b0, b1, a0), s1 = LineSide(b0, b1, a1);
-        return Vector2(a0 + (s0 / (s0 - s1)) * (a1 - a0));
-      }
-    }
-  }
-  const auto midpoints_inside = [tol](const Polygon& p,
-                                      const Polygon& q) -> std::optional<Vector2> {
-    const int n = static_cast<int>(p.size());
-    for (int i = 0; i < n; ++i) {
-      const Vector2 m = 0.5 * (p[i] + p[(i + 1) % n]) - 2.0 * tol * EdgeNormal(p, i);
-      if (SignedDepth(q, m) > tol) return m;
-    }
-    return std::nullopt;
-  };
-  if (auto m = midpoints_inside(a, b)) return m;
-  return midpoints_inside(b, a);
 }
 
 // True when the normal n, applied at p on the counter-clockwise polygon's
@@ -162,7 +108,8 @@ std::string DescribeSelfIntersection(const Polygon& poly, const SelfIntersection
     return "self-intersecting: edges " + std::to_string(a) + " and " + std::to_string(b) +
            " fold back onto each other";
   }
-  const bool crosses = CrossProperly(poly[a], poly[(a + 1) % n], poly[b], poly[(b + 1) % n], 0.0);
+  const bool crosses =
+      SegmentsCrossProperly(poly[a], poly[(a + 1) % n], poly[b], poly[(b + 1) % n], 0.0);
   return "self-intersecting: edge " + std::to_string(a) + (crosses ? " crosses" : " touches") +
          " edge " + std::to_string(b);
 }
@@ -193,6 +140,10 @@ Assembly Assembly::Create(const AssemblyDef& def, const std::string& source_file
     if (!inserted) {
       check.Fail(path + ".name", "duplicate part name '" + p.name + "' (also " +
                                      Indexed("parts", it->second) + ")");
+    }
+    // A tool travels with the gripper, which a fixed part never does.
+    if (p.fixed && p.tool) {
+      check.Fail(path + ".tool", "part '" + p.name + "' cannot be both fixed and a tool");
     }
     if (p.density) check.Positive(*p.density, path + ".density");
     if (p.mass) check.Positive(*p.mass, path + ".mass");
@@ -246,6 +197,7 @@ Assembly Assembly::Create(const AssemblyDef& def, const std::string& source_file
     Part part;
     part.name = p.name;
     part.fixed = p.fixed;
+    part.tool = p.tool;
     part.polygon = p.polygon;
     MakeCounterClockwise(part.polygon);
     const PolygonMass pm = ComputePolygonMass(part.polygon);
@@ -385,7 +337,9 @@ Vector2 Pose2::Apply(const Vector2& p_assembled, const Vector2& centroid_assembl
 
 Configuration Configuration::Assembled(const Assembly& assembly) {
   Configuration config;
-  config.present.assign(assembly.num_parts(), true);
+  // Tools are no part of the assembly: absent until a plan step grips them.
+  config.present.resize(assembly.num_parts());
+  for (int i = 0; i < assembly.num_parts(); ++i) config.present[i] = !assembly.part(i).tool;
   config.poses.assign(assembly.num_parts(), Pose2{});
   return config;
 }

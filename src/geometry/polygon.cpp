@@ -171,4 +171,58 @@ Vector2 EdgeNormal(const Polygon& ccw_poly, int i) {
   return Vector2(d.y(), -d.x()) / len;
 }
 
+// Signed distance of p from the line through a, b (positive on the left).
+double LineSide(const Vector2& a, const Vector2& b, const Vector2& p) {
+  const Vector2 d = b - a;
+  const double len = d.norm();
+  return len > 0 ? Cross2(d, p - a) / len : 0.0;
+}
+
+// True when the segments cross properly with margin: each one's endpoints lie
+// on opposite sides of the other's line, farther than tol from it.
+bool SegmentsCrossProperly(const Vector2& a0, const Vector2& a1, const Vector2& b0,
+                           const Vector2& b1, double tol) {
+  const auto opposite = [tol](double s, double t) {
+    return (s > tol && t < -tol) || (s < -tol && t > tol);
+  };
+  return opposite(LineSide(b0, b1, a0), LineSide(b0, b1, a1)) &&
+         opposite(LineSide(a0, a1, b0), LineSide(a0, a1, b1));
+}
+
+// A point inside both counter-clockwise polygons at depth more than tol, if
+// there is one: (a) a vertex of one deep inside the other; (b) two edges
+// crossing properly; (c) for coincident shapes, a point just inside an edge
+// midpoint of one lying deep inside the other.
+std::optional<Vector2> FindOverlap(const Polygon& a, const Polygon& b, double tol) {
+  for (const Vector2& v : a) {
+    if (SignedDepth(b, v) > tol) return v;
+  }
+  for (const Vector2& v : b) {
+    if (SignedDepth(a, v) > tol) return v;
+  }
+  const int na = static_cast<int>(a.size()), nb = static_cast<int>(b.size());
+  for (int i = 0; i < na; ++i) {
+    const Vector2 &a0 = a[i], &a1 = a[(i + 1) % na];
+    for (int j = 0; j < nb; ++j) {
+      const Vector2 &b0 = b[j], &b1 = b[(j + 1) % nb];
+      if (SegmentsCrossProperly(a0, a1, b0, b1, tol)) {
+        // The crossing point, as the witness.
+        const double s0 = LineSide(b0, b1, a0), s1 = LineSide(b0, b1, a1);
+        return Vector2(a0 + (s0 / (s0 - s1)) * (a1 - a0));
+      }
+    }
+  }
+  const auto midpoints_inside = [tol](const Polygon& p,
+                                      const Polygon& q) -> std::optional<Vector2> {
+    const int n = static_cast<int>(p.size());
+    for (int i = 0; i < n; ++i) {
+      const Vector2 m = 0.5 * (p[i] + p[(i + 1) % n]) - 2.0 * tol * EdgeNormal(p, i);
+      if (SignedDepth(q, m) > tol) return m;
+    }
+    return std::nullopt;
+  };
+  if (auto m = midpoints_inside(a, b)) return m;
+  return midpoints_inside(b, a);
+}
+
 }  // namespace cairn

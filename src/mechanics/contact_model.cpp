@@ -18,11 +18,49 @@ double JacobianRow::Dot(const std::vector<Vector3>& nu) const {
   return s;
 }
 
+Eigen::Matrix3d BodyDynamics::InverseMass() const {
+  Eigen::Matrix3d W = Eigen::Matrix3d::Zero();
+  switch (motion) {
+    case BodyMotion::kFree:
+      W.diagonal() << 1 / mass, 1 / mass, 1 / inertia;
+      break;
+    case BodyMotion::kGuided: {
+      // Free directions: the normal of the guide in the plane, and rotation.
+      const Vector2 perp(-guide.y(), guide.x());
+      W.topLeftCorner<2, 2>() = perp * perp.transpose() / mass;
+      W(2, 2) = 1 / inertia;
+      break;
+    }
+    case BodyMotion::kPrescribed:
+      break;
+  }
+  return W;
+}
+
+Eigen::Matrix3d BodyDynamics::FreeProjector() const {
+  Eigen::Matrix3d P = Eigen::Matrix3d::Zero();
+  switch (motion) {
+    case BodyMotion::kFree:
+      P.setIdentity();
+      break;
+    case BodyMotion::kGuided: {
+      const Vector2 perp(-guide.y(), guide.x());
+      P.topLeftCorner<2, 2>() = perp * perp.transpose();
+      P(2, 2) = 1;
+      break;
+    }
+    case BodyMotion::kPrescribed:
+      break;
+  }
+  return P;
+}
+
 namespace {
 
-// M_k⁻¹ g for body k.
-Vector3 ApplyMinv(const BodyDynamics& b, const Vector3& g) {
-  return {g.x() / b.mass, g.y() / b.mass, g.z() / b.inertia};
+// The body's motion without contact forces.
+Vector3 FreeMotion(const BodyDynamics& b, Formulation formulation, double dt) {
+  if (formulation == Formulation::kBaraff) return b.InverseMass() * b.F_ext;
+  return b.nu_prescribed + b.FreeProjector() * b.nu_prev + b.InverseMass() * b.F_ext * dt;
 }
 
 // The row of a contact along direction u (n or t): the relative velocity of
@@ -56,8 +94,9 @@ MatrixX Delassus(const std::vector<const JacobianRow*>& rows,
   MatrixX A = MatrixX::Zero(n, n);
   for (int b = 0; b < nb; ++b) {
     const auto& list = at_body[b];
+    const Eigen::Matrix3d W = bodies[b].InverseMass();
     for (size_t i = 0; i < list.size(); ++i) {
-      const Vector3 mg = ApplyMinv(bodies[b], list[i].second);
+      const Vector3 mg = W * list[i].second;
       for (size_t j = 0; j < list.size(); ++j)
         A(list[i].first, list[j].first) += mg.dot(list[j].second);
     }
@@ -77,6 +116,8 @@ ContactLcp BuildContactLcp(std::vector<BodyDynamics> bodies, std::vector<Contact
   const int nb = static_cast<int>(lcp.bodies.size());
   const int nc = static_cast<int>(lcp.contacts.size());
   for (const auto& b : lcp.bodies) CAIRN_CHECK(b.mass > 0 && b.inertia > 0);
+  // A prescribed velocity is a Stewart–Trinkle notion (the Baraff LCP is at
+  // rest, where prescribed bodies are simply fixed).
 
   // Local body index of each part.
   std::vector<std::pair<int, int>> part_to_body;
@@ -101,14 +142,9 @@ ContactLcp BuildContactLcp(std::vector<BodyDynamics> bodies, std::vector<Contact
       lcp.friction_of[c] = lcp.num_friction++;
   }
 
-  // The free motion M⁻¹ F (Baraff) or ν⁻ + M⁻¹ F Δt (Stewart–Trinkle).
+  // The free motion W F (Baraff) or ν_p + P ν⁻ + W F Δt (Stewart–Trinkle).
   std::vector<Vector3> free_motion(nb);
-  for (int k = 0; k < nb; ++k) {
-    const BodyDynamics& b = lcp.bodies[k];
-    free_motion[k] = formulation == Formulation::kBaraff
-                         ? ApplyMinv(b, b.F_ext)
-                         : Vector3(b.nu_prev + ApplyMinv(b, b.F_ext) * dt);
-  }
+  for (int k = 0; k < nb; ++k) free_motion[k] = FreeMotion(lcp.bodies[k], formulation, dt);
 
   if (formulation == Formulation::kBaraff) {
     std::vector<const JacobianRow*> rows;
@@ -188,13 +224,11 @@ ContactSolution RecoverSolution(const ContactLcp& lcp, const VectorX& z) {
     }
   }
 
-  // Body motions.
+  // Body motions: the free motion plus the contact wrench through W.
   s.body_motion.resize(nb);
   for (int k = 0; k < nb; ++k) {
     const BodyDynamics& b = lcp.bodies[k];
-    const Vector3 total = st ? Vector3(b.F_ext * lcp.dt + wrench[k]) : Vector3(b.F_ext + wrench[k]);
-    const Vector3 dnu(total.x() / b.mass, total.y() / b.mass, total.z() / b.inertia);
-    s.body_motion[k] = st ? Vector3(b.nu_prev + dnu) : dnu;
+    s.body_motion[k] = FreeMotion(b, lcp.formulation, lcp.dt) + b.InverseMass() * wrench[k];
   }
 
   // Contact motions, and their agreement with the LCP's w: the normal rows

@@ -24,6 +24,20 @@ const char* to_string(MotionKind kind) {
   return "unknown";
 }
 
+const char* to_string(PartRole role) {
+  switch (role) {
+    case PartRole::kJudged:
+      return "judged";
+    case PartRole::kCarried:
+      return "carried";
+    case PartRole::kGuided:
+      return "guided";
+    case PartRole::kPrescribed:
+      return "prescribed";
+  }
+  return "unknown";
+}
+
 const char* to_string(Verdict v) {
   switch (v) {
     case Verdict::kStable:
@@ -85,10 +99,15 @@ std::vector<Component> SplitComponents(const Assembly& assembly, const Configura
   return out;
 }
 
-// The LCP of one component: its movable parts under gravity, its contacts.
+PartRole RoleOf(const DriveInputs* drive, int part) {
+  return drive && !drive->role.empty() ? drive->role[part] : PartRole::kJudged;
+}
+
+// The LCP of one component: its movable parts under gravity (gripped ones
+// moving with the gripper), its contacts.
 ContactLcp BuildComponent(const Assembly& assembly, const Configuration& config,
                           const std::vector<Contact>& contacts, const Component& comp,
-                          Formulation formulation, double dt) {
+                          Formulation formulation, double dt, const DriveInputs* drive) {
   std::vector<BodyDynamics> bodies;
   for (int p : comp.parts) {
     const Part& part = assembly.part(p);
@@ -98,12 +117,40 @@ ContactLcp BuildComponent(const Assembly& assembly, const Configuration& config,
     b.inertia = part.inertia;
     b.p_WBcm = config.WorldCentroid(assembly, p);
     b.F_ext = Vector3(part.mass * assembly.gravity().x(), part.mass * assembly.gravity().y(), 0);
+    if (drive && !drive->nu_prev.empty()) b.nu_prev = drive->nu_prev[p];
+    const PartRole role = RoleOf(drive, p);
+    if (role == PartRole::kPrescribed || role == PartRole::kGuided) {
+      const Vector2 v = drive->velocity[p];
+      b.nu_prescribed = Vector3(v.x(), v.y(), 0);
+      if (role == PartRole::kPrescribed) {
+        b.motion = BodyMotion::kPrescribed;
+      } else if (v.norm() > 0) {
+        b.motion = BodyMotion::kGuided;
+        b.guide = v.normalized();
+      } else {
+        // A guided part at the end of its path: the gripper holds it still
+        // along its last direction only... with no direction left, it is free.
+        b.motion = BodyMotion::kFree;
+      }
+    }
     bodies.push_back(b);
   }
   std::vector<Contact> comp_contacts;
   for (int c : comp.contacts) comp_contacts.push_back(contacts[c]);
   return BuildContactLcp(std::move(bodies), std::move(comp_contacts), formulation, dt,
                          /*use_gaps=*/false);
+}
+
+// A key for warm starts: the component's bodies and contact features, in order.
+std::string Signature(const ContactLcp& lcp) {
+  std::string key;
+  for (const BodyDynamics& b : lcp.bodies) key += std::to_string(b.part) + ",";
+  key += "|";
+  for (const Contact& c : lcp.contacts)
+    key += std::to_string(c.part_a) + ":" + std::to_string(c.part_b) + ":" +
+           std::to_string(static_cast<int>(c.feature)) + ":" + std::to_string(c.vertex) + ":" +
+           std::to_string(c.edge) + ";";
+  return key;
 }
 
 Formulation ChooseFormulation(const Assembly& assembly, const StabilityOptions& options) {
@@ -146,17 +193,19 @@ std::vector<ContactLcp> BuildComponentLcps(const Assembly& assembly, const Confi
   std::vector<ContactLcp> out;
   for (const Component& comp : SplitComponents(assembly, config, contacts))
     out.push_back(BuildComponent(assembly, config, contacts, comp,
-                                 ChooseFormulation(assembly, options), options.dt));
+                                 ChooseFormulation(assembly, options), options.dt, nullptr));
   return out;
 }
 
 StabilityResult AnalyzeConfiguration(const Assembly& assembly, const Configuration& config,
-                                     const StabilityOptions& options) {
+                                     const StabilityOptions& options, const DriveInputs* drive,
+                                     StabilityWorkspace* workspace) {
   StabilityResult result;
   result.dt = options.dt;
   result.tolerances =
       options.tolerances ? *options.tolerances : assembly.MakeTolerances(options.dt);
-  result.formulation = ChooseFormulation(assembly, options);
+  result.formulation = drive ? options.formulation.value_or(Formulation::kStewartTrinkle)
+                             : ChooseFormulation(assembly, options);
   const Tolerances& tol = result.tolerances;
   const bool st = result.formulation == Formulation::kStewartTrinkle;
   const double motion_tol = st ? tol.velocity : tol.acceleration;
@@ -179,12 +228,26 @@ StabilityResult AnalyzeConfiguration(const Assembly& assembly, const Configurati
     // BuildContactLcp.
     t0 = Clock::now();
     const ContactLcp lcp =
-        BuildComponent(assembly, config, contacts, comp, result.formulation, options.dt);
+        BuildComponent(assembly, config, contacts, comp, result.formulation, options.dt, drive);
     result.profile.build += Seconds(t0);
 
     // SolveLemke, then re-check the answer independently of the status.
     t0 = Clock::now();
-    const LcpResult sol = SolveLemke(lcp.M, lcp.q, options.lemke);
+    LcpBasis* basis = nullptr;
+    std::string key;
+    if (workspace) {
+      key = Signature(lcp);
+      for (auto& [k, b] : workspace->bases)
+        if (k == key) basis = &b;
+    }
+    const LcpResult sol = SolveLemke(lcp.M, lcp.q, options.lemke, basis);
+    if (workspace && (sol.status == LcpStatus::kSolved || sol.status == LcpStatus::kTrivial)) {
+      if (basis)
+        *basis = sol.basis;
+      else
+        workspace->bases.emplace_back(key, sol.basis);
+      if (sol.warm_start_used) ++workspace->warm_starts;
+    }
     result.profile.solve += Seconds(t0);
     ComponentReport report;
     report.parts = comp.parts;
@@ -202,9 +265,25 @@ StabilityResult AnalyzeConfiguration(const Assembly& assembly, const Configurati
       report.status = LcpStatus::kNumericalFailure;
       report.message = "the solver's answer failed the independent LCP check";
     }
+    // A driven part whose prescribed motion no contact forces allow (the LCP
+    // has no solution, Lemke ends on a ray) is jammed: the path drives it into
+    // something that cannot give way.
+    bool has_driven = false;
+    for (int p : comp.parts) {
+      const PartRole role = RoleOf(drive, p);
+      has_driven |= role == PartRole::kGuided || role == PartRole::kPrescribed;
+    }
+    if (!solved && has_driven && sol.status == LcpStatus::kRayTermination) {
+      report.message = "the gripper's motion is blocked (no contact forces allow it)";
+      for (int p : comp.parts) {
+        const PartRole role = RoleOf(drive, p);
+        if (role == PartRole::kGuided || role == PartRole::kPrescribed) result.jammed.push_back(p);
+      }
+    } else if (!solved) {
+      any_failure = true;
+    }
     if (!solved) {
       if (report.message.empty()) report.message = sol.message;
-      any_failure = true;
       diag << "component " << ci << " (" << comp.parts.size() << " parts, " << lcp.size()
            << " LCP variables): " << to_string(report.status)
            << (report.message.empty() ? "" : ": " + report.message) << "; ";
@@ -255,10 +334,27 @@ StabilityResult AnalyzeConfiguration(const Assembly& assembly, const Configurati
         m.point_motion = std::max(m.point_motion, (m.linear + CrossZ(m.angular, v - c)).norm());
         radius = std::max(radius, (v - c).norm());
       }
+      m.role = RoleOf(drive, p);
       m.moving = m.point_motion > motion_tol;
       ClassifyMotion(m, keeps_contact[b], radius, assembly.scene_size());
       if (m.pivot) m.pivot = *m.pivot + c;
-      if (m.moving) any_moving = true;
+      switch (m.role) {
+        case PartRole::kJudged:
+          if (m.moving) any_moving = true;
+          break;
+        case PartRole::kGuided: {
+          // Off-path motion: everything but the gripper's own velocity.
+          const Vector2 v_g = drive->velocity[p];
+          double off = 0;
+          for (const Vector2& v : config.WorldPolygon(assembly, p))
+            off = std::max(off, (m.linear - v_g + CrossZ(m.angular, v - c)).norm());
+          if (off > motion_tol) result.unsupported.push_back(p);
+          break;
+        }
+        case PartRole::kCarried:
+        case PartRole::kPrescribed:
+          break;
+      }
       result.parts.push_back(m);
     }
     result.profile.classify += Seconds(t0);
@@ -268,9 +364,15 @@ StabilityResult AnalyzeConfiguration(const Assembly& assembly, const Configurati
   std::sort(result.parts.begin(), result.parts.end(),
             [](const PartMotion& x, const PartMotion& y) { return x.part < y.part; });
   for (const PartMotion& m : result.parts)
-    if (m.moving) result.moving.push_back(m.part);
-  result.verdict =
-      any_moving ? Verdict::kUnstable : (any_failure ? Verdict::kSolverFailure : Verdict::kStable);
+    if (m.moving && m.role == PartRole::kJudged) result.moving.push_back(m.part);
+  std::sort(result.unsupported.begin(), result.unsupported.end());
+  std::sort(result.jammed.begin(), result.jammed.end());
+  // Unstable when a part that should stay put moves, or a driven part cannot
+  // move as the gripper says; undecided when a solve failed; else stable. (A
+  // guided part off its path is the caller's concern: see `unsupported`.)
+  result.verdict = (any_moving || !result.jammed.empty())
+                       ? Verdict::kUnstable
+                       : (any_failure ? Verdict::kSolverFailure : Verdict::kStable);
   result.diagnostics = diag.str();
   return result;
 }

@@ -11,41 +11,16 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "cli/cli_run.h"
 #include "test_paths.h"
 
 namespace cairn {
 namespace {
 
+using testing::Cairn;
 using testing::CliPath;
+using testing::CliRun;
 using testing::ExamplePath;
-
-struct CliRun {
-  int exit_code = -1;
-  std::string out, err;
-};
-
-std::string Slurp(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
-CliRun Cairn(const std::string& args) {
-  const auto dir = std::filesystem::temp_directory_path();
-  const std::string tag = std::to_string(::getpid()) + "_" + std::to_string(std::rand());
-  const std::string out = (dir / ("cairn_out_" + tag)).string();
-  const std::string err = (dir / ("cairn_err_" + tag)).string();
-  const std::string cmd = CliPath() + " " + args + " >" + out + " 2>" + err;
-  const int status = std::system(cmd.c_str());
-  CliRun r;
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  r.out = Slurp(out);
-  r.err = Slurp(err);
-  std::filesystem::remove(out);
-  std::filesystem::remove(err);
-  return r;
-}
 
 struct ExampleVerdict {
   const char* file;

@@ -207,6 +207,51 @@ TEST(Assembly, Overlaps) {
   ExpectError(def, "parts[2]", "overlaps");
 }
 
+// A gripper pad G (a tool) beside block A on the table.
+AssemblyDef TwoBlocksAndPad() {
+  AssemblyDef def = TwoBlocks();
+  def.parts.push_back(Box("G", 2, 0, 2.5, 0.5));
+  def.parts[3].tool = true;
+  return def;
+}
+
+TEST(Assembly, ToolsAreKeptAndMarked) {
+  const Assembly a = Assembly::Create(TwoBlocksAndPad());
+  ASSERT_EQ(a.num_parts(), 4);
+  EXPECT_TRUE(a.part(3).tool);
+  EXPECT_FALSE(a.part(3).fixed);
+  EXPECT_FALSE(a.part(1).tool);
+  EXPECT_FALSE(a.part(0).tool);
+  EXPECT_EQ(a.FindPart("G"), 3);
+  EXPECT_DOUBLE_EQ(a.part(3).mass, 0.25);  // a tool has mass like any part
+}
+
+TEST(Assembly, ToolCannotBeFixed) {
+  AssemblyDef def = TwoBlocksAndPad();
+  def.parts[3].fixed = true;
+  ExpectError(def, "parts[3].tool", "part 'G' cannot be both fixed and a tool");
+}
+
+TEST(Assembly, ToolsAreCheckedForOverlap) {
+  // A pad overlapping A at its start pose would penetrate A when gripped.
+  AssemblyDef def = TwoBlocksAndPad();
+  def.parts[3] = Box("G", 1.5, 0, 2.5, 0.5);
+  def.parts[3].tool = true;
+  ExpectError(def, "parts[3]", "part 'G' overlaps part 'A' (parts[1])");
+}
+
+TEST(Configuration, AssembledLeavesToolsOut) {
+  const Assembly a = Assembly::Create(TwoBlocksAndPad());
+  const Configuration config = Configuration::Assembled(a);
+  ASSERT_EQ(config.present.size(), 4u);
+  EXPECT_TRUE(config.present[0]);
+  EXPECT_TRUE(config.present[1]);
+  EXPECT_TRUE(config.present[2]);
+  EXPECT_FALSE(config.present[3]);  // the tool, until a plan step grips it
+  ASSERT_EQ(config.poses.size(), 4u);
+  EXPECT_EQ(config.WorldPolygon(a, 3), a.part(3).polygon);  // at its start pose
+}
+
 TEST(Assembly, ManyTouchingPartsAreFast) {
   // A 25 × 25 wall of unit bricks on a table: 626 parts, all touching.
   AssemblyDef def;

@@ -109,6 +109,23 @@ TEST(ParseSceneJson, ClockwisePolygonIsNormalised) {
   EXPECT_DOUBLE_EQ(a.part(1).area, 2.0);
 }
 
+TEST(ParseSceneJson, ToolFlag) {
+  json doc = json::parse(kBase);
+  doc["parts"].push_back(
+      json::parse(R"({"name": "G", "tool": true, "box": {"min": [3, 0], "max": [4, 0.5]}})"));
+  doc["parts"][1]["tool"] = false;
+  const AssemblyDef def = ParseSceneJson(doc, "");
+  ASSERT_EQ(def.parts.size(), 4u);
+  EXPECT_FALSE(def.parts[0].tool);  // default
+  EXPECT_FALSE(def.parts[1].tool);  // explicit false
+  EXPECT_TRUE(def.parts[3].tool);
+  const Assembly a = Assembly::Create(def);
+  EXPECT_TRUE(a.part(3).tool);
+  EXPECT_FALSE(a.part(2).tool);
+  const Configuration config = Configuration::Assembled(a);
+  EXPECT_EQ(config.present, (std::vector<bool>{true, true, true, false}));
+}
+
 TEST(ReadScene, EveryExampleSceneIsValid) {
   int count = 0;
   for (const auto& entry : std::filesystem::directory_iterator(testing::SourcePath("examples"))) {
@@ -147,7 +164,7 @@ const BadCase kBadCases[] = {
   // Unknown keys, at every level.
   {"unknown_top", nullptr, R"({"colour": "red"})", "colour", "unknown key"},
   {"unknown_part_key", nullptr, R"({"parts": [{"name": "A", "colour": 1, "polygon": [[0, 0], [1, 0], [0, 1]]}]})",
-   "parts[0].colour", "unknown key (expected one of: name, fixed"},
+   "parts[0].colour", "unknown key (expected one of: name, fixed, tool, density"},
   {"unknown_box_key", nullptr, R"({"parts": [{"name": "A", "box": {"min": [0, 0], "max": [1, 1], "centre": [0, 0]}}]})",
    "parts[0].box.centre", "unknown key"},
   {"unknown_pair_key", nullptr, R"({"friction_pairs": [{"parts": ["A", "B"], "mu": 0.1, "kind": 1}]})",
@@ -166,6 +183,8 @@ const BadCase kBadCases[] = {
    "parts[0].name", "must be a string"},
   {"fixed_type", nullptr, R"({"parts": [{"name": "A", "fixed": "yes", "polygon": [[0, 0], [1, 0], [0, 1]]}]})",
    "parts[0].fixed", "must be true or false, not a string"},
+  {"tool_type", nullptr, R"({"parts": [{"name": "A", "tool": 1, "polygon": [[0, 0], [1, 0], [0, 1]]}]})",
+   "parts[0].tool", "must be true or false, not a number"},
   {"density_type", nullptr, R"({"parts": [{"name": "A", "density": [1], "polygon": [[0, 0], [1, 0], [0, 1]]}]})",
    "parts[0].density", "must be a number, not an array"},
   {"polygon_type", nullptr, R"({"parts": [{"name": "A", "polygon": {"x": 1}}]})", "parts[0].polygon", "must be an array"},
@@ -208,6 +227,10 @@ const BadCase kBadCases[] = {
   // Names.
   {"duplicate_name", nullptr, R"({"parts": [{"name": "A", "polygon": [[0, 0], [1, 0], [0, 1]]}, {"name": "A", "polygon": [[5, 0], [6, 0], [5, 1]]}]})",
    "parts[1].name", "duplicate part name 'A' (also parts[0])"},
+  {"fixed_tool", nullptr, R"({"parts": [{"name": "G", "fixed": true, "tool": true, "polygon": [[0, 0], [1, 0], [0, 1]]}]})",
+   "parts[0].tool", "part 'G' cannot be both fixed and a tool"},
+  {"tool_overlaps", nullptr, R"({"parts": [{"name": "A", "polygon": [[0, 0], [2, 0], [2, 1], [0, 1]]}, {"name": "G", "tool": true, "box": {"min": [1, 0.5], "max": [3, 2]}}]})",
+   "parts[1]", "part 'G' overlaps part 'A' (parts[0])"},
   {"empty_name", nullptr, R"({"parts": [{"name": "", "polygon": [[0, 0], [1, 0], [0, 1]]}]})", "parts[0].name",
    "must not be empty"},
   {"pair_unknown_part", nullptr, R"({"friction_pairs": [{"parts": ["A", "C"], "mu": 0.1}]})",

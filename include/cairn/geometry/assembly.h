@@ -19,7 +19,8 @@ namespace cairn {
 /// A part as the user describes it (scene file `parts[i]`).
 struct PartDef {
   std::string name;
-  bool fixed = false;             ///< Cannot move (a table, a wall).
+  bool fixed = false;  ///< Cannot move (a table, a wall).
+  bool tool = false;   ///< A gripper's pad, not part of the assembly: present only while gripped.
   std::optional<double> density;  ///< mass per unit area; default 1.
   std::optional<double> mass;     ///< overrides density.
   Polygon polygon;                ///< World coordinates of the assembled pose, either orientation.
@@ -58,6 +59,7 @@ struct AssemblyDef {
 struct Part {
   std::string name;
   bool fixed = false;
+  bool tool = false;       ///< a gripper's pad: absent until a plan step grips it; never judged
   Polygon polygon;         ///< counter-clockwise, world frame (assembled pose)
   double area = 0;         ///< length²
   double mass = 0;         ///< mass units, > 0 (density × area unless the scene gives `mass`)
@@ -135,7 +137,8 @@ struct Configuration {
   std::vector<bool> present;  ///< (num_parts) false: the part has been taken away
   std::vector<Pose2> poses;   ///< (num_parts)
 
-  /// All parts present, at their assembled poses.
+  /// Every part of the assembly present, at its assembled pose; tools
+  /// (Part::tool) absent, also at their assembled (start) poses.
   static Configuration Assembled(const Assembly& assembly);
   /// Part i's polygon in this configuration (world frame, counter-clockwise).
   Polygon WorldPolygon(const Assembly& assembly, int i) const;

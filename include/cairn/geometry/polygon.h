@@ -61,6 +61,23 @@ double SignedDepth(const Polygon& poly, const Vector2& p);
 /// Axis-aligned bounding box corners (min, max).
 std::pair<Vector2, Vector2> BoundingBox(const Polygon& poly);
 
+/// Signed distance of p from the line through a and b, positive on its left
+/// (length; 0 when a = b).
+double LineSide(const Vector2& a, const Vector2& b, const Vector2& p);
+
+/// True when segments [a0, a1] and [b0, b1] cross properly with margin `tol`:
+/// each one's endpoints lie on opposite sides of the other's line, farther than
+/// tol (length) from it.
+bool SegmentsCrossProperly(const Vector2& a0, const Vector2& a1, const Vector2& b0,
+                           const Vector2& b1, double tol);
+
+/// A point inside both counter-clockwise polygons at a depth of more than
+/// `tol` (length), or nullopt when they only touch (within tol) or are apart:
+/// a vertex of one deep inside the other, two edges crossing properly, or, for
+/// coincident shapes, a point just inside an edge midpoint of one lying deep
+/// inside the other.
+std::optional<Vector2> FindOverlap(const Polygon& a, const Polygon& b, double tol);
+
 /// Outward unit normal of edge i (from vertex i to i+1) of a counter-clockwise
 /// polygon.
 Vector2 EdgeNormal(const Polygon& ccw_poly, int i);

@@ -24,6 +24,13 @@
 /// friction unknowns (their p_f would be forced to zero anyway), which keeps
 /// the LCP smaller and better conditioned.
 ///
+/// Gripped bodies: a body whose velocity is partly or wholly prescribed (a
+/// part moved by the gripper) has ν = ν_p + B ξ with ξ free; everything above
+/// holds with M⁻¹ replaced by the effective inverse mass W = B (BᵀMB)⁻¹Bᵀ, ν⁻ by
+/// its free part B Bᵀ ν⁻, and ν_p added to the free motion (constant
+/// prescribed velocity: no inertial term). A fully prescribed body has W = 0:
+/// it is a moving obstacle.
+///
 /// The products G M⁻¹ Gᵀ are formed per body: each row of G touches at most
 /// two bodies, so the cost is Σ_k (rows at body k)², not rows² · bodies.
 
@@ -43,7 +50,15 @@ enum class Formulation {
 /// "baraff", "stewart-trinkle".
 const char* to_string(Formulation f);
 
-/// One movable body of a component.
+/// How a body of a component may move.
+enum class BodyMotion {
+  kFree,    ///< every velocity component is unknown
+  kGuided,  ///< the velocity along `guide` is prescribed (a gripper pushing along a path without
+            ///< carrying the part: support "none"); the rest is free
+  kPrescribed,  ///< ν = nu_prescribed (held rigidly by a gripper: support "full"); no unknowns
+};
+
+/// One body of a component.
 struct BodyDynamics {
   int part = -1;             ///< index into Assembly::parts()
   double mass = 0;           ///< mass units
@@ -51,6 +66,16 @@ struct BodyDynamics {
   Vector2 p_WBcm{0, 0};      ///< centroid, world frame
   Vector3 F_ext{0, 0, 0};    ///< (f_x, f_y, τ) external wrench at the centroid
   Vector3 nu_prev{0, 0, 0};  ///< (v_x, v_y, ω) before the step (Stewart–Trinkle only)
+  BodyMotion motion = BodyMotion::kFree;
+  Vector2 guide{1, 0};             ///< kGuided: unit direction of the prescribed velocity
+  Vector3 nu_prescribed{0, 0, 0};  ///< kGuided/kPrescribed: the prescribed part of ν
+
+  /// The effective inverse mass W = B (Bᵀ M B)⁻¹ Bᵀ, where the columns of B
+  /// span the free velocity directions (orthonormal): M⁻¹ for a free body,
+  /// 0 for a prescribed one. A wrench F changes ν by W F.
+  Eigen::Matrix3d InverseMass() const;
+  /// The projector B Bᵀ onto the free velocity directions.
+  Eigen::Matrix3d FreeProjector() const;
 };
 
 /// A row of G: a linear form on the generalised velocities of at most two bodies.

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "cairn/geometry/assembly.h"
+#include "cairn/motion/simulate.h"
 #include "cairn/stability/analyze.h"
 
 namespace cairn {
@@ -31,5 +32,19 @@ nlohmann::json StabilityToJson(const Assembly& assembly, const Configuration& co
 /// The human-readable summary of `cairn check`.
 std::string StabilityToText(const Assembly& assembly, const Configuration& config,
                             const StabilityResult& result, const ReportOptions& options);
+
+/// The `cairn simulate --json` document (docs/cli.md lists every key).
+nlohmann::json SimulationToJson(const Assembly& assembly, const Plan& plan,
+                                const SimulationResult& result, const ReportOptions& options);
+
+/// The human-readable summary of `cairn simulate`: one line per step, and for
+/// a failure when, which parts move and how, and which contacts break or slide.
+std::string SimulationToText(const Assembly& assembly, const Plan& plan,
+                             const SimulationResult& result, const ReportOptions& options);
+
+/// The timeline CSV: a header, then one row per tick and contact (the data
+/// behind the paper's force-versus-time figures).
+std::string TimelineToCsv(const Assembly& assembly, const SimulationResult& result,
+                          const ReportOptions& options);
 
 }  // namespace cairn

@@ -37,9 +37,22 @@ enum class MotionKind {
 /// "at rest", "slides", "tips", "falls".
 const char* to_string(MotionKind kind);
 
+/// What a part is doing in a configuration.
+enum class PartRole {
+  kJudged,      ///< should stay put: any motion makes the configuration unstable
+  kCarried,     ///< leaving with the gripped parts but not gripped: free, not judged
+  kGuided,      ///< gripped, pushed along the path only (support "none"): its other motion makes it
+                ///< unsupported
+  kPrescribed,  ///< gripped rigidly (support "full") or a tool: moves with the gripper
+};
+
+/// "judged", "carried", "guided", "prescribed".
+const char* to_string(PartRole role);
+
 /// The motion of one movable part.
 struct PartMotion {
   int part = -1;
+  PartRole role = PartRole::kJudged;
   int component = -1;  ///< index into StabilityResult::components
   bool moving = false;
   MotionKind kind = MotionKind::kAtRest;
@@ -102,9 +115,27 @@ struct StabilityResult {
   std::vector<PartMotion> parts;        ///< every present movable part, by part index
   std::vector<ContactReport> contacts;  ///< every contact
   std::vector<ComponentReport> components;
-  std::vector<int> moving;  ///< indices of the parts that move
+  std::vector<int> moving;       ///< judged parts that move
+  std::vector<int> unsupported;  ///< guided parts that move off their path (fall or tip)
+  std::vector<int> jammed;       ///< driven parts whose prescribed motion no contact forces allow
   StageProfile profile;
   std::string diagnostics;  ///< what went wrong numerically, if anything
+};
+
+/// How the gripper drives the parts of one configuration (motion stage). Every
+/// vector is indexed by part, and empty means "nothing driven, all at rest".
+struct DriveInputs {
+  std::vector<PartRole> role;  ///< (num_parts) default kJudged
+  std::vector<Vector2>
+      velocity;  ///< (num_parts) gripper velocity of kGuided/kPrescribed parts (length/s)
+  std::vector<Vector3> nu_prev;  ///< (num_parts) each part's (v_x, v_y, ω) before this step
+};
+
+/// Warm starts kept between calls (one per component structure: the same
+/// bodies and contacts in the same order), e.g. along a motion path.
+struct StabilityWorkspace {
+  std::vector<std::pair<std::string, LcpBasis>> bases;  ///< component signature → last basis
+  int warm_starts = 0;                                  ///< solves answered by a warm start
 };
 
 /// Options of AnalyzeConfiguration.
@@ -122,7 +153,12 @@ std::vector<ContactLcp> BuildComponentLcps(const Assembly& assembly, const Confi
                                            const StabilityOptions& options = {});
 
 /// Decides whether the movable parts of `config` stay put under gravity.
+/// With `drive`, gripped parts move with their gripper and the Stewart–Trinkle
+/// step is always used (velocity level: a part pushed by a moving one moves
+/// even without friction). `workspace` (optional) carries warm starts.
 StabilityResult AnalyzeConfiguration(const Assembly& assembly, const Configuration& config,
-                                     const StabilityOptions& options = {});
+                                     const StabilityOptions& options = {},
+                                     const DriveInputs* drive = nullptr,
+                                     StabilityWorkspace* workspace = nullptr);
 
 }  // namespace cairn

@@ -1,0 +1,26 @@
+#pragma once
+/// @file
+/// Reading plan files, format version 1 (docs/plan-format.md). The format is a
+/// public contract: its key names never change within a version.
+
+#include <nlohmann/json_fwd.hpp>
+#include <string>
+
+#include "cairn/geometry/assembly.h"
+#include "cairn/motion/plan.h"
+
+namespace cairn {
+
+/// Checks a parsed plan document (types, required fields, unknown keys,
+/// finite numbers, an empty `grip`) and converts it to a PlanDef. Vector
+/// indices equal JSON indices. The checks against a scene are Plan::Create's.
+/// @throws InputError naming `file` and the JSON path of the first fault.
+PlanDef ParsePlanJson(const nlohmann::json& doc, const std::string& file);
+
+/// Reads and parses a plan file, then validates it against `assembly` with
+/// Plan::Create. @throws InputError (unreadable file, JSON syntax error with
+/// its line and column, a key repeated in one object, or any fault of
+/// ParsePlanJson and Plan::Create).
+Plan ReadPlan(const std::string& path, const Assembly& assembly);
+
+}  // namespace cairn

@@ -1,0 +1,79 @@
+#pragma once
+/// @file
+/// A disassembly (or assembly) plan: a sequence of removals, each with the
+/// path its gripped parts follow (docs/plan-format.md; a public contract).
+
+#include <string>
+#include <vector>
+
+#include "cairn/core/types.h"
+#include "cairn/geometry/assembly.h"
+
+namespace cairn {
+
+/// How the gripper holds the gripped parts.
+enum class SupportMode {
+  kFull,  ///< rigidly, carrying their weight (the paper's default): they act on the rest only
+          ///< through contacts
+  kNone,  ///< only along the path: their motion along it is prescribed, every other freedom is free
+};
+
+/// "full", "none".
+const char* to_string(SupportMode mode);
+
+/// Which way the plan reads.
+enum class PlanMode {
+  kDisassemble,  ///< steps in order, each taking its parts out along its path
+  kAssemble,     ///< steps in reverse order, each bringing its parts in along its path backwards
+};
+
+/// "disassemble", "assemble".
+const char* to_string(PlanMode mode);
+
+/// One step as the user writes it (`steps[i]`).
+struct PlanStepDef {
+  std::vector<std::string> remove;  ///< parts leaving the assembly in this step
+  std::vector<std::string> grip;    ///< parts the gripper holds; empty: all of `remove`
+  std::vector<Vector2> path;        ///< displacements from the start pose; `path` form
+  bool has_path = false;            ///< the step used `path`
+  Vector2 direction{0, 0};          ///< `direction` + `distance` form
+  double distance = 0;
+  bool has_direction = false;  ///< the step used `direction` and `distance`
+  SupportMode support = SupportMode::kFull;
+};
+
+/// A whole plan as the user writes it. Vector indices equal JSON indices.
+struct PlanDef {
+  PlanMode mode = PlanMode::kDisassemble;
+  double dt = 1.0;     ///< seconds per time step
+  double speed = 1.0;  ///< length per second along the path
+  std::vector<PlanStepDef> steps;
+};
+
+/// One validated step.
+struct PlanStep {
+  std::vector<int> remove;    ///< part indices, in the order given
+  std::vector<int> grip;      ///< part indices (tools included); never empty
+  std::vector<Vector2> path;  ///< piecewise-linear displacements, path[0] = (0, 0), ≥ 2 points
+  SupportMode support = SupportMode::kFull;
+  double Length() const;  ///< total path length
+  /// The displacement after travelling arc length s along the path (clamped).
+  Vector2 At(double s) const;
+};
+
+/// A validated plan, tied to the Assembly it was checked against.
+struct Plan {
+  PlanMode mode = PlanMode::kDisassemble;
+  double dt = 1.0;
+  double speed = 1.0;
+  std::vector<PlanStep> steps;
+
+  /// Validates `def` against `assembly`. @throws InputError naming `file`, the
+  /// JSON path and the fault: unknown parts, a part removed twice, a fixed part
+  /// removed, a `grip` part outside `remove` that is not a tool, a tool in
+  /// `remove`, an empty path or zero-length path, both or neither path forms,
+  /// a zero direction, a negative distance, dt or speed ≤ 0, non-finite numbers.
+  static Plan Create(const PlanDef& def, const Assembly& assembly, const std::string& file = "");
+};
+
+}  // namespace cairn

@@ -1,0 +1,98 @@
+#pragma once
+/// @file
+/// Disassembly and assembly along motion paths: the paper's Algorithm 1.
+///
+/// For each plan step, the gripped parts travel their path in ticks of length
+/// speed · dt; the last tick ends exactly at the end of the path. At every tick
+/// (the start included) all contacts are recomputed from the current poses (a
+/// moving part breaks old contacts and makes new ones as it slides across
+/// others) and one Stewart–Trinkle step is solved for the contact impulses and
+/// the velocity of every free part, each part starting from its velocity of the
+/// previous tick (the paper's eq. 5). The velocity level is used with and
+/// without friction: it sees a part pushed by a moving one, which an
+/// acceleration-level LCP at rest cannot.
+///
+/// Roles: the gripped parts follow the path (support "full": rigidly, carrying
+/// their weight; "none": only along the path, every other freedom free); the
+/// other parts of `remove` are carried (free, pushed along, not judged); tools
+/// move rigidly with the gripper; every other present movable part must stay
+/// put.
+///
+/// Outcome of a tick, in order of precedence: `infeasible` (a gripped part
+/// penetrates another part beyond the tolerance, or its prescribed motion is
+/// blocked), `unstable` (a part that should stay put moves), `unsupported`
+/// (with support "none", a gripped part would fall or tip off its path),
+/// `stable`. A step's outcome is its first failing tick's, a plan's its first
+/// failing step's. With `continue_after_failure`, the simulation goes on as if
+/// each failure had been prevented (parts that should stay put are held in
+/// place), so every step gets a verdict.
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "cairn/motion/plan.h"
+#include "cairn/stability/analyze.h"
+
+namespace cairn {
+
+/// The outcome of a tick, a step or a plan.
+enum class MotionVerdict { kStable, kUnstable, kUnsupported, kInfeasible };
+
+/// "stable", "unstable", "unsupported", "infeasible".
+const char* to_string(MotionVerdict v);
+
+/// Where and why a step failed.
+struct MotionFailure {
+  MotionVerdict verdict = MotionVerdict::kStable;
+  int step = -1;           ///< index into Plan::steps (file order)
+  int tick = -1;           ///< tick within the step (0 = its start)
+  double time = 0;         ///< s, from the start of the plan
+  std::vector<int> parts;  ///< unstable: the parts that move; unsupported: the gripped parts;
+                           ///< infeasible: the moving part, then the part it runs into (if any)
+  std::vector<PartMotion> motions;      ///< how the parts in `parts` move
+  std::vector<ContactReport> contacts;  ///< contacts that break or slide at the failure
+  std::string description;              ///< one line for people
+};
+
+/// One step of the plan, as simulated.
+struct MotionStepReport {
+  int step = -1;  ///< index into Plan::steps
+  MotionVerdict verdict = MotionVerdict::kStable;
+  int ticks = 0;                        ///< configurations analysed (the start included)
+  double start_time = 0, end_time = 0;  ///< s
+  int pivots = 0;                       ///< LCP pivots over all ticks
+  int warm_starts = 0;                  ///< component solves answered by the previous tick's basis
+  std::optional<MotionFailure> failure;
+};
+
+/// One row of the timeline: one contact at one tick.
+struct TimelineRow {
+  double time = 0;  ///< s
+  int step = -1;
+  int tick = 0;
+  ContactReport contact;
+};
+
+/// Everything a simulation found.
+struct SimulationResult {
+  MotionVerdict verdict = MotionVerdict::kStable;
+  bool stable() const { return verdict == MotionVerdict::kStable; }
+  std::vector<MotionStepReport> steps;   ///< in the order simulated
+  std::optional<MotionFailure> failure;  ///< the first failure
+  std::vector<TimelineRow> timeline;     ///< when asked for
+  std::string diagnostics;               ///< solver trouble, if any
+};
+
+/// Options of SimulatePlan.
+struct SimulationOptions {
+  bool continue_after_failure = false;
+  bool record_timeline = false;
+  LemkeParameters lemke;
+};
+
+/// Runs `plan` on `assembly` (disassembly, or assembly when plan.mode says so).
+SimulationResult SimulatePlan(const Assembly& assembly, const Plan& plan,
+                              const SimulationOptions& options = {});
+
+}  // namespace cairn

@@ -1,0 +1,116 @@
+#include "cairn/io/plan_reader.h"
+
+#include <initializer_list>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "io/json_checks.h"
+
+namespace cairn {
+namespace {
+
+using io_internal::Child;
+using io_internal::Index;
+using nlohmann::json;
+
+// The keys of each level of plan format version 1.
+constexpr std::initializer_list<const char*> kPlanKeys = {"cairn_plan", "mode", "dt", "speed",
+                                                          "steps"};
+constexpr std::initializer_list<const char*> kStepKeys = {"remove",    "grip",     "path",
+                                                          "direction", "distance", "support"};
+
+// Converts a parsed document to a PlanDef, checking structure and types on
+// the way; the first fault throws an InputError with its JSON path. Values
+// (positive dt, known part names, path forms) are Plan::Create's to check.
+class PlanParser : private io_internal::JsonChecker {
+ public:
+  explicit PlanParser(const std::string& file) : JsonChecker(file) {}
+
+  PlanDef Parse(const json& doc) const {
+    if (!doc.is_object()) Fail("", "a plan must be a JSON object, not " + Article(doc));
+    CheckVersion(doc, "cairn_plan", "plan");
+    CheckKeys(doc, "", kPlanKeys);
+
+    PlanDef def;
+    if (doc.contains("mode")) {
+      const std::string mode = String(doc["mode"], "mode");
+      if (mode == "disassemble") {
+        def.mode = PlanMode::kDisassemble;
+      } else if (mode == "assemble") {
+        def.mode = PlanMode::kAssemble;
+      } else {
+        Fail("mode", "must be \"disassemble\" or \"assemble\", not \"" + mode + "\"");
+      }
+    }
+    if (doc.contains("dt")) def.dt = Number(doc["dt"], "dt");
+    if (doc.contains("speed")) def.speed = Number(doc["speed"], "speed");
+    const json& steps = Array(Require(doc, "steps", ""), "steps");
+    if (steps.empty()) Fail("steps", "must list at least one step");
+    for (size_t i = 0; i < steps.size(); ++i) {
+      def.steps.push_back(ParseStep(steps[i], Index("steps", i)));
+    }
+    return def;
+  }
+
+ private:
+  PlanStepDef ParseStep(const json& j, const std::string& path) const {
+    Object(j, path);
+    CheckKeys(j, path, kStepKeys);
+    PlanStepDef step;
+    step.remove = Strings(Require(j, "remove", path), Child(path, "remove"));
+    if (j.contains("grip")) {
+      // An empty PlanStepDef::grip means "all of remove"; an empty array in
+      // the file is a mistake, not that default.
+      step.grip = Strings(j["grip"], Child(path, "grip"));
+      if (step.grip.empty()) {
+        Fail(Child(path, "grip"),
+             "must name at least one part (leave it out to grip all of remove)");
+      }
+    }
+
+    // The path: a polyline, or a direction and a distance (Plan::Create
+    // rejects both and neither).
+    if (j.contains("path")) {
+      const std::string path_path = Child(path, "path");
+      const json& points = Array(j["path"], path_path);
+      step.has_path = true;
+      for (size_t k = 0; k < points.size(); ++k) {
+        step.path.push_back(Vec2(points[k], Index(path_path, k)));
+      }
+    }
+    if (j.contains("direction") || j.contains("distance")) {
+      step.has_direction = true;
+      const char* missing = j.contains("direction") ? "distance" : "direction";
+      if (!j.contains(missing)) {
+        Fail(Child(path, missing),
+             "required key is missing (a straight path needs both direction and distance)");
+      }
+      step.direction = Vec2(j["direction"], Child(path, "direction"));
+      step.distance = Number(j["distance"], Child(path, "distance"));
+    }
+
+    if (j.contains("support")) {
+      const std::string support = String(j["support"], Child(path, "support"));
+      if (support == "full") {
+        step.support = SupportMode::kFull;
+      } else if (support == "none") {
+        step.support = SupportMode::kNone;
+      } else {
+        Fail(Child(path, "support"), "must be \"full\" or \"none\", not \"" + support + "\"");
+      }
+    }
+    return step;
+  }
+};
+
+}  // namespace
+
+PlanDef ParsePlanJson(const nlohmann::json& doc, const std::string& file) {
+  return PlanParser(file).Parse(doc);
+}
+
+Plan ReadPlan(const std::string& path, const Assembly& assembly) {
+  return Plan::Create(ParsePlanJson(io_internal::ReadJsonFile(path), path), assembly, path);
+}
+
+}  // namespace cairn

@@ -1,0 +1,203 @@
+#include "cairn/motion/plan.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <string>
+#include <unordered_map>
+#include <utility>
+#include <vector>
+
+#include "cairn/core/error.h"
+
+namespace cairn {
+namespace {
+
+std::string Indexed(const std::string& path, size_t i) {
+  return path + "[" + std::to_string(i) + "]";
+}
+
+std::string Num(double x) {
+  std::ostringstream os;
+  os << x;
+  return os.str();
+}
+
+std::string Point(const Vector2& p) { return "(" + Num(p.x()) + ", " + Num(p.y()) + ")"; }
+
+// Throws the InputError of one fault of a plan; all validation goes through it.
+class PlanValidator {
+ public:
+  PlanValidator(const std::string& file, const Assembly& assembly)
+      : file_(file), assembly_(assembly) {}
+
+  [[noreturn]] void Fail(const std::string& path, const std::string& message) const {
+    throw InputError(file_, path, message);
+  }
+  void Positive(double x, const std::string& path) const {
+    if (!std::isfinite(x)) Fail(path, "must be a finite number (got " + Num(x) + ")");
+    if (x <= 0) Fail(path, "must be positive (got " + Num(x) + ")");
+  }
+  void FinitePoint(const Vector2& v, const std::string& path) const {
+    if (!std::isfinite(v.x()) || !std::isfinite(v.y())) {
+      Fail(path, "must have finite coordinates (got " + Point(v) + ")");
+    }
+  }
+  // The index of the part `name`, which must exist and not be fixed.
+  int MovablePart(const std::string& name, const std::string& path) const {
+    const int i = assembly_.FindPart(name);
+    if (i < 0) Fail(path, "no part named '" + name + "'");
+    if (assembly_.part(i).fixed) Fail(path, "part '" + name + "' is fixed: fixed parts never move");
+    return i;
+  }
+
+ private:
+  const std::string& file_;
+  const Assembly& assembly_;
+};
+
+// The step's path as given: the polyline, or the straight segment of
+// `direction` and `distance`.
+std::vector<Vector2> RawPath(const PlanStepDef& def, const std::string& path,
+                             const PlanValidator& check) {
+  if (def.has_path && def.has_direction) {
+    check.Fail(path, "has both path and direction with distance: give one of them");
+  }
+  if (!def.has_path && !def.has_direction) {
+    check.Fail(path, "has no path: give path, or direction and distance");
+  }
+  if (def.has_path) {
+    const std::string path_path = path + ".path";
+    if (def.path.empty()) check.Fail(path_path, "must have at least one point");
+    for (size_t k = 0; k < def.path.size(); ++k) {
+      check.FinitePoint(def.path[k], Indexed(path_path, k));
+    }
+    return def.path;
+  }
+  check.FinitePoint(def.direction, path + ".direction");
+  const double norm = std::hypot(def.direction.x(), def.direction.y());
+  if (norm == 0) check.Fail(path + ".direction", "must not be zero");
+  check.Positive(def.distance, path + ".distance");
+  return {Vector2(0, 0), (def.distance / norm) * def.direction};
+}
+
+}  // namespace
+
+const char* to_string(SupportMode mode) {
+  switch (mode) {
+    case SupportMode::kFull:
+      return "full";
+    case SupportMode::kNone:
+      return "none";
+  }
+  return "unknown";
+}
+
+const char* to_string(PlanMode mode) {
+  switch (mode) {
+    case PlanMode::kDisassemble:
+      return "disassemble";
+    case PlanMode::kAssemble:
+      return "assemble";
+  }
+  return "unknown";
+}
+
+double PlanStep::Length() const {
+  double length = 0;
+  for (size_t k = 1; k < path.size(); ++k) length += (path[k] - path[k - 1]).norm();
+  return length;
+}
+
+Vector2 PlanStep::At(double s) const {
+  if (path.empty()) return Vector2(0, 0);
+  // Walk the segments until the one holding arc length s; before the start
+  // (or NaN) is the start, past the end is the end.
+  if (!(s > 0)) return path.front();
+  double remaining = s;
+  for (size_t k = 1; k < path.size(); ++k) {
+    const Vector2 segment = path[k] - path[k - 1];
+    const double length = segment.norm();
+    if (remaining <= length) return path[k - 1] + (remaining / length) * segment;
+    remaining -= length;
+  }
+  return path.back();
+}
+
+Plan Plan::Create(const PlanDef& def, const Assembly& assembly, const std::string& file) {
+  const PlanValidator check(file, assembly);
+  Plan plan;
+  plan.mode = def.mode;
+  check.Positive(def.dt, "dt");
+  check.Positive(def.speed, "speed");
+  plan.dt = def.dt;
+  plan.speed = def.speed;
+  if (def.steps.empty()) check.Fail("steps", "must list at least one step");
+
+  // Where each part was removed: its step and the JSON path of its entry.
+  std::unordered_map<int, std::pair<size_t, std::string>> removed_at;
+  for (size_t i = 0; i < def.steps.size(); ++i) {
+    const PlanStepDef& sd = def.steps[i];
+    const std::string path = Indexed("steps", i);
+    PlanStep step;
+
+    // The parts leaving: movable, no tools, each once in the whole plan.
+    const std::string remove_path = path + ".remove";
+    if (sd.remove.empty()) check.Fail(remove_path, "must name at least one part");
+    for (size_t k = 0; k < sd.remove.size(); ++k) {
+      const std::string entry = Indexed(remove_path, k);
+      const int part = check.MovablePart(sd.remove[k], entry);
+      if (assembly.part(part).tool) {
+        check.Fail(entry, "part '" + sd.remove[k] +
+                              "' is a tool, not part of the assembly: grip it, do not remove it");
+      }
+      const auto [it, inserted] = removed_at.emplace(part, std::make_pair(i, entry));
+      if (!inserted) {
+        const auto& [step_index, earlier] = it->second;
+        check.Fail(entry, step_index == i
+                              ? "names part '" + sd.remove[k] + "' twice (also " + earlier + ")"
+                              : "part '" + sd.remove[k] + "' is already removed by " + earlier);
+      }
+      step.remove.push_back(part);
+    }
+
+    // The gripped parts: by default all of remove; beyond remove, only tools.
+    if (sd.grip.empty()) {
+      step.grip = step.remove;
+    } else {
+      const std::string grip_path = path + ".grip";
+      for (size_t k = 0; k < sd.grip.size(); ++k) {
+        const std::string entry = Indexed(grip_path, k);
+        const int part = check.MovablePart(sd.grip[k], entry);
+        const auto earlier = std::find(step.grip.begin(), step.grip.end(), part);
+        if (earlier != step.grip.end()) {
+          check.Fail(entry, "names part '" + sd.grip[k] + "' twice (also " +
+                                Indexed(grip_path, earlier - step.grip.begin()) + ")");
+        }
+        const bool removed =
+            std::find(step.remove.begin(), step.remove.end(), part) != step.remove.end();
+        if (!removed && !assembly.part(part).tool) {
+          check.Fail(entry, "part '" + sd.grip[k] +
+                                "' is neither in this step's remove nor a tool (\"tool\": true in "
+                                "the scene)");
+        }
+        step.grip.push_back(part);
+      }
+    }
+
+    // The path: from (0, 0), without repeated points, of nonzero length.
+    const std::vector<Vector2> raw = RawPath(sd, path, check);
+    if (raw.front() != Vector2(0, 0)) step.path.push_back(Vector2(0, 0));
+    for (const Vector2& p : raw) {
+      if (step.path.empty() || p != step.path.back()) step.path.push_back(p);
+    }
+    if (step.path.size() < 2) {
+      check.Fail(path + ".path", "has zero length: every point is the start (0, 0)");
+    }
+    step.support = sd.support;
+    plan.steps.push_back(std::move(step));
+  }
+  return plan;
+}
+
+}  // namespace cairn

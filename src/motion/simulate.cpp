@@ -1,0 +1,300 @@
+#include "cairn/motion/simulate.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <sstream>
+
+#include "cairn/geometry/polygon.h"
+
+namespace cairn {
+
+const char* to_string(MotionVerdict v) {
+  switch (v) {
+    case MotionVerdict::kStable:
+      return "stable";
+    case MotionVerdict::kUnstable:
+      return "unstable";
+    case MotionVerdict::kUnsupported:
+      return "unsupported";
+    case MotionVerdict::kInfeasible:
+      return "infeasible";
+  }
+  return "unknown";
+}
+
+namespace {
+
+std::string Pt(const Vector2& p) {
+  std::ostringstream os;
+  os.precision(4);
+  os << "(" << (std::abs(p.x()) < 5e-13 ? 0.0 : p.x()) << ", "
+     << (std::abs(p.y()) < 5e-13 ? 0.0 : p.y()) << ")";
+  return os.str();
+}
+
+std::string Names(const Assembly& a, const std::vector<int>& parts) {
+  std::string out;
+  for (size_t i = 0; i < parts.size(); ++i) out += (i ? ", " : "") + a.part(parts[i]).name;
+  return out;
+}
+
+// The unit direction from s towards larger s (forward) or smaller s
+// (backward) along the step's path; zero at that end of the path.
+Vector2 TravelDirection(const PlanStep& step, double s, bool forward) {
+  const double L = step.Length();
+  const double eps = 1e-9 * std::max(1.0, L);
+  if (forward ? s >= L - eps : s <= eps) return Vector2::Zero();
+  const double s2 = forward ? std::min(L, s + eps) : std::max(0.0, s - eps);
+  const Vector2 d = step.At(s2) - step.At(s);
+  return d.norm() > 0 ? Vector2(d.normalized()) : Vector2::Zero();
+}
+
+// The first part that a driven part penetrates beyond the tolerance.
+std::optional<int> FindCollision(const Assembly& a, const Configuration& config, int p,
+                                 const std::vector<bool>& in_group, double tol) {
+  const Polygon poly = config.WorldPolygon(a, p);
+  const auto box = BoundingBox(poly);
+  for (int j = 0; j < a.num_parts(); ++j) {
+    if (j == p || !config.present[j] || in_group[j]) continue;
+    const Polygon other = config.WorldPolygon(a, j);
+    const auto ob = BoundingBox(other);
+    if (ob.first.x() > box.second.x() + tol || box.first.x() > ob.second.x() + tol ||
+        ob.first.y() > box.second.y() + tol || box.first.y() > ob.second.y() + tol)
+      continue;
+    if (FindOverlap(poly, other, tol)) return j;
+  }
+  return std::nullopt;
+}
+
+// Describes a failure for people.
+std::string Describe(const Assembly& a, const MotionFailure& f) {
+  std::ostringstream os;
+  os << "t = " << f.time << " s (step " << f.step << ", tick " << f.tick << "): ";
+  switch (f.verdict) {
+    case MotionVerdict::kUnstable:
+      for (size_t i = 0; i < f.motions.size(); ++i) {
+        const PartMotion& m = f.motions[i];
+        os << (i ? "; " : "") << a.part(m.part).name << ' ' << to_string(m.kind);
+        if (m.kind == MotionKind::kTips && m.pivot)
+          os << " about " << Pt(*m.pivot) << (m.angular > 0 ? " counter-clockwise" : " clockwise");
+        else if (m.linear.norm() > 0)
+          os << " along " << Pt(m.linear.normalized());
+      }
+      break;
+    case MotionVerdict::kUnsupported:
+      os << Names(a, f.parts)
+         << " can no longer rest on the assembly: the gripper must carry it here";
+      break;
+    case MotionVerdict::kInfeasible:
+      if (f.parts.size() >= 2)
+        os << a.part(f.parts[0]).name << " runs into " << a.part(f.parts[1]).name;
+      else
+        os << "the motion of " << Names(a, f.parts) << " is blocked";
+      break;
+    case MotionVerdict::kStable:
+      os << "stable";
+      break;
+  }
+  for (const ContactReport& c : f.contacts) {
+    if (!(c.breaking || c.sliding)) continue;
+    os << "; contact " << a.part(c.contact.part_a).name << "-"
+       << (c.contact.part_b >= 0 ? a.part(c.contact.part_b).name : std::string("fixture")) << " at "
+       << Pt(c.contact.p_WC) << (c.breaking ? " breaks" : " slides");
+  }
+  return os.str();
+}
+
+}  // namespace
+
+SimulationResult SimulatePlan(const Assembly& assembly, const Plan& plan,
+                              const SimulationOptions& options) {
+  SimulationResult result;
+  const int n = assembly.num_parts();
+  const bool assemble = plan.mode == PlanMode::kAssemble;
+
+  // Steps in the order they happen; an assembly plan runs backwards.
+  std::vector<int> order(plan.steps.size());
+  std::iota(order.begin(), order.end(), 0);
+  if (assemble) std::reverse(order.begin(), order.end());
+
+  // The starting configuration: assembled (tools absent); when assembling,
+  // the parts of every step are still outside.
+  Configuration config = Configuration::Assembled(assembly);
+  if (assemble)
+    for (const PlanStep& step : plan.steps)
+      for (int p : step.remove) config.present[p] = false;
+
+  std::vector<Vector3> nu(n, Vector3::Zero());  // each part's velocity after the last tick
+  std::vector<bool> held(n, false);             // held in place after a failure (continue mode)
+  StabilityWorkspace workspace;
+  double time = 0;
+  const double tick_length = plan.speed * plan.dt;
+
+  for (const int k : order) {
+    const PlanStep& step = plan.steps[k];
+    MotionStepReport report;
+    report.step = k;
+    report.start_time = time;
+
+    // Roles of the parts moving in this step.
+    std::vector<bool> gripped(n, false), carried(n, false), in_group(n, false);
+    for (int p : step.grip) gripped[p] = in_group[p] = true;
+    for (int p : step.remove)
+      if (!gripped[p]) carried[p] = in_group[p] = true;
+    SupportMode support = step.support;
+
+    // They enter (tools always; parts when assembling) at the start of the path.
+    const double L = step.Length();
+    const double s_start = assemble ? L : 0.0;
+    for (int p = 0; p < n; ++p) {
+      if (!in_group[p]) continue;
+      config.present[p] = true;
+      config.poses[p] = Pose2{step.At(s_start), 0.0};
+      nu[p].setZero();
+    }
+
+    const int moves = std::max(1, static_cast<int>(std::ceil(L / tick_length - 1e-9)));
+    bool step_failed = false;
+    for (int tick = 0; tick <= moves; ++tick) {
+      // Where the gripper is and where it goes during this tick.
+      const double travelled = std::min(tick * tick_length, L);
+      const double next = std::min((tick + 1) * tick_length, L);
+      const double s = assemble ? L - travelled : travelled;
+      const double dt = tick < moves ? (next - travelled) / plan.speed : plan.dt;
+      // Algorithm 1 moves, then checks: the gripper's velocity at a tick is
+      // the one that brought the parts there. It is zero at the start of a
+      // step (the parts still rest where they were) and at its end (the
+      // gripper has stopped: a part set into its seat does not keep pushing).
+      const bool moving_now = tick > 0 && tick < moves;
+      const Vector2 v_g =
+          moving_now ? Vector2(-plan.speed * TravelDirection(step, s, assemble)) : Vector2::Zero();
+      const double t_now = time + travelled / plan.speed;
+      for (int p = 0; p < n; ++p)
+        if (gripped[p]) config.poses[p] = Pose2{step.At(s), 0.0};
+
+      // The drive: who moves how.
+      DriveInputs drive;
+      drive.role.assign(n, PartRole::kJudged);
+      drive.velocity.assign(n, Vector2::Zero());
+      drive.nu_prev = nu;
+      for (int p = 0; p < n; ++p) {
+        if (gripped[p] && tick == 0 && !assembly.part(p).tool) {
+          // Before the gripper moves, the part still rests on the assembly
+          // with its weight (the node before the step; the paper's figures
+          // show its contact forces until it is lifted).
+          drive.role[p] = PartRole::kCarried;
+        } else if (gripped[p]) {
+          const bool rigid = support == SupportMode::kFull || assembly.part(p).tool;
+          drive.role[p] = rigid ? PartRole::kPrescribed : PartRole::kGuided;
+          drive.velocity[p] = v_g;
+        } else if (carried[p]) {
+          drive.role[p] = PartRole::kCarried;
+        } else if (held[p]) {
+          drive.role[p] = PartRole::kPrescribed;  // held in place: velocity 0
+        }
+      }
+
+      StabilityOptions so;
+      so.dt = dt;
+      so.lemke = options.lemke;
+      const Tolerances tol = assembly.MakeTolerances(dt);
+      so.tolerances = tol;
+      const StabilityResult r = AnalyzeConfiguration(assembly, config, so, &drive, &workspace);
+      ++report.ticks;
+      for (const ComponentReport& c : r.components) report.pivots += c.pivots;
+      if (!r.diagnostics.empty())
+        result.diagnostics +=
+            "step " + std::to_string(k) + ", tick " + std::to_string(tick) + ": " + r.diagnostics;
+      if (options.record_timeline)
+        for (const ContactReport& c : r.contacts) result.timeline.push_back({t_now, k, tick, c});
+
+      // Classify the tick: infeasible, unstable, unsupported, stable.
+      MotionFailure f;
+      for (int p = 0; p < n && f.verdict == MotionVerdict::kStable; ++p) {
+        if (!gripped[p]) continue;
+        if (const auto hit = FindCollision(assembly, config, p, in_group, tol.length)) {
+          f.verdict = MotionVerdict::kInfeasible;
+          f.parts = {p, *hit};
+        }
+      }
+      if (f.verdict == MotionVerdict::kStable && !r.jammed.empty()) {
+        f.verdict = MotionVerdict::kInfeasible;
+        f.parts = r.jammed;
+      }
+      if (f.verdict == MotionVerdict::kStable && !r.moving.empty()) {
+        f.verdict = MotionVerdict::kUnstable;
+        f.parts = r.moving;
+      }
+      if (f.verdict == MotionVerdict::kStable && r.verdict == Verdict::kSolverFailure) {
+        // Numerical trouble is never taken for stability.
+        f.verdict = MotionVerdict::kUnstable;
+        f.description = "the contact LCP could not be solved: " + r.diagnostics;
+      }
+      if (f.verdict == MotionVerdict::kStable && !r.unsupported.empty()) {
+        f.verdict = MotionVerdict::kUnsupported;
+        f.parts = r.unsupported;
+      }
+
+      if (f.verdict != MotionVerdict::kStable && !step_failed) {
+        f.step = k;
+        f.tick = tick;
+        f.time = t_now;
+        for (const PartMotion& m : r.parts)
+          if (std::find(f.parts.begin(), f.parts.end(), m.part) != f.parts.end())
+            f.motions.push_back(m);
+        // The contacts of the failing parts that break or slide.
+        const auto involved = [&](int part) {
+          return std::find(f.parts.begin(), f.parts.end(), part) != f.parts.end();
+        };
+        for (const ContactReport& c : r.contacts)
+          if ((c.breaking || c.sliding) &&
+              (involved(c.contact.part_a) || involved(c.contact.part_b)))
+            f.contacts.push_back(c);
+        const std::string why = f.description;
+        f.description = Describe(assembly, f) + (why.empty() ? "" : "; " + why);
+        report.verdict = f.verdict;
+        report.failure = f;
+        if (!result.failure) result.failure = f;
+        step_failed = true;
+      }
+
+      // Carry velocities to the next tick; move the carried parts.
+      for (const PartMotion& m : r.parts)
+        nu[m.part] = Vector3(m.linear.x(), m.linear.y(), m.angular);
+      for (int p = 0; p < n; ++p) {
+        if (!carried[p]) continue;
+        config.poses[p].translation += nu[p].head<2>() * dt;
+        config.poses[p].rotation += nu[p].z() * dt;
+      }
+      if (f.verdict != MotionVerdict::kStable) {
+        if (!options.continue_after_failure) break;
+        // Continue as if the failure were prevented: hold the parts that
+        // moved, let the gripper carry an unsupported part.
+        if (f.verdict == MotionVerdict::kUnstable)
+          for (int p : f.parts) held[p] = true, nu[p].setZero();
+        if (f.verdict == MotionVerdict::kUnsupported) support = SupportMode::kFull;
+      }
+    }
+    report.warm_starts = workspace.warm_starts;
+    workspace.warm_starts = 0;
+    time += L / plan.speed;
+    report.end_time = time;
+    result.steps.push_back(report);
+
+    // The step is over: removed parts leave (or, assembling, stay placed);
+    // tools always leave.
+    for (int p = 0; p < n; ++p) {
+      if (!in_group[p]) continue;
+      config.present[p] = assemble && !assembly.part(p).tool;
+      config.poses[p] = Pose2{};
+      nu[p].setZero();
+    }
+    if (step_failed && !options.continue_after_failure) break;
+  }
+
+  result.verdict = result.failure ? result.failure->verdict : MotionVerdict::kStable;
+  return result;
+}
+
+}  // namespace cairn

@@ -1,0 +1,143 @@
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+#include "cairn/report/report.h"
+
+namespace cairn {
+
+namespace {
+double Clean(double x) { return std::abs(x) < 1e-12 ? 0.0 : x; }
+nlohmann::json Vec(const Vector2& v) { return nlohmann::json::array({Clean(v.x()), Clean(v.y())}); }
+std::string PartName(const Assembly& a, int i) { return i >= 0 ? a.part(i).name : "world"; }
+nlohmann::json Names(const Assembly& a, const std::vector<int>& parts) {
+  nlohmann::json out = nlohmann::json::array();
+  for (int p : parts) out.push_back(a.part(p).name);
+  return out;
+}
+std::string Num(double x) {
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.10g", Clean(x));
+  return buf;
+}
+}  // namespace
+
+nlohmann::json SimulationToJson(const Assembly& assembly, const Plan& plan,
+                                const SimulationResult& result, const ReportOptions& options) {
+  using nlohmann::json;
+  const auto [force_scale, force_unit] = ForceScale(assembly, options);
+  json doc;
+  doc["verdict"] = to_string(result.verdict);
+  doc["stable"] = result.stable();
+  doc["mode"] = to_string(plan.mode);
+  doc["force_unit"] = force_unit;
+  if (!result.failure) {
+    doc["failure"] = nullptr;
+  } else {
+    const MotionFailure& f = *result.failure;
+    json jf;
+    jf["verdict"] = to_string(f.verdict);
+    jf["step"] = f.step;
+    jf["tick"] = f.tick;
+    jf["time"] = Clean(f.time);
+    jf["parts"] = Names(assembly, f.parts);
+    json motions = json::array();
+    for (const PartMotion& m : f.motions) {
+      json jm;
+      jm["part"] = assembly.part(m.part).name;
+      jm["motion"] = to_string(m.kind);
+      jm["velocity"] = {{"linear", Vec(m.linear)}, {"angular", Clean(m.angular)}};
+      if (m.pivot) jm["pivot"] = Vec(*m.pivot);
+      motions.push_back(jm);
+    }
+    jf["motions"] = motions;
+    json contacts = json::array();
+    for (const ContactReport& c : f.contacts) {
+      contacts.push_back(
+          {{"parts", {PartName(assembly, c.contact.part_a), PartName(assembly, c.contact.part_b)}},
+           {"point", Vec(c.contact.p_WC)},
+           {"normal", Vec(c.contact.n_W)},
+           {"normal_force", Clean(c.normal_force / force_scale)},
+           {"friction_force", Clean(c.friction_force / force_scale)},
+           {"normal_velocity", Clean(c.normal_motion)},
+           {"sliding_velocity", Clean(c.tangent_motion)},
+           {"breaks", c.breaking},
+           {"slides", c.sliding}});
+    }
+    jf["contacts"] = contacts;
+    jf["description"] = f.description;
+    doc["failure"] = jf;
+  }
+  json steps = json::array();
+  for (const MotionStepReport& r : result.steps) {
+    const PlanStep& step = plan.steps[r.step];
+    steps.push_back({{"index", r.step},
+                     {"parts", Names(assembly, step.remove)},
+                     {"grip", Names(assembly, step.grip)},
+                     {"support", to_string(step.support)},
+                     {"verdict", to_string(r.verdict)},
+                     {"time_steps", r.ticks},
+                     {"start_time", Clean(r.start_time)},
+                     {"end_time", Clean(r.end_time)},
+                     {"pivots", r.pivots},
+                     {"warm_starts", r.warm_starts}});
+  }
+  doc["steps"] = steps;
+  doc["diagnostics"] = result.diagnostics;
+  return doc;
+}
+
+std::string SimulationToText(const Assembly& assembly, const Plan& plan,
+                             const SimulationResult& result, const ReportOptions& options) {
+  (void)options;
+  std::ostringstream os;
+  os << (assembly.name().empty() ? options.scene_file : assembly.name()) << ": "
+     << (plan.mode == PlanMode::kAssemble ? "assembly" : "disassembly") << " plan ";
+  switch (result.verdict) {
+    case MotionVerdict::kStable:
+      os << "STABLE";
+      break;
+    case MotionVerdict::kUnstable:
+      os << "UNSTABLE";
+      break;
+    case MotionVerdict::kUnsupported:
+      os << "UNSUPPORTED";
+      break;
+    case MotionVerdict::kInfeasible:
+      os << "INFEASIBLE";
+      break;
+  }
+  os << '\n';
+  for (const MotionStepReport& r : result.steps) {
+    const PlanStep& step = plan.steps[r.step];
+    std::string names;
+    for (int p : step.remove) names += (names.empty() ? "" : ", ") + assembly.part(p).name;
+    os << "  step " << r.step << " (" << names << ", support " << to_string(step.support)
+       << "): " << to_string(r.verdict) << "  [t = " << r.start_time << ".." << r.end_time << " s, "
+       << r.ticks << " time steps, " << r.pivots << " pivots]\n";
+    if (r.failure) os << "    " << r.failure->description << '\n';
+  }
+  if (!result.diagnostics.empty()) os << "  diagnostics: " << result.diagnostics << '\n';
+  return os.str();
+}
+
+std::string TimelineToCsv(const Assembly& assembly, const SimulationResult& result,
+                          const ReportOptions& options) {
+  const double force_scale = ForceScale(assembly, options).first;
+  std::ostringstream os;
+  os << "time,step,tick,part_a,part_b,x,y,normal_x,normal_y,normal_force,friction_force,"
+        "normal_velocity,sliding_velocity,breaks,slides\n";
+  for (const TimelineRow& row : result.timeline) {
+    const ContactReport& c = row.contact;
+    os << Num(row.time) << ',' << row.step << ',' << row.tick << ','
+       << PartName(assembly, c.contact.part_a) << ',' << PartName(assembly, c.contact.part_b) << ','
+       << Num(c.contact.p_WC.x()) << ',' << Num(c.contact.p_WC.y()) << ',' << Num(c.contact.n_W.x())
+       << ',' << Num(c.contact.n_W.y()) << ',' << Num(c.normal_force / force_scale) << ','
+       << Num(c.friction_force / force_scale) << ',' << Num(c.normal_motion) << ','
+       << Num(c.tangent_motion) << ',' << (c.breaking ? 1 : 0) << ',' << (c.sliding ? 1 : 0)
+       << '\n';
+  }
+  return os.str();
+}
+
+}  // namespace cairn

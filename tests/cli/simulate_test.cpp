@@ -1,0 +1,121 @@
+// `cairn simulate`, run as a user runs it.
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include "cli/cli_run.h"
+
+namespace cairn {
+namespace {
+
+using testing::Cairn;
+using testing::CliRun;
+using testing::ExamplePath;
+using testing::Slurp;
+
+std::string Plan(const std::string& name) { return ExamplePath("plans/" + name + ".plan.json"); }
+
+std::string TempFile(const std::string& name, const std::string& text) {
+  const auto path = std::filesystem::temp_directory_path() / name;
+  std::ofstream(path) << text;
+  return path.string();
+}
+
+TEST(Simulate, PaperFig1_DCBAStandsAndCFirstFailsWhenCLeaves) {
+  const CliRun ok =
+      Cairn("simulate " + ExamplePath("paper_fig1.json") + " " + Plan("paper_fig1_dcba"));
+  EXPECT_EQ(ok.exit_code, 0) << ok.out << ok.err;
+  EXPECT_NE(ok.out.find("STABLE"), std::string::npos);
+
+  const CliRun bad = Cairn("simulate " + ExamplePath("paper_fig1.json") + " " +
+                           Plan("paper_fig1_c_first") + " --json");
+  ASSERT_EQ(bad.exit_code, 1) << bad.err;
+  const auto doc = nlohmann::json::parse(bad.out);
+  EXPECT_EQ(doc["verdict"], "unstable");
+  EXPECT_EQ(doc["stable"], false);
+  ASSERT_TRUE(doc["failure"].is_object());
+  EXPECT_EQ(doc["failure"]["step"], 0);
+  EXPECT_DOUBLE_EQ(doc["failure"]["time"].get<double>(), 1.0);
+  EXPECT_NE(doc["failure"]["parts"].dump().find("\"B\""), std::string::npos);
+  ASSERT_EQ(doc["steps"].size(), 1u) << "stops at the first failure";
+  EXPECT_EQ(doc["steps"][0]["verdict"], "unstable");
+  EXPECT_EQ(doc["steps"][0]["time_steps"], 2);
+}
+
+TEST(Simulate, ContinueGivesEveryStepAVerdict) {
+  const CliRun r = Cairn("simulate " + ExamplePath("paper_fig1.json") + " " +
+                         Plan("paper_fig1_c_first") + " --json --continue");
+  ASSERT_EQ(r.exit_code, 1) << r.err;
+  const auto doc = nlohmann::json::parse(r.out);
+  EXPECT_EQ(doc["steps"].size(), 4u);
+  EXPECT_EQ(doc["failure"]["step"], 0) << "the first failure is still reported";
+}
+
+TEST(Simulate, PaperFig4_FixelsMakeLiftingAStable) {
+  EXPECT_EQ(Cairn("simulate " + ExamplePath("paper_fig4.json") + " " + Plan("paper_fig4_lift_a"))
+                .exit_code,
+            1);
+  EXPECT_EQ(
+      Cairn("simulate " + ExamplePath("paper_fig4_fixels.json") + " " + Plan("paper_fig4_lift_a"))
+          .exit_code,
+      0);
+}
+
+TEST(Simulate, TimelineHasARowPerTickAndContactWithNormalisedForces) {
+  const std::string csv =
+      (std::filesystem::temp_directory_path() / "cairn_timeline_test.csv").string();
+  std::filesystem::remove(csv);
+  const CliRun r = Cairn("simulate " + ExamplePath("paper_fig1.json") + " " +
+                         Plan("paper_fig1_dcba") + " --timeline " + csv + " --normalize B");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::istringstream in(Slurp(csv));
+  std::string line;
+  std::getline(in, line);
+  EXPECT_EQ(line,
+            "time,step,tick,part_a,part_b,x,y,normal_x,normal_y,normal_force,friction_force,"
+            "normal_velocity,sliding_velocity,breaks,slides");
+  // At t = 0 the table carries everything: Σ (A on E) = total mass / m_B
+  // (g = 1, unit density: A 2, B 3, C 1.5, D 3, over m_B = 3).
+  double table_at_0 = 0;
+  int rows = 0;
+  while (std::getline(in, line)) {
+    ++rows;
+    std::vector<std::string> f;
+    std::stringstream ss(line);
+    for (std::string cell; std::getline(ss, cell, ',');) f.push_back(cell);
+    ASSERT_EQ(f.size(), 15u) << line;
+    if (std::stod(f[0]) == 0.0 && f[4] == "E") table_at_0 += std::stod(f[9]);
+  }
+  EXPECT_GT(rows, 20);
+  EXPECT_NEAR(table_at_0, 9.5 / 3.0, 1e-9);
+  std::filesystem::remove(csv);
+}
+
+TEST(Simulate, DrivingIntoAWallIsInfeasibleWithExitCodeThree) {
+  const std::string scene = TempFile("cairn_wall_scene.json", R"({"cairn": 1, "parts": [
+    {"name": "floor", "fixed": true, "box": {"min": [-5, -1], "max": [5, 0]}},
+    {"name": "wall", "fixed": true, "box": {"min": [3, 0], "max": [4, 3]}},
+    {"name": "block", "box": {"min": [0, 0], "max": [1, 1]}}]})");
+  const std::string plan = TempFile("cairn_wall_plan.json", R"({"cairn_plan": 1, "dt": 0.5,
+    "steps": [{"remove": ["block"], "direction": [1, 0], "distance": 4}]})");
+  const CliRun r = Cairn("simulate " + scene + " " + plan + " --json");
+  EXPECT_EQ(r.exit_code, 3) << r.out << r.err;
+  EXPECT_EQ(nlohmann::json::parse(r.out)["verdict"], "infeasible");
+}
+
+TEST(Simulate, BadPlanExitsTwoAndWritesNothing) {
+  const std::string plan = TempFile("cairn_bad_plan.json", R"({"cairn_plan": 1,
+    "steps": [{"remove": ["Z"], "direction": [0, 1], "distance": 1}]})");
+  const std::string csv =
+      (std::filesystem::temp_directory_path() / "cairn_never_written.csv").string();
+  std::filesystem::remove(csv);
+  const CliRun r =
+      Cairn("simulate " + ExamplePath("paper_fig1.json") + " " + plan + " --timeline " + csv);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_TRUE(r.out.empty()) << r.out;
+  EXPECT_NE(r.err.find("steps[0].remove[0]"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(csv));
+}
+
+}  // namespace
+}  // namespace cairn

@@ -1,0 +1,172 @@
+#include "cairn/motion/simulate.h"
+
+#include <gtest/gtest.h>
+
+#include "cairn/io/scene_reader.h"
+#include "test_paths.h"
+
+namespace cairn {
+namespace {
+
+using testing::ExamplePath;
+
+PartDef Box(const std::string& name, double x0, double y0, double x1, double y1,
+            bool fixed = false) {
+  PartDef p;
+  p.name = name;
+  p.fixed = fixed;
+  p.polygon = {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}};
+  return p;
+}
+
+// One step removing `part` along a straight path.
+PlanStepDef Straight(const std::string& part, Vector2 direction, double distance,
+                     SupportMode support = SupportMode::kFull) {
+  PlanStepDef s;
+  s.remove = {part};
+  s.has_direction = true;
+  s.direction = direction;
+  s.distance = distance;
+  s.support = support;
+  return s;
+}
+
+Plan MakePlan(const Assembly& a, std::vector<PlanStepDef> steps, double dt = 1.0,
+              PlanMode mode = PlanMode::kDisassemble) {
+  PlanDef def;
+  def.dt = dt;
+  def.mode = mode;
+  def.steps = std::move(steps);
+  return Plan::Create(def, a);
+}
+
+// A T-stand: pedestal P on a table, plank B on P, block C on B's middle.
+// Sliding C right with its weight on B (support "none") tips B once the
+// centroid of B and C passes P's right edge (eq. 8): x_C · m_C / (m_B + m_C)
+// > 0.5, i.e. x_C > 0.5 (m_B + m_C) / m_C = 1.1.
+Assembly TStand() {
+  AssemblyDef def;
+  def.gravity = {0, -1};
+  def.parts = {Box("table", -5, -1, 5, 0, true), Box("P", -0.5, 0, 0.5, 1), Box("B", -3, 1, 3, 1.2),
+               Box("C", -0.5, 1.2, 0.5, 2.2)};
+  return Assembly::Create(def);
+}
+
+TEST(Simulate, SlidingAPartOnANarrowBaseTipsItWhereEquationEightSays) {
+  const Assembly a = TStand();
+  const SimulationResult r =
+      SimulatePlan(a, MakePlan(a, {Straight("C", {1, 0}, 2.5, SupportMode::kNone)}, 0.05));
+  ASSERT_EQ(r.verdict, MotionVerdict::kUnstable) << r.diagnostics;
+  ASSERT_TRUE(r.failure);
+  // The first tick past x_C = 1.1 (ticks of 0.05).
+  EXPECT_NEAR(r.failure->time, 1.15, 1e-9);
+  EXPECT_EQ(r.failure->parts, std::vector<int>{a.FindPart("B")});
+  ASSERT_FALSE(r.failure->motions.empty());
+  EXPECT_EQ(r.failure->motions[0].kind, MotionKind::kTips);
+  EXPECT_LT(r.failure->motions[0].angular, 0.0) << "B tips clockwise";
+}
+
+TEST(Simulate, WithTheWeightCarriedEveryPathIsStable) {
+  // Proposition 2: support "full" makes the same path stable to the end.
+  const Assembly a = TStand();
+  const SimulationResult r =
+      SimulatePlan(a, MakePlan(a, {Straight("C", {1, 0}, 2.5, SupportMode::kFull)}, 0.05));
+  EXPECT_EQ(r.verdict, MotionVerdict::kStable) << (r.failure ? r.failure->description : "");
+  ASSERT_EQ(r.steps.size(), 1u);
+  EXPECT_EQ(r.steps[0].ticks, 51);
+  EXPECT_GT(r.steps[0].warm_starts, 0) << "consecutive ticks reuse the LCP basis";
+}
+
+TEST(Simulate, PaperFig1_DCBAIsStableAndLiftingCFirstTopplesBWhenCLeaves) {
+  const Assembly a = ReadScene(ExamplePath("paper_fig1.json"));
+  std::vector<PlanStepDef> dcba;
+  for (const char* p : {"D", "C", "B", "A"}) dcba.push_back(Straight(p, {0, 1}, 6));
+  const SimulationResult ok = SimulatePlan(a, MakePlan(a, dcba));
+  EXPECT_EQ(ok.verdict, MotionVerdict::kStable) << (ok.failure ? ok.failure->description : "");
+  EXPECT_EQ(ok.steps.size(), 4u);
+
+  const SimulationResult c_first = SimulatePlan(a, MakePlan(a, {Straight("C", {0, 1}, 6)}));
+  ASSERT_EQ(c_first.verdict, MotionVerdict::kUnstable);
+  // At 0 s C still rests on B; at 1 s it has left and B topples.
+  EXPECT_EQ(c_first.failure->tick, 1);
+  EXPECT_NEAR(c_first.failure->time, 1.0, 1e-12);
+  EXPECT_NE(
+      std::find(c_first.failure->parts.begin(), c_first.failure->parts.end(), a.FindPart("B")),
+      c_first.failure->parts.end());
+}
+
+TEST(Simulate, PaperFig4_LiftingAMakesBSlideRightUnlessTwoFixelsHoldIt) {
+  const Assembly a = ReadScene(ExamplePath("paper_fig4.json"));
+  const SimulationResult r = SimulatePlan(a, MakePlan(a, {Straight("A", {0, 1}, 4)}));
+  ASSERT_EQ(r.verdict, MotionVerdict::kUnstable);
+  bool b_slides_right = false;
+  for (const PartMotion& m : r.failure->motions)
+    if (m.part == a.FindPart("B")) b_slides_right = m.linear.x() > 0;
+  EXPECT_TRUE(b_slides_right) << r.failure->description;
+
+  const Assembly f = ReadScene(ExamplePath("paper_fig4_fixels.json"));
+  const SimulationResult held = SimulatePlan(f, MakePlan(f, {Straight("A", {0, 1}, 4)}));
+  EXPECT_EQ(held.verdict, MotionVerdict::kStable)
+      << (held.failure ? held.failure->description : "");
+}
+
+TEST(Simulate, DrivingAPartIntoAWallIsInfeasible) {
+  AssemblyDef def;
+  def.parts = {Box("floor", -5, -1, 5, 0, true), Box("wall", 3, 0, 4, 3, true),
+               Box("block", 0, 0, 1, 1)};
+  const Assembly a = Assembly::Create(def);
+  const SimulationResult r = SimulatePlan(a, MakePlan(a, {Straight("block", {1, 0}, 4)}, 0.5));
+  ASSERT_EQ(r.verdict, MotionVerdict::kInfeasible);
+  // The block's right face reaches the wall (x = 3) after 2 s, still driven
+  // towards it: no contact force allows that motion (jammed).
+  EXPECT_NEAR(r.failure->time, 2.0, 1e-12);
+  EXPECT_EQ(r.failure->parts, (std::vector<int>{2}));
+  EXPECT_NE(r.failure->description.find("blocked"), std::string::npos) << r.failure->description;
+}
+
+// Paper Fig. 19–20: μ = 0.2 between A and B, 0.05 between B and the floor,
+// frictionless wall on B's left. Dragging A right with its weight on B drags B
+// (unstable); the same path as an assembly, A coming in from the right, pushes
+// B against the wall (stable): assembly and disassembly are not inverses.
+Assembly Fig19() {
+  AssemblyDef def;
+  def.gravity = {0, -1};
+  def.friction_pairs = {{"A", "B", 0.2}, {"B", "floor", 0.05}};
+  def.parts = {Box("floor", -2, -1, 10, 0, true), Box("wall", -2, 0, 0, 3, true),
+               Box("B", 0, 0, 2, 1), Box("A", 0, 1, 2, 2)};
+  return Assembly::Create(def);
+}
+
+TEST(Simulate, PaperFig19_FrictionMakesAssemblyAndDisassemblyNonInvertible) {
+  // The path keeps A's centroid over B (x ≤ 1.8 < 2), so A rests on B all
+  // along it: with support "none" A is never unsupported, in either direction.
+  const Assembly a = Fig19();
+  const SimulationResult out =
+      SimulatePlan(a, MakePlan(a, {Straight("A", {1, 0}, 0.8, SupportMode::kNone)}, 0.2));
+  ASSERT_EQ(out.verdict, MotionVerdict::kUnstable) << (out.failure ? out.failure->description : "");
+  EXPECT_EQ(out.failure->parts, std::vector<int>{a.FindPart("B")});
+  EXPECT_GT(out.failure->motions[0].linear.x(), 0.0) << "B is dragged to the right";
+
+  const SimulationResult in = SimulatePlan(
+      a, MakePlan(a, {Straight("A", {1, 0}, 0.8, SupportMode::kNone)}, 0.2, PlanMode::kAssemble));
+  EXPECT_EQ(in.steps[0].ticks, 5);
+  EXPECT_EQ(in.verdict, MotionVerdict::kStable)
+      << (in.failure ? in.failure->description : "") << in.diagnostics;
+}
+
+TEST(Simulate, DeterministicTwice) {
+  const Assembly a = Fig19();
+  const Plan plan = MakePlan(a, {Straight("A", {1, 0}, 4, SupportMode::kNone)}, 0.25);
+  SimulationOptions opt;
+  opt.record_timeline = true;
+  opt.continue_after_failure = true;
+  const SimulationResult r1 = SimulatePlan(a, plan, opt), r2 = SimulatePlan(a, plan, opt);
+  ASSERT_EQ(r1.timeline.size(), r2.timeline.size());
+  for (size_t i = 0; i < r1.timeline.size(); ++i) {
+    EXPECT_EQ(r1.timeline[i].contact.normal_force, r2.timeline[i].contact.normal_force);
+    EXPECT_EQ(r1.timeline[i].contact.friction_force, r2.timeline[i].contact.friction_force);
+  }
+}
+
+}  // namespace
+}  // namespace cairn
