@@ -69,8 +69,9 @@ std::string StabilityToText(const Assembly& assembly, const Configuration& confi
   os << "  contact forces (" << force_unit << "):\n";
   for (const ContactReport& cr : result.contacts) {
     const Contact& c = cr.contact;
-    os << "    " << PartName(assembly, c.part_a) << " on " << PartName(assembly, c.part_b) << " at "
-       << Pt(c.p_WC) << " n=" << Pt(c.n_W) << "  normal "
+    // The force on a from b acts along n: "b pushes a".
+    os << "    " << PartName(assembly, c.part_b) << " pushes " << PartName(assembly, c.part_a)
+       << " at " << Pt(c.p_WC) << " n=" << Pt(c.n_W) << "  normal "
        << Fmt("%.6g", cr.normal_force / force_scale);
     if (c.mu > 0) os << "  friction " << Fmt("%.6g", cr.friction_force / force_scale);
     if (cr.breaking) os << "  BREAKS";

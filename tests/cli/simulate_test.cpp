@@ -61,6 +61,17 @@ TEST(Simulate, PaperFig4_FixelsMakeLiftingAStable) {
       0);
 }
 
+TEST(Simulate, PaperFig19_SlidingAOutDragsBButInsertingItIsStable) {
+  // Friction makes assembly and disassembly noninvertible: the same path.
+  const CliRun out = Cairn("simulate " + ExamplePath("paper_fig19.json") + " " +
+                           Plan("paper_fig19_slide_a") + " --json");
+  ASSERT_EQ(out.exit_code, 1) << out.err;
+  EXPECT_EQ(nlohmann::json::parse(out.out)["failure"]["parts"], nlohmann::json::array({"B"}));
+  const CliRun in =
+      Cairn("simulate " + ExamplePath("paper_fig19.json") + " " + Plan("paper_fig19_insert_a"));
+  EXPECT_EQ(in.exit_code, 0) << in.out << in.err;
+}
+
 TEST(Simulate, TimelineHasARowPerTickAndContactWithNormalisedForces) {
   const std::string csv =
       (std::filesystem::temp_directory_path() / "cairn_timeline_test.csv").string();
