@@ -7,11 +7,13 @@
 
 #include "cairn/io/scene_reader.h"
 #include "cairn/motion/simulate.h"
+#include "scene_builders.h"
 #include "test_paths.h"
 
 namespace cairn {
 namespace {
 
+using testing::Box;
 using testing::ExamplePath;
 
 // True when some present part other than p rests above p (overlapping in x,
@@ -77,18 +79,10 @@ TEST(Proposition4, StableAtBothEndsMeansStableAllAlong) {
   for (int trial = 0; trial < 40; ++trial) {
     AssemblyDef def;
     def.gravity = {0, -1};
-    const auto box = [](const std::string& n, double x0, double y0, double w, double h,
-                        bool fixed) {
-      PartDef p;
-      p.name = n;
-      p.fixed = fixed;
-      p.polygon = {{x0, y0}, {x0 + w, y0}, {x0 + w, y0 + h}, {x0, y0 + h}};
-      return p;
-    };
     const double w0 = 2 + u(rng), w1 = 2 + u(rng), w2 = 1.5 + 0.5 * u(rng);
     const double x0 = -w0 / 2, x1 = x0 + 0.8 * u(rng) * w0 / 2, x2 = x1 + 0.8 * u(rng) * w1 / 2;
-    def.parts = {box("table", -20, -1, 40, 1, true), box("P", x0, 0, w0, 1, false),
-                 box("Q", x1, 1, w1, 0.7, false), box("R", x2, 1.7, w2, 0.6, false)};
+    def.parts = {Box("table", -20, -1, 20, 0, true), Box("P", x0, 0, x0 + w0, 1),
+                 Box("Q", x1, 1, x1 + w1, 1.7), Box("R", x2, 1.7, x2 + w2, 2.3)};
     const Assembly a = Assembly::Create(def);
     // Both ends: with the top box R, and without it.
     Configuration with = Configuration::Assembled(a), without = with;

@@ -3,21 +3,14 @@
 #include <gtest/gtest.h>
 
 #include "cairn/io/scene_reader.h"
+#include "scene_builders.h"
 #include "test_paths.h"
 
 namespace cairn {
 namespace {
 
+using testing::Box;
 using testing::ExamplePath;
-
-PartDef Box(const std::string& name, double x0, double y0, double x1, double y1,
-            bool fixed = false) {
-  PartDef p;
-  p.name = name;
-  p.fixed = fixed;
-  p.polygon = {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}};
-  return p;
-}
 
 // One step removing `part` along a straight path.
 PlanStepDef Straight(const std::string& part, Vector2 direction, double distance,
