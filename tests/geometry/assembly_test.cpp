@@ -9,20 +9,13 @@
 #include <numbers>
 
 #include "cairn/core/error.h"
+#include "scene_builders.h"
 
 namespace cairn {
 namespace {
 
 using ::testing::HasSubstr;
-
-PartDef Box(const std::string& name, double x0, double y0, double x1, double y1,
-            bool fixed = false) {
-  PartDef p;
-  p.name = name;
-  p.fixed = fixed;
-  p.polygon = {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}};
-  return p;
-}
+using testing::Box;
 
 // A table and two blocks on it.
 AssemblyDef TwoBlocks() {

@@ -84,7 +84,8 @@ class Assembly {
   ///         names, fewer than 3 vertices, zero area, self-intersecting
   ///         polygons, NaN or infinite numbers, negative mass, density or
   ///         friction, parts that overlap by more than the tolerance, a fixture
-  ///         point off its part, a zero fixture normal.
+  ///         point off its part or a fixture normal pointing out of it, a
+  ///         part that is both fixed and a tool.
   static Assembly Create(const AssemblyDef& def, const std::string& source_file = "");
 
   const std::string& name() const { return name_; }
