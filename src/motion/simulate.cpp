@@ -162,44 +162,56 @@ SimulationResult SimulatePlan(const Assembly& assembly, const Plan& plan,
       const double next = std::min((tick + 1) * tick_length, L);
       const double s = assemble ? L - travelled : travelled;
       const double dt = tick < moves ? (next - travelled) / plan.speed : plan.dt;
-      // Algorithm 1 moves, then checks: the gripper's velocity at a tick is
-      // the one that brought the parts there. It is zero at the start of a
-      // step (the parts still rest where they were) and at its end (the
-      // gripper has stopped: a part set into its seat does not keep pushing).
-      const bool moving_now = tick > 0 && tick < moves;
-      const Vector2 v_g =
-          moving_now ? Vector2(-plan.speed * TravelDirection(step, s, assemble)) : Vector2::Zero();
+      // Time stepping: the contact LCP at a tick gives the motion over the
+      // coming interval, with the gripper's velocity for that interval (zero
+      // at the last tick: the gripper has stopped, and a part set into its
+      // seat does not keep pushing); the carried parts are moved with it.
+      const Vector2 v_g = tick < moves ? Vector2(plan.speed * TravelDirection(step, s, !assemble))
+                                       : Vector2::Zero();
+      // The path direction the gripper holds a guided part along: the coming
+      // one, or at the end of the path the one it came along.
+      const Vector2 guide =
+          v_g.norm() > 0 ? Vector2(v_g.normalized()) : Vector2(-TravelDirection(step, s, assemble));
       const double t_now = time + travelled / plan.speed;
       for (int p = 0; p < n; ++p)
         if (gripped[p]) config.poses[p] = Pose2{step.At(s), 0.0};
 
-      // The drive: who moves how.
-      DriveInputs drive;
-      drive.role.assign(n, PartRole::kJudged);
-      drive.velocity.assign(n, Vector2::Zero());
-      drive.nu_prev = nu;
-      for (int p = 0; p < n; ++p) {
-        if (gripped[p] && tick == 0 && !assembly.part(p).tool) {
-          // Before the gripper moves, the part still rests on the assembly
-          // with its weight (the node before the step; the paper's figures
-          // show its contact forces until it is lifted).
-          drive.role[p] = PartRole::kCarried;
-        } else if (gripped[p]) {
-          const bool rigid = support == SupportMode::kFull || assembly.part(p).tool;
-          drive.role[p] = rigid ? PartRole::kPrescribed : PartRole::kGuided;
-          drive.velocity[p] = v_g;
-        } else if (carried[p]) {
-          drive.role[p] = PartRole::kCarried;
-        } else if (held[p]) {
-          drive.role[p] = PartRole::kPrescribed;  // held in place: velocity 0
+      // The drive: who moves how. `at_rest` describes the node before the
+      // step: the gripper has not moved yet, so its parts still rest on the
+      // assembly with their weight (the paper's figures show their contact
+      // forces until they are lifted).
+      const auto make_drive = [&](bool at_rest) {
+        DriveInputs d;
+        d.role.assign(n, PartRole::kJudged);
+        d.velocity.assign(n, Vector2::Zero());
+        d.guide.assign(n, guide);
+        d.nu_prev = nu;
+        for (int p = 0; p < n; ++p) {
+          if (gripped[p] && at_rest && !assembly.part(p).tool) {
+            d.role[p] = PartRole::kCarried;
+            d.nu_prev[p].setZero();
+          } else if (gripped[p]) {
+            const bool rigid = support == SupportMode::kFull || assembly.part(p).tool;
+            d.role[p] = rigid ? PartRole::kPrescribed : PartRole::kGuided;
+            d.velocity[p] = at_rest ? Vector2::Zero() : v_g;
+          } else if (carried[p]) {
+            d.role[p] = PartRole::kCarried;
+          } else if (held[p]) {
+            d.role[p] = PartRole::kPrescribed;  // held in place: velocity 0
+          }
         }
-      }
+        return d;
+      };
 
       StabilityOptions so;
       so.dt = dt;
       so.lemke = options.lemke;
       const Tolerances tol = assembly.MakeTolerances(dt);
       so.tolerances = tol;
+      // At tick 0 the verdict is the node's (at rest); the motion over the
+      // first interval (who gets pushed) comes from a second solve with the
+      // gripper moving, used only to move the carried parts.
+      const DriveInputs drive = make_drive(tick == 0);
       const StabilityResult r = AnalyzeConfiguration(assembly, config, so, &drive, &workspace);
       ++report.ticks;
       for (const ComponentReport& c : r.components) report.pivots += c.pivots;
@@ -259,9 +271,20 @@ SimulationResult SimulatePlan(const Assembly& assembly, const Plan& plan,
         step_failed = true;
       }
 
-      // Carry velocities to the next tick; move the carried parts.
-      for (const PartMotion& m : r.parts)
+      // Carry velocities to the next tick (a gripped part keeps only its own
+      // off-path velocity: the gripper's may change direction at a corner);
+      // move the carried parts.
+      StabilityResult moved;
+      const StabilityResult* motion = &r;
+      if (tick == 0 && tick < moves) {
+        const DriveInputs go = make_drive(false);
+        moved = AnalyzeConfiguration(assembly, config, so, &go, &workspace);
+        motion = &moved;
+      }
+      for (const PartMotion& m : motion->parts) {
         nu[m.part] = Vector3(m.linear.x(), m.linear.y(), m.angular);
+        if (gripped[m.part]) nu[m.part].head<2>() -= v_g;
+      }
       for (int p = 0; p < n; ++p) {
         if (!carried[p]) continue;
         config.poses[p].translation += nu[p].head<2>() * dt;

@@ -122,15 +122,17 @@ ContactLcp BuildComponent(const Assembly& assembly, const Configuration& config,
     if (role == PartRole::kPrescribed || role == PartRole::kGuided) {
       const Vector2 v = drive->velocity[p];
       b.nu_prescribed = Vector3(v.x(), v.y(), 0);
-      if (role == PartRole::kPrescribed) {
-        b.motion = BodyMotion::kPrescribed;
-      } else if (v.norm() > 0) {
-        b.motion = BodyMotion::kGuided;
-        b.guide = v.normalized();
-      } else {
-        // A guided part at the end of its path: the gripper holds it still
-        // along its last direction only... with no direction left, it is free.
-        b.motion = BodyMotion::kFree;
+      b.motion = role == PartRole::kPrescribed ? BodyMotion::kPrescribed : BodyMotion::kGuided;
+      // The gripper holds a guided part along the path, even when it stands
+      // still (at the end of the path); with no direction at all, it is free.
+      const Vector2 g = drive->guide.empty() ? Vector2::Zero() : drive->guide[p];
+      if (role == PartRole::kGuided) {
+        if (g.norm() > 0)
+          b.guide = g.normalized();
+        else if (v.norm() > 0)
+          b.guide = v.normalized();
+        else
+          b.motion = BodyMotion::kFree;
       }
     }
     bodies.push_back(b);

@@ -126,8 +126,11 @@ struct StabilityResult {
 /// vector is indexed by part, and empty means "nothing driven, all at rest".
 struct DriveInputs {
   std::vector<PartRole> role;  ///< (num_parts) default kJudged
-  std::vector<Vector2>
-      velocity;  ///< (num_parts) gripper velocity of kGuided/kPrescribed parts (length/s)
+  /// (num_parts) gripper velocity of kGuided/kPrescribed parts (length/s)
+  std::vector<Vector2> velocity;
+  /// (num_parts) kGuided: unit direction of the path the gripper holds the
+  /// part along (its speed, |velocity|, may be 0 at the end of the path)
+  std::vector<Vector2> guide;
   std::vector<Vector3> nu_prev;  ///< (num_parts) each part's (v_x, v_y, ω) before this step
 };
 
