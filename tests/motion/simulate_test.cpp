@@ -147,6 +147,30 @@ TEST(Simulate, PaperFig19_FrictionMakesAssemblyAndDisassemblyNonInvertible) {
       << (in.failure ? in.failure->description : "") << in.diagnostics;
 }
 
+TEST(Simulate, AGrippedToolPushesACarriedPartAndIsNeverJudged) {
+  // A pusher pad T (a tool: not part of the assembly) touches block X's left
+  // face; gripping T and moving it right pushes X (removed, not gripped) along.
+  AssemblyDef def;
+  def.gravity = {0, -1};
+  PartDef pad = Box("T", -0.5, 0.2, 0, 0.8);
+  pad.tool = true;
+  def.parts = {Box("floor", -5, -1, 10, 0, true), Box("X", 0, 0, 1, 1), pad, Box("Y", 6, 0, 7, 1)};
+  const Assembly a = Assembly::Create(def);
+  EXPECT_FALSE(Configuration::Assembled(a).present[a.FindPart("T")]) << "tools start absent";
+  PlanStepDef s = Straight("X", {1, 0}, 3);
+  s.grip = {"T"};
+  SimulationOptions opt;
+  opt.record_timeline = true;
+  const SimulationResult r = SimulatePlan(a, MakePlan(a, {s}, 0.5), opt);
+  EXPECT_EQ(r.verdict, MotionVerdict::kStable) << (r.failure ? r.failure->description : "");
+  // The pad pushed X all the way: at the last tick T and X still touch at x = 3.
+  bool touching_at_end = false;
+  for (const TimelineRow& row : r.timeline)
+    if (row.time == 3.0 && row.contact.contact.part_b == a.FindPart("T"))
+      touching_at_end = std::abs(row.contact.contact.p_WC.x() - 3.0) < 1e-6;
+  EXPECT_TRUE(touching_at_end);
+}
+
 TEST(Simulate, DeterministicTwice) {
   const Assembly a = Fig19();
   const Plan plan = MakePlan(a, {Straight("A", {1, 0}, 4, SupportMode::kNone)}, 0.25);
