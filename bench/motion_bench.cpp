@@ -47,6 +47,7 @@
 
 #include "cairn/motion/simulate.h"
 #include "cairn/stability/analyze.h"
+#include "scene_builders.h"  // tests/: the scene builders the tests use
 
 namespace {
 
@@ -57,15 +58,7 @@ using cairn::PartDef;
 using cairn::PartRole;
 using cairn::Vector2;
 using cairn::Vector3;
-
-PartDef Box(const std::string& name, double x0, double y0, double x1, double y1,
-            bool fixed = false) {
-  PartDef p;
-  p.name = name;
-  p.fixed = fixed;
-  p.polygon = {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}};
-  return p;
-}
+using cairn::testing::Box;
 
 constexpr int kCourses = 10;
 constexpr int kPulledCourse = 4;

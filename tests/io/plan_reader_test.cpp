@@ -13,13 +13,18 @@
 
 #include "cairn/core/error.h"
 #include "cairn/io/scene_reader.h"
+#include "io/bad_input.h"
 #include "test_paths.h"
 
 namespace cairn {
 namespace {
 
 using nlohmann::json;
+using testing::BadCase;
+using testing::CaseText;
+using testing::ExpectBadInput;
 using ::testing::HasSubstr;
+using testing::WriteTemp;
 
 // The blocks of paper Fig. 1 (A-D on the fixed table E) and a gripper pad G,
 // a tool, lying on the table at the right.
@@ -62,12 +67,6 @@ constexpr const char* kBase = R"({
 Assembly Scene() { return Assembly::Create(ParseSceneJson(json::parse(kScene), "scene.json")); }
 
 // Writes `text` to a file named `name` in the test's temporary folder.
-std::string WriteTemp(const std::string& name, const std::string& text) {
-  const std::string path = ::testing::TempDir() + name;
-  std::ofstream(path) << text;
-  return path;
-}
-
 TEST(ReadPlan, DocumentedExampleOnPaperFig1) {
   const Assembly fig1 = ReadScene(testing::ExamplePath("paper_fig1.json"));
   const Plan plan = ReadPlan(WriteTemp("plan_doc_example.json", kDocExample), fig1);
@@ -166,16 +165,6 @@ TEST(ReadPlan, AllKeysRoundTrip) {
   EXPECT_EQ(plan.steps[1].path, p1);
   EXPECT_EQ(plan.steps[1].support, SupportMode::kFull);
 }
-
-// One bad input: a whole document (`text`) or a merge patch of kBase
-// (`patch`), and the JSON path and a phrase of the message expected.
-struct BadCase {
-  const char* name;
-  const char* text;   // nullptr: use patch
-  const char* patch;  // merge patch of kBase
-  const char* path;
-  const char* phrase;
-};
 
 // clang-format off
 const BadCase kBadCases[] = {
@@ -278,37 +267,14 @@ const BadCase kBadCases[] = {
 };
 // clang-format on
 
-void PrintTo(const BadCase& c, std::ostream* os) { *os << c.name; }
-
 class BadPlan : public ::testing::TestWithParam<BadCase> {};
 
 TEST_P(BadPlan, NamesFilePathAndFault) {
   const BadCase& c = GetParam();
-  std::string text;
-  if (c.text) {
-    text = c.text;
-  } else {
-    json doc = json::parse(kBase);
-    doc.merge_patch(json::parse(c.patch));
-    text = doc.dump(2);
-  }
+  const std::string text = CaseText(c, kBase);
   const std::string file = WriteTemp(std::string("bad_plan_") + c.name + ".json", text);
   const Assembly scene = Scene();
-  try {
-    ReadPlan(file, scene);
-    ADD_FAILURE() << "no error; expected " << c.path << ": " << c.phrase << "\n" << text;
-  } catch (const InputError& e) {
-    EXPECT_EQ(e.file(), file);
-    EXPECT_EQ(e.json_path(), c.path) << e.what();
-    EXPECT_THAT(e.message(), HasSubstr(c.phrase)) << e.what();
-    EXPECT_THAT(std::string(e.what()), HasSubstr(file));
-    // One short clause, starting lowercase (JSON errors start with "invalid JSON").
-    EXPECT_FALSE(e.message().empty());
-    EXPECT_EQ(e.message().find('\n'), std::string::npos) << e.what();
-    EXPECT_TRUE(std::islower(static_cast<unsigned char>(e.message()[0])) ||
-                !std::isalpha(static_cast<unsigned char>(e.message()[0])))
-        << e.what();
-  }
+  ExpectBadInput(c, text, file, [&](const std::string& f) { ReadPlan(f, scene); });
 }
 
 INSTANTIATE_TEST_SUITE_P(AllFaults, BadPlan, ::testing::ValuesIn(kBadCases),

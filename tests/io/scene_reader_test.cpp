@@ -9,13 +9,18 @@
 #include <nlohmann/json.hpp>
 
 #include "cairn/core/error.h"
+#include "io/bad_input.h"
 #include "test_paths.h"
 
 namespace cairn {
 namespace {
 
 using nlohmann::json;
+using testing::BadCase;
+using testing::CaseText;
+using testing::ExpectBadInput;
 using ::testing::HasSubstr;
+using testing::WriteTemp;
 
 // The example of docs/scene-format.md.
 constexpr const char* kDocExample = R"({
@@ -45,12 +50,6 @@ constexpr const char* kBase = R"({
 })";
 
 // Writes `text` to a file named `name` in the test's temporary folder.
-std::string WriteTemp(const std::string& name, const std::string& text) {
-  const std::string path = ::testing::TempDir() + name;
-  std::ofstream(path) << text;
-  return path;
-}
-
 TEST(ReadScene, DocumentedExampleRoundTrips) {
   const Assembly a = ReadScene(WriteTemp("doc_example.json", kDocExample));
   EXPECT_EQ(a.name(), "two blocks");
@@ -135,16 +134,6 @@ TEST(ReadScene, EveryExampleSceneIsValid) {
   }
   EXPECT_GE(count, 10);
 }
-
-// One bad input: a whole document (`text`) or a merge patch of kBase
-// (`patch`), and the JSON path and a phrase of the message expected.
-struct BadCase {
-  const char* name;
-  const char* text;   // nullptr: use patch
-  const char* patch;  // merge patch of kBase
-  const char* path;
-  const char* phrase;
-};
 
 // clang-format off
 const BadCase kBadCases[] = {
@@ -277,36 +266,13 @@ const BadCase kBadCases[] = {
 };
 // clang-format on
 
-void PrintTo(const BadCase& c, std::ostream* os) { *os << c.name; }
-
 class BadScene : public ::testing::TestWithParam<BadCase> {};
 
 TEST_P(BadScene, NamesFilePathAndFault) {
   const BadCase& c = GetParam();
-  std::string text;
-  if (c.text) {
-    text = c.text;
-  } else {
-    json doc = json::parse(kBase);
-    doc.merge_patch(json::parse(c.patch));
-    text = doc.dump(2);
-  }
+  const std::string text = CaseText(c, kBase);
   const std::string file = WriteTemp(std::string("bad_") + c.name + ".json", text);
-  try {
-    ReadScene(file);
-    ADD_FAILURE() << "no error; expected " << c.path << ": " << c.phrase << "\n" << text;
-  } catch (const InputError& e) {
-    EXPECT_EQ(e.file(), file);
-    EXPECT_EQ(e.json_path(), c.path) << e.what();
-    EXPECT_THAT(e.message(), HasSubstr(c.phrase)) << e.what();
-    EXPECT_THAT(std::string(e.what()), HasSubstr(file));
-    // One short clause, starting lowercase (JSON errors start with "invalid JSON").
-    EXPECT_FALSE(e.message().empty());
-    EXPECT_EQ(e.message().find('\n'), std::string::npos) << e.what();
-    EXPECT_TRUE(std::islower(static_cast<unsigned char>(e.message()[0])) ||
-                !std::isalpha(static_cast<unsigned char>(e.message()[0])))
-        << e.what();
-  }
+  ExpectBadInput(c, text, file, [](const std::string& f) { ReadScene(f); });
 }
 
 INSTANTIATE_TEST_SUITE_P(AllFaults, BadScene, ::testing::ValuesIn(kBadCases),
