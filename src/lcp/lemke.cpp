@@ -66,6 +66,7 @@
 #include <sstream>
 
 #include "cairn/core/check.h"
+#include "perturbation.h"
 
 namespace cairn {
 
@@ -370,9 +371,7 @@ double LcpResidual(const MatrixX& M, const VectorX& q, const VectorX& z) {
   return NaturalMapResidual(z, w);
 }
 
-namespace {
-// IsLcpSolution with w = M z + q already computed.
-bool IsSolutionWithW(const VectorX& z, const VectorX& w, double tol) {
+bool IsComplementarySolution(const VectorX& z, const VectorX& w, double tol) {
   if (!z.allFinite() || !w.allFinite()) return false;
   for (Eigen::Index i = 0; i < z.size(); ++i) {
     if (!(z[i] >= -tol) || !(w[i] >= -tol)) return false;
@@ -381,11 +380,10 @@ bool IsSolutionWithW(const VectorX& z, const VectorX& w, double tol) {
   }
   return true;
 }
-}  // namespace
 
 bool IsLcpSolution(const MatrixX& M, const VectorX& q, const VectorX& z, double tol) {
   if (M.rows() != q.size() || M.cols() != q.size() || z.size() != q.size()) return false;
-  return IsSolutionWithW(z, M * z + q, tol);
+  return IsComplementarySolution(z, M * z + q, tol);
 }
 
 LcpResult SolveLemke(const MatrixX& M, const VectorX& q, const LemkeParameters& params,
@@ -430,7 +428,7 @@ LcpResult SolveLemke(const MatrixX& M, const VectorX& q, const LemkeParameters& 
     if (SolveComplementaryBasis(M, q, warm_start->basic_z, &z)) {
       VectorX w = M * z + q;
       const double res = NaturalMapResidual(z, w);
-      if (res <= accept && IsSolutionWithW(z, w, accept)) {
+      if (res <= accept && IsComplementarySolution(z, w, accept)) {
         result.status = LcpStatus::kSolved;
         result.z = std::move(z);
         result.w = std::move(w);
@@ -442,52 +440,78 @@ LcpResult SolveLemke(const MatrixX& M, const VectorX& q, const LemkeParameters& 
     }
   }
 
-  // Follow the path, on the stack for small problems.
-  bool at_solution = false;
-  LcpBasis basis;
-  if (n <= kSmallN) {
-    at_solution = FollowPath<kSmallN>(M, q, scale, tol, max_pivots, &result, &basis);
-  } else {
-    at_solution = FollowPath<Eigen::Dynamic>(M, q, scale, tol, max_pivots, &result, &basis);
-  }
-
-  // Re-solve the basis from the data; keep the better of the two z. When the
-  // tableau's answer is already exact to roundoff (residual within a few ulps
-  // of the data), the re-solve cannot improve it: skip it, which is most of
-  // the fixed cost of the small LCPs that single contact components produce.
-  // (A looser bound lets the drift of long paths through: Murty's n = 8
-  // problem ends 256 pivots later with w off by 2e-12, which the re-solve
-  // removes.)
-  const double roundoff = 4.0 * kEps * (m_max * result.z.cwiseAbs().maxCoeff() + q_inf);
-  VectorX z_lu;
-  if (!(at_solution && result.residual <= roundoff) &&
-      SolveComplementaryBasis(M, q, basis.basic_z, &z_lu)) {
-    VectorX w_lu = M * z_lu + q;
-    const double res_lu = NaturalMapResidual(z_lu, w_lu);
-    if (res_lu < result.residual) {
-      result.z = std::move(z_lu);
-      result.w = std::move(w_lu);
-      result.residual = res_lu;
-    }
-  }
-  const bool verified = result.residual <= accept && IsSolutionWithW(result.z, result.w, accept);
-
-  // A ray met with z₀ already below the solution tolerance is the end of the
-  // path up to roundoff: the iterate with z₀ dropped solves LCP(M, q + e z₀),
-  // and it is returned as a solution only when the independent check passes.
-  // Every other failure keeps its status.
-  if (at_solution || (result.status == LcpStatus::kRayTermination && verified)) {
-    result.basis = basis;
-    if (verified) {
-      result.status = LcpStatus::kSolved;
-      result.message.clear();
+  // Follow the path on q_path (q, or q perturbed), on the stack for small
+  // problems; re-solve the final basis with the true q and check it.
+  const auto solve = [&](const VectorX& q_path, LcpResult* out) {
+    LcpResult& res = *out;
+    bool at_solution = false;
+    LcpBasis basis;
+    if (n <= kSmallN) {
+      at_solution = FollowPath<kSmallN>(M, q_path, scale, tol, max_pivots, &res, &basis);
     } else {
-      result.status = LcpStatus::kNumericalFailure;
-      std::ostringstream os;
-      os << "final basis does not solve the LCP: natural-map residual " << result.residual << " > "
-         << accept;
-      result.message = os.str();
+      at_solution = FollowPath<Eigen::Dynamic>(M, q_path, scale, tol, max_pivots, &res, &basis);
     }
+    const bool perturbed = &q_path != &q;
+    if (perturbed) {  // the tableau's z and w answer the perturbed problem
+      res.w.noalias() = M * res.z;
+      res.w += q;
+      res.residual = NaturalMapResidual(res.z, res.w);
+    }
+
+    // Re-solve the basis from the data; keep the better of the two z. When
+    // the tableau's answer is already exact to roundoff (residual within a
+    // few ulps of the data), the re-solve cannot improve it: skip it, which
+    // is most of the fixed cost of the small LCPs that single contact
+    // components produce. (A looser bound lets the drift of long paths
+    // through: Murty's n = 8 problem ends 256 pivots later with w off by
+    // 2e-12, which the re-solve removes.)
+    const double roundoff = 4.0 * kEps * (m_max * res.z.cwiseAbs().maxCoeff() + q_inf);
+    VectorX z_lu;
+    if (!(at_solution && res.residual <= roundoff) &&
+        SolveComplementaryBasis(M, q, basis.basic_z, &z_lu)) {
+      VectorX w_lu = M * z_lu + q;
+      const double res_lu = NaturalMapResidual(z_lu, w_lu);
+      if (res_lu < res.residual) {
+        res.z = std::move(z_lu);
+        res.w = std::move(w_lu);
+        res.residual = res_lu;
+      }
+    }
+    const bool verified = res.residual <= accept && IsComplementarySolution(res.z, res.w, accept);
+
+    // A ray met with z₀ already below the solution tolerance is the end of
+    // the path up to roundoff: the iterate with z₀ dropped solves
+    // LCP(M, q + e z₀), and it is returned as a solution only when the
+    // independent check passes. Every other failure keeps its status.
+    if (at_solution || (res.status == LcpStatus::kRayTermination && verified)) {
+      res.basis = basis;
+      if (verified) {
+        res.status = LcpStatus::kSolved;
+        res.message.clear();
+      } else {
+        res.status = LcpStatus::kNumericalFailure;
+        std::ostringstream os;
+        os << "final basis does not solve the LCP: natural-map residual " << res.residual << " > "
+           << accept;
+        res.message = os.str();
+      }
+    }
+  };
+  solve(q, &result);
+
+  // The exact lexicographic rule cannot see ties that roundoff has blurred
+  // (massively degenerate contact sets: a basis built on pivots of roundoff
+  // size). Then the ties are broken by a perturbation of q instead (see
+  // factored_lcp.h) and the final basis is re-solved with the true q.
+  if (result.status == LcpStatus::kNumericalFailure) {
+    VectorX q_pert = q;
+    for (Eigen::Index i = 0; i < n; ++i)
+      q_pert[i] += internal::kLcpPerturbation * scale *
+                   internal::PerturbationWeight(0, static_cast<uint64_t>(i));
+    LcpResult retry;
+    solve(q_pert, &retry);
+    retry.pivots += result.pivots;
+    if (retry.status == LcpStatus::kSolved) return retry;
   }
   return result;
 }

@@ -104,10 +104,48 @@ MatrixX Delassus(const std::vector<const JacobianRow*>& rows,
   return A;
 }
 
+bool WantDense(LcpStorage storage, int n) {
+  return storage == LcpStorage::kDense || storage == LcpStorage::kBoth ||
+         (storage == LcpStorage::kAuto && n <= kMaxDenseLcp);
+}
+bool WantFactored(LcpStorage storage, int n) {
+  return storage == LcpStorage::kFactored || storage == LcpStorage::kBoth ||
+         (storage == LcpStorage::kAuto && n > kMaxDenseLcp);
+}
+
+// The factored form G W Gᵀ + K of an LCP with `rows` (the first rows of G;
+// the remaining n − rows.size() rows of G are zero) and K given as triplets.
+FactoredLcpMatrix Factored(const std::vector<const JacobianRow*>& rows, int n,
+                           const std::vector<BodyDynamics>& bodies,
+                           const std::vector<Eigen::Triplet<double>>& k_entries) {
+  const int nb = static_cast<int>(bodies.size());
+  std::vector<Eigen::Triplet<double>> g;
+  g.reserve(rows.size() * 6);
+  for (size_t r = 0; r < rows.size(); ++r)
+    for (int k = 0; k < 2; ++k)
+      if (rows[r]->body[k] >= 0)
+        for (int a = 0; a < 3; ++a)
+          if (rows[r]->g[k][a] != 0.0)
+            g.emplace_back(static_cast<int>(r), 3 * rows[r]->body[k] + a, rows[r]->g[k][a]);
+  std::vector<Eigen::Triplet<double>> w;
+  w.reserve(9 * nb);
+  for (int b = 0; b < nb; ++b) {
+    const Eigen::Matrix3d Wb = bodies[b].InverseMass();
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j)
+        if (Wb(i, j) != 0.0) w.emplace_back(3 * b + i, 3 * b + j, Wb(i, j));
+  }
+  SparseMatrixX G(n, 3 * nb), W(3 * nb, 3 * nb), K(n, n);
+  G.setFromTriplets(g.begin(), g.end());
+  W.setFromTriplets(w.begin(), w.end());
+  K.setFromTriplets(k_entries.begin(), k_entries.end());
+  return FactoredLcpMatrix(G, W, K);
+}
+
 }  // namespace
 
 ContactLcp BuildContactLcp(std::vector<BodyDynamics> bodies, std::vector<Contact> contacts,
-                           Formulation formulation, double dt, bool use_gaps) {
+                           Formulation formulation, double dt, bool use_gaps, LcpStorage storage) {
   ContactLcp lcp;
   lcp.formulation = formulation;
   lcp.dt = dt;
@@ -149,7 +187,8 @@ ContactLcp BuildContactLcp(std::vector<BodyDynamics> bodies, std::vector<Contact
   if (formulation == Formulation::kBaraff) {
     std::vector<const JacobianRow*> rows;
     for (const auto& r : lcp.normal_rows) rows.push_back(&r);
-    lcp.M = Delassus(rows, lcp.bodies);
+    if (WantDense(storage, nc)) lcp.M = Delassus(rows, lcp.bodies);
+    if (WantFactored(storage, nc)) lcp.factored = Factored(rows, nc, lcp.bodies, {});
     lcp.q.resize(nc);
     for (int c = 0; c < nc; ++c) lcp.q(c) = lcp.normal_rows[c].Dot(free_motion);
     return lcp;
@@ -176,22 +215,46 @@ ContactLcp BuildContactLcp(std::vector<BodyDynamics> bodies, std::vector<Contact
   for (const auto& r : friction_rows) rows.push_back(&r);
   const int nr = nc + 2 * nf;
   const int n = nr + nf;
-  lcp.M = MatrixX::Zero(n, n);
-  lcp.M.topLeftCorner(nr, nr) = Delassus(rows, lcp.bodies);
+  // K: λ enters both friction rows (E); μ p_n − Eᵀ p_f ≥ 0.
+  std::vector<Eigen::Triplet<double>> k_entries;
+  for (int f = 0; f < nf; ++f) {
+    const int lam = nr + f;
+    k_entries.emplace_back(nc + 2 * f, lam, 1.0);
+    k_entries.emplace_back(nc + 2 * f + 1, lam, 1.0);
+    k_entries.emplace_back(lam, contact_of[f], mu_of[f]);
+    k_entries.emplace_back(lam, nc + 2 * f, -1.0);
+    k_entries.emplace_back(lam, nc + 2 * f + 1, -1.0);
+  }
+  if (WantDense(storage, n)) {
+    lcp.M = MatrixX::Zero(n, n);
+    lcp.M.topLeftCorner(nr, nr) = Delassus(rows, lcp.bodies);
+    for (const auto& t : k_entries) lcp.M(t.row(), t.col()) = t.value();
+  }
+  if (WantFactored(storage, n)) lcp.factored = Factored(rows, n, lcp.bodies, k_entries);
   lcp.q = VectorX::Zero(n);
   for (int r = 0; r < nr; ++r) lcp.q(r) = rows[r]->Dot(free_motion);
   if (use_gaps)
     for (int c = 0; c < nc; ++c) lcp.normal_offset(c) = lcp.contacts[c].gap / dt;
   lcp.q.head(nc) += lcp.normal_offset;
-  for (int f = 0; f < nf; ++f) {
-    const int lam = nr + f;
-    lcp.M(nc + 2 * f, lam) = 1.0;  // E: λ enters both friction rows
-    lcp.M(nc + 2 * f + 1, lam) = 1.0;
-    lcp.M(lam, contact_of[f]) = mu_of[f];  // μ p_n − Eᵀ p_f ≥ 0
-    lcp.M(lam, nc + 2 * f) = -1.0;
-    lcp.M(lam, nc + 2 * f + 1) = -1.0;
-  }
   return lcp;
+}
+
+VectorX ContactLcp::Multiply(const VectorX& z) const {
+  if (has_dense()) return M * z;
+  VectorX out;
+  factored.Multiply(z, &out);
+  return out;
+}
+
+LcpResult SolveContactLcp(const ContactLcp& lcp, const LemkeParameters& params,
+                          const LcpBasis* warm_start) {
+  if (lcp.has_dense()) return SolveLemke(lcp.M, lcp.q, params, warm_start);
+  return SolveLemkeFactored(lcp.factored, lcp.q, params, warm_start);
+}
+
+bool IsContactLcpSolution(const ContactLcp& lcp, const VectorX& z, double tol) {
+  if (lcp.has_dense()) return IsLcpSolution(lcp.M, lcp.q, z, tol);
+  return IsLcpSolution(lcp.factored, lcp.q, z, tol);
 }
 
 ContactSolution RecoverSolution(const ContactLcp& lcp, const VectorX& z) {
@@ -233,7 +296,7 @@ ContactSolution RecoverSolution(const ContactLcp& lcp, const VectorX& z) {
 
   // Contact motions, and their agreement with the LCP's w: the normal rows
   // are G ν (+ d/Δt), the friction rows ±J_t ν + λ.
-  const VectorX w = lcp.M * z + lcp.q;
+  const VectorX w = lcp.Multiply(z) + lcp.q;
   double residual = 0;
   for (int c = 0; c < nc; ++c) {
     s.normal_motion(c) = lcp.normal_rows[c].Dot(s.body_motion);

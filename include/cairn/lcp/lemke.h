@@ -96,4 +96,8 @@ double LcpResidual(const MatrixX& M, const VectorX& q, const VectorX& z);
 /// solver, it re-checks any answer.
 bool IsLcpSolution(const MatrixX& M, const VectorX& q, const VectorX& z, double tol);
 
+/// IsLcpSolution with w = M z + q already computed: z ≥ −tol, w ≥ −tol and
+/// |z_i w_i| ≤ tol · max(1, |z_i|, |w_i|).
+bool IsComplementarySolution(const VectorX& z, const VectorX& w, double tol);
+
 }  // namespace cairn

@@ -38,6 +38,7 @@
 
 #include "cairn/contact/contact.h"
 #include "cairn/core/types.h"
+#include "cairn/lcp/factored_lcp.h"
 
 namespace cairn {
 
@@ -78,6 +79,19 @@ struct BodyDynamics {
   Eigen::Matrix3d FreeProjector() const;
 };
 
+/// How the LCP matrix of a component is stored.
+enum class LcpStorage {
+  kAuto,      ///< dense up to kMaxDenseLcp variables, factored above
+  kDense,     ///< ContactLcp::M only
+  kFactored,  ///< ContactLcp::factored only
+  kBoth,      ///< both (tests compare the two solvers)
+};
+
+/// The largest LCP that kAuto stores densely. Above it the factored solver is
+/// faster: its pivot costs O(k² + nnz(G)) against the dense tableau's O(n²)
+/// (docs/benchmarks.md, "Dense and factored Lemke").
+inline constexpr int kMaxDenseLcp = 96;
+
 /// A row of G: a linear form on the generalised velocities of at most two bodies.
 struct JacobianRow {
   int body[2] = {-1, -1};  ///< local body indices, -1 when fixed/world
@@ -96,16 +110,34 @@ struct ContactLcp {
   std::vector<JacobianRow> normal_rows;   ///< (nc) J_n
   std::vector<JacobianRow> tangent_rows;  ///< (nc) J_t (every contact, for reporting)
   VectorX normal_offset;  ///< (nc) d/Δt in the normal rows (S–T with gaps), else 0
-  MatrixX M;              ///< (n x n) n = nc (Baraff) or nc + 3 nf (Stewart–Trinkle)
-  VectorX q;              ///< (n)
+  /// (n x n) n = nc (Baraff) or nc + 3 nf (Stewart–Trinkle); empty when the
+  /// storage is kFactored (or kAuto above kMaxDenseLcp).
+  MatrixX M;
+  /// The same matrix as G W Gᵀ + K: G the rows above (plus zero rows for λ),
+  /// W the block-diagonal effective inverse mass, K the E/μ blocks. Empty
+  /// (size 0) when the storage is kDense (or kAuto up to kMaxDenseLcp).
+  FactoredLcpMatrix factored;
+  VectorX q;  ///< (n)
   int size() const { return static_cast<int>(q.size()); }
+  bool has_dense() const { return M.rows() == q.size(); }
+  /// M z, from whichever storage is present.
+  VectorX Multiply(const VectorX& z) const;
 };
 
 /// Builds the LCP of one component. `gaps` uses each contact's gap (length)
 /// in the Stewart–Trinkle d/Δt term when true, else treats every contact as
 /// closed (d = 0, for a static check).
 ContactLcp BuildContactLcp(std::vector<BodyDynamics> bodies, std::vector<Contact> contacts,
-                           Formulation formulation, double dt, bool use_gaps);
+                           Formulation formulation, double dt, bool use_gaps,
+                           LcpStorage storage = LcpStorage::kAuto);
+
+/// Solves the component's LCP: SolveLemke on the dense M when it is stored,
+/// else SolveLemkeFactored.
+LcpResult SolveContactLcp(const ContactLcp& lcp, const LemkeParameters& params = {},
+                          const LcpBasis* warm_start = nullptr);
+
+/// IsLcpSolution on whichever storage is present.
+bool IsContactLcpSolution(const ContactLcp& lcp, const VectorX& z, double tol);
 
 /// The solution of a component's LCP in physical terms.
 struct ContactSolution {

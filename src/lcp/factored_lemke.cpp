@@ -1,0 +1,658 @@
+// Lemke's method on a factored LCP matrix M = G W Gᵀ + K (see factored_lcp.h).
+//
+// Notation. The system is w − M z − d z₀ = q with covering vector d. A basis
+// of Lemke's path splits the indices i into
+//   kW    w_i basic (z_i = 0),
+//   kZ    z_i basic (w_i = 0),
+//   kNone both nonbasic: the one index whose complement enters next
+// (and z₀ basic or not). The rows R = {i : w_i nonbasic} and the basic
+// "columns" Z = {basic z_j} ∪ {z₀ if basic} have equal size k, and the basic
+// values solve the reduced system
+//
+//     C x = −q_R,   C = [M(R, Z) | d_R]   (k × k),
+//
+// while every basic w is w_i = q_i + M(i, Z) x (+ d_i z₀). We keep H = C⁻¹
+// explicitly (rows of H ↔ positions of Z, columns ↔ positions of R) and the
+// values x and w.
+//
+// Entering variable at level t. For z_c or z₀ with column a of [M | d]:
+// x(t) = x − t H a_R, w(t) = w + t (a − M(:, Z) H a_R). For w_c, c at
+// position s of R: x(t) = x + t H(:, s), w(t) = w + t M(:, Z) H(:, s). In
+// both, Δ (the rate of x) and ω (the rate of w) give the ratio test; the
+// pivot changes C by one row, one column, or both, and H follows by a rank-one
+// formula in O(k²):
+//   z enters, w_i leaves   C grows by row i and column a   (bordering)
+//   z enters, z_l leaves   column of z_l replaced by a      (Sherman–Morrison)
+//   w_c enters, w_i leaves row c replaced by row i          (Sherman–Morrison)
+//   w_c enters, z_l leaves row c and column z_l removed     (Schur complement)
+// Every kRefactorEvery pivots H is recomputed from C by LU and the values from
+// q, which bounds the drift of the updates.
+//
+// Scale. The data are divided by s = max(|q|∞, M's magnitude bound): z is
+// unchanged, w and z₀ scale by 1/s, so the tolerances are relative.
+
+#include <Eigen/LU>
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <sstream>
+
+#include "cairn/core/check.h"
+#include "cairn/lcp/factored_lcp.h"
+#include "perturbation.h"
+
+namespace cairn {
+
+FactoredLcpMatrix::FactoredLcpMatrix(const SparseMatrixX& G, const SparseMatrixX& W,
+                                     const SparseMatrixX& K)
+    : G_(G), K_(K) {
+  const Eigen::Index n = G.rows(), d = G.cols();
+  CAIRN_THROW_UNLESS(W.rows() == d && W.cols() == d && K.rows() == n && K.cols() == n,
+                     "FactoredLcpMatrix: G is " << n << "x" << d << ", W " << W.rows() << "x"
+                                                << W.cols() << ", K " << K.rows() << "x"
+                                                << K.cols());
+  const auto finite = [](const SparseMatrixX& A) {
+    for (Eigen::Index i = 0; i < A.nonZeros(); ++i)
+      if (!std::isfinite(A.valuePtr()[i])) return false;
+    return true;
+  };
+  CAIRN_THROW_UNLESS(finite(G) && finite(W) && finite(K),
+                     "FactoredLcpMatrix: a NaN or infinite entry");
+  G_.makeCompressed();
+  K_.makeCompressed();
+  Y_ = (W * G.transpose()).pruned();
+  Kt_ = K.transpose();
+  // M_ii = G_i W G_iᵀ + K_ii bounds |(G W Gᵀ)_ij| (W PSD).
+  double m = 0;
+  for (Eigen::Index j = 0; j < n; ++j) {
+    double mjj = 0;
+    for (SparseMatrixX::InnerIterator y(Y_, j); y; ++y)
+      for (SparseMatrixX::InnerIterator g(G_, y.row()); g; ++g)
+        if (g.row() == j) mjj += g.value() * y.value();
+    m = std::max(m, std::abs(mjj));
+  }
+  for (Eigen::Index i = 0; i < K_.nonZeros(); ++i) m = std::max(m, std::abs(K_.valuePtr()[i]));
+  magnitude_ = m;
+}
+
+void FactoredLcpMatrix::Multiply(const VectorX& z, VectorX* out) const {
+  const VectorX u = Y_ * z;
+  *out = G_ * u;
+  *out += K_ * z;
+}
+
+void FactoredLcpMatrix::Column(int j, VectorX* out) const {
+  out->setZero(size());
+  for (SparseMatrixX::InnerIterator y(Y_, j); y; ++y)
+    for (SparseMatrixX::InnerIterator g(G_, y.row()); g; ++g)
+      (*out)[g.row()] += g.value() * y.value();
+  for (SparseMatrixX::InnerIterator k(K_, j); k; ++k) (*out)[k.row()] += k.value();
+}
+
+void FactoredLcpMatrix::Row(int i, VectorX* out) const {
+  // (G W Gᵀ)(i, :) = (G W Gᵀ)(:, i)ᵀ since W is symmetric.
+  out->setZero(size());
+  for (SparseMatrixX::InnerIterator y(Y_, i); y; ++y)
+    for (SparseMatrixX::InnerIterator g(G_, y.row()); g; ++g)
+      (*out)[g.row()] += g.value() * y.value();
+  for (SparseMatrixX::InnerIterator k(Kt_, i); k; ++k) (*out)[k.row()] += k.value();
+}
+
+void FactoredLcpMatrix::AddColumns(const std::vector<int>& cols, const double* coef, VectorX* out,
+                                   VectorX* u) const {
+  u->setZero(inner_size());
+  for (size_t p = 0; p < cols.size(); ++p) {
+    const double c = coef[p];
+    if (c == 0.0) continue;
+    for (SparseMatrixX::InnerIterator y(Y_, cols[p]); y; ++y) (*u)[y.row()] += c * y.value();
+    for (SparseMatrixX::InnerIterator k(K_, cols[p]); k; ++k) (*out)[k.row()] += c * k.value();
+  }
+  out->noalias() += G_ * (*u);
+}
+
+MatrixX FactoredLcpMatrix::ToDense() const {
+  MatrixX M = MatrixX(G_ * Y_);
+  M += MatrixX(K_);
+  return M;
+}
+
+double LcpResidual(const FactoredLcpMatrix& M, const VectorX& q, const VectorX& z) {
+  CAIRN_THROW_UNLESS(z.size() == M.size() && q.size() == M.size(),
+                     "LcpResidual: sizes " << M.size() << ", " << q.size() << ", " << z.size());
+  VectorX w;
+  M.Multiply(z, &w);
+  w += q;
+  double r = 0;
+  for (Eigen::Index i = 0; i < z.size(); ++i) r = std::max(r, std::abs(std::min(z[i], w[i])));
+  return r;
+}
+
+bool IsLcpSolution(const FactoredLcpMatrix& M, const VectorX& q, const VectorX& z, double tol) {
+  if (z.size() != M.size() || q.size() != M.size()) return false;
+  VectorX w;
+  M.Multiply(z, &w);
+  w += q;
+  return IsComplementarySolution(z, w, tol);
+}
+
+namespace {
+
+constexpr double kEps = std::numeric_limits<double>::epsilon();
+// Pivots between recomputations of H and of the values.
+constexpr int kRefactorEvery = 64;
+
+enum class Role : unsigned char { kW, kZ, kNone };
+
+// How one attempt along Lemke's path ended.
+enum class PathEnd { kSolution, kRay, kPivotLimit, kSingular };
+
+class Path {
+ public:
+  Path(const FactoredLcpMatrix& M, const VectorX& q_scaled, double inv_scale, double tol)
+      : M_(M),
+        n_(M.size()),
+        q_(q_scaled),
+        inv_s_(inv_scale),
+        tol_(tol),
+        role_(n_, Role::kW),
+        row_pos_(n_, -1),
+        col_pos_(n_, -1),
+        w_(VectorX::Zero(n_)),
+        d_(VectorX::Ones(n_)),
+        a_(n_),
+        omega_(n_),
+        scratch_(n_) {}
+
+  int pivots() const { return pivots_; }
+
+  // Sets the complementary basis {z_i basic : basic_z[i]} and its values.
+  // Returns false when its reduced matrix is singular.
+  bool SetBasis(const std::vector<bool>& basic_z) {
+    rows_.clear();
+    cols_.clear();
+    for (int i = 0; i < n_; ++i) {
+      role_[i] = basic_z[i] ? Role::kZ : Role::kW;
+      row_pos_[i] = col_pos_[i] = -1;
+      if (basic_z[i]) {
+        row_pos_[i] = col_pos_[i] = static_cast<int>(rows_.size());
+        rows_.push_back(i);
+        cols_.push_back(i);
+      }
+    }
+    z0_pos_ = -1;
+    return Refactor() && (RecomputeValues(), true);
+  }
+
+  // True when the current complementary basis is feasible (up to `slack`).
+  bool Feasible(double slack) const {
+    for (int p = 0; p < k(); ++p)
+      if (x_[p] < -slack) return false;
+    for (int i = 0; i < n_; ++i)
+      if (role_[i] == Role::kW && w_[i] < -slack) return false;
+    return true;
+  }
+
+  // Follows Lemke's path from the current complementary basis until z₀
+  // leaves, a ray, the pivot limit or a singular basis.
+  PathEnd Follow(int max_pivots) {
+    // The covering vector d = B·1: every basic value grows at unit rate with
+    // z₀. On the rows R, C·1 + d_R = 0 ⇒ d_R = −M(R, Z)·1; on a basic w,
+    // M(i, Z)·1 + d_i = 1.
+    {
+      std::vector<double> ones(cols_.size(), 1.0);
+      scratch_.setZero(n_);
+      M_.AddColumns(cols_, ones.data(), &scratch_, &u_);
+      scratch_ *= inv_s_;
+      for (int i = 0; i < n_; ++i) d_[i] = role_[i] == Role::kW ? 1.0 - scratch_[i] : -scratch_[i];
+    }
+    // z₀ enters at −min(basic values); the most negative leaves.
+    double v_min = std::numeric_limits<double>::infinity();
+    int first_row = -1, first_col = -1;
+    for (int i = 0; i < n_; ++i)
+      if (role_[i] == Role::kW && w_[i] < v_min) v_min = w_[i], first_row = i, first_col = -1;
+    for (int p = 0; p < k(); ++p)
+      if (x_[p] < v_min) v_min = x_[p], first_col = p, first_row = -1;
+    CAIRN_CHECK(v_min < 0);
+    // Rates: Δ = +1 on x, ω = +1 on w (by the choice of d).
+    delta_.setOnes(k());
+    omega_.setZero(n_);
+    for (int i = 0; i < n_; ++i)
+      if (role_[i] == Role::kW) omega_[i] = 1.0;
+    a_ = d_;
+    if (!Exchange(/*enter_z=*/-1, /*enter_w=*/-1, first_row, first_col, -v_min)) {
+      return PathEnd::kSingular;
+    }
+    ++pivots_;
+
+    while (true) {
+      if (pivots_ >= max_pivots) return PathEnd::kPivotLimit;
+      if (pivots_ % kRefactorEvery == 0) {
+        if (!Refactor()) return PathEnd::kSingular;
+        RecomputeValues();
+      }
+      // The entering variable: the complement of the last one to leave.
+      const int c = none_;
+      const bool enter_w = last_left_z_;
+      if (enter_w) {
+        // w_c enters: x(t) = x + t H(:, s).
+        const int s = row_pos_[c];
+        delta_ = H_.col(s).head(k());
+        omega_.setZero(n_);
+        M_.AddColumns(cols_z_view(), delta_view().data(), &omega_, &u_);
+        omega_ *= inv_s_;
+        if (z0_pos_ >= 0) omega_ += delta_[z0_pos_] * d_;
+      } else {
+        // z_c enters with column a = M(:, c)/s.
+        M_.Column(c, &a_);
+        a_ *= inv_s_;
+        Restrict(a_, &aR_);
+        delta_ = -(H_.topLeftCorner(k(), k()) * aR_);
+        omega_ = a_;
+        scratch_.setZero(n_);
+        M_.AddColumns(cols_z_view(), delta_view().data(), &scratch_, &u_);
+        omega_ += scratch_ * inv_s_;
+        if (z0_pos_ >= 0) omega_ += delta_[z0_pos_] * d_;
+      }
+      // Ratio test: basic values decrease where Δ_p < 0 or ω_i < 0.
+      double theta = std::numeric_limits<double>::infinity();
+      double best_rate = 0;
+      int leave_row = -1, leave_col = -1;
+      const auto consider = [&](double value, double rate, int row, int col) {
+        // rate > tol: decreasing. Smaller ratio wins; ties go to the larger rate.
+        const double ratio = std::max(value, 0.0) / rate;
+        if (ratio < theta || (ratio == theta && rate > best_rate)) {
+          theta = ratio, best_rate = rate, leave_row = row, leave_col = col;
+        }
+      };
+      double col_scale = std::max(1.0, delta_.head(k()).cwiseAbs().maxCoeff());
+      for (int p = 0; p < k(); ++p)
+        if (-delta_[p] > tol_ * col_scale) consider(x_[p], -delta_[p], -1, p);
+      double row_scale = 1.0;
+      for (int i = 0; i < n_; ++i)
+        if (role_[i] == Role::kW) row_scale = std::max(row_scale, std::abs(omega_[i]));
+      for (int i = 0; i < n_; ++i)
+        if (role_[i] == Role::kW && -omega_[i] > tol_ * row_scale)
+          consider(w_[i], -omega_[i], i, -1);
+      if (leave_row < 0 && leave_col < 0) return PathEnd::kRay;
+      // z₀ leaves whenever its ratio is within the tolerance of the minimum.
+      if (z0_pos_ >= 0 && -delta_[z0_pos_] > tol_ * col_scale) {
+        const double r0 = std::max(x_[z0_pos_], 0.0) / -delta_[z0_pos_];
+        if (r0 <= theta + tol_ * std::max(1.0, theta)) leave_row = -1, leave_col = z0_pos_;
+        if (leave_col == z0_pos_) theta = r0;
+      }
+      if (!Exchange(enter_w ? -1 : c, enter_w ? c : -1, leave_row, leave_col, theta))
+        return PathEnd::kSingular;
+      ++pivots_;
+      if (z0_pos_ < 0) return PathEnd::kSolution;
+    }
+  }
+
+  // The complementary basis and z of the current iterate (z₀ dropped).
+  void Extract(VectorX* z, LcpBasis* basis) const {
+    z->setZero(n_);
+    basis->basic_z.assign(n_, false);
+    for (int p = 0; p < k(); ++p) {
+      if (cols_[p] < 0) continue;
+      (*z)[cols_[p]] = x_[p];
+      basis->basic_z[cols_[p]] = true;
+    }
+  }
+
+ private:
+  int k() const { return static_cast<int>(cols_.size()); }
+
+  // The z columns of Z with their Δ, for AddColumns (z₀'s column is d, added
+  // separately): a copy with z₀'s slot given coefficient 0.
+  const std::vector<int>& cols_z_view() {
+    cols_z_.assign(cols_.begin(), cols_.end());
+    for (auto& j : cols_z_)
+      if (j < 0) j = 0;
+    return cols_z_;
+  }
+  const VectorX& delta_view() {
+    delta_z_ = delta_.head(k());
+    if (z0_pos_ >= 0) delta_z_[z0_pos_] = 0.0;
+    return delta_z_;
+  }
+
+  void Restrict(const VectorX& full, VectorX* out) const {
+    out->resize(k());
+    for (int s = 0; s < k(); ++s) (*out)[s] = full[rows_[s]];
+  }
+
+  // Row i of [M/s | d] over the columns Z.
+  void RowOverZ(int i, VectorX* r) {
+    M_.Row(i, &scratch_);
+    r->resize(k());
+    for (int p = 0; p < k(); ++p) (*r)[p] = cols_[p] < 0 ? d_[i] : scratch_[cols_[p]] * inv_s_;
+  }
+
+  void EnsureCapacity(int size) {
+    if (H_.rows() >= size) return;
+    const int cap = std::max(size, 2 * static_cast<int>(H_.rows()) + 8);
+    H_.conservativeResize(cap, cap);
+    x_.conservativeResize(cap);
+  }
+
+  // Rebuilds C from the data and H = C⁻¹ by LU. False when C is singular.
+  bool Refactor() {
+    const int kk = k();
+    EnsureCapacity(kk + 1);
+    if (kk == 0) return true;
+    C_.resize(kk, kk);
+    for (int p = 0; p < kk; ++p) {
+      if (cols_[p] < 0) {
+        for (int s = 0; s < kk; ++s) C_(s, p) = d_[rows_[s]];
+      } else {
+        M_.Column(cols_[p], &scratch_);
+        for (int s = 0; s < kk; ++s) C_(s, p) = scratch_[rows_[s]] * inv_s_;
+      }
+    }
+    const Eigen::PartialPivLU<MatrixX> lu(C_);
+    const double u_min = lu.matrixLU().diagonal().cwiseAbs().minCoeff();
+    const double c_max = C_.cwiseAbs().maxCoeff();
+    if (!(u_min > kk * kEps * c_max)) return false;
+    H_.topLeftCorner(kk, kk) = lu.inverse();
+    return H_.topLeftCorner(kk, kk).allFinite();
+  }
+
+  // x = −H q_R and w = q + [M/s | d](:, Z) x on the basic w.
+  void RecomputeValues() {
+    Restrict(q_, &aR_);
+    x_.head(k()) = -(H_.topLeftCorner(k(), k()) * aR_);
+    delta_ = x_.head(k());
+    scratch_.setZero(n_);
+    M_.AddColumns(cols_z_view(), delta_view().data(), &scratch_, &u_);
+    w_ = q_ + scratch_ * inv_s_;
+    if (z0_pos_ >= 0) w_ += x_[z0_pos_] * d_;
+  }
+
+  // The pivot. The entering variable is z_{enter_z} (or z₀ when both enter_z
+  // and enter_w are −1), or w_{enter_w}; the leaving one is the basic w of
+  // row `leave_row` or the variable at position `leave_col` of Z. Rates Δ, ω
+  // (and for an entering column, a) are those of the ratio test; θ the step.
+  bool Exchange(int enter_z, int enter_w, int leave_row, int leave_col, double theta) {
+    const int kk = k();
+    // Move every basic value by θ along the rates.
+    x_.head(kk) += theta * delta_.head(kk);
+    for (int i = 0; i < n_; ++i)
+      if (role_[i] == Role::kW) w_[i] += theta * omega_[i];
+    if (enter_w < 0) {
+      // A column enters: z_{enter_z}, or z₀ with column d. h = H a_R = −Δ.
+      const int var = enter_z;  // −1 for z₀
+      const VectorX h = -delta_.head(kk);
+      if (leave_row >= 0) {
+        // Bordering: C grows by row `leave_row` and the entering column.
+        const int i = leave_row;
+        RowOverZ(i, &r_);
+        const double s = omega_[i];  // a_i − r·h
+        if (!(std::abs(s) > 0) || !std::isfinite(s)) return false;
+        EnsureCapacity(kk + 1);
+        const VectorX rH = (r_.transpose() * H_.topLeftCorner(kk, kk)).transpose();
+        H_.topLeftCorner(kk, kk).noalias() += (h / s) * rH.transpose();
+        H_.block(0, kk, kk, 1) = -h / s;
+        H_.block(kk, 0, 1, kk) = -rH.transpose() / s;
+        H_(kk, kk) = 1.0 / s;
+        rows_.push_back(i);
+        row_pos_[i] = kk;
+        cols_.push_back(var);
+        if (var >= 0)
+          col_pos_[var] = kk;
+        else
+          z0_pos_ = kk;
+        x_[kk] = theta;
+        role_[i] = Role::kNone;
+        w_[i] = 0;
+        none_ = i;
+        last_left_z_ = false;
+      } else {
+        // Column replacement at position p.
+        const int p = leave_col;
+        const double hp = h[p];
+        if (!(std::abs(hp) > 0) || !std::isfinite(hp)) return false;
+        const Eigen::RowVectorXd Hp = H_.row(p).head(kk) / hp;
+        VectorX u = h;
+        u[p] -= 1.0;
+        H_.topLeftCorner(kk, kk).noalias() -= u * Hp;
+        const int leaving = cols_[p];
+        cols_[p] = var;
+        if (var >= 0)
+          col_pos_[var] = p;
+        else
+          z0_pos_ = p;
+        x_[p] = theta;
+        if (leaving < 0) {
+          z0_pos_ = -1;  // z₀ left: complementary.
+        } else {
+          col_pos_[leaving] = -1;
+          role_[leaving] = Role::kNone;
+          none_ = leaving;
+          last_left_z_ = true;
+        }
+        if (var >= 0) role_[var] = Role::kZ;
+      }
+      if (var >= 0) role_[var] = Role::kZ;
+      return true;
+    }
+    // w_c enters: row c (position s) leaves R.
+    const int c = enter_w;
+    const int s = row_pos_[c];
+    if (leave_row >= 0) {
+      // Row replacement at s by row `leave_row`.
+      const int i = leave_row;
+      RowOverZ(i, &r_);
+      const VectorX Hs = H_.col(s).head(kk);
+      Eigen::RowVectorXd rH = r_.transpose() * H_.topLeftCorner(kk, kk);
+      const double den = rH[s];
+      if (!(std::abs(den) > 0) || !std::isfinite(den)) return false;
+      rH[s] -= 1.0;
+      H_.topLeftCorner(kk, kk).noalias() -= (Hs / den) * rH;
+      rows_[s] = i;
+      row_pos_[i] = s;
+      row_pos_[c] = -1;
+      role_[c] = Role::kW;
+      w_[c] = theta;
+      role_[i] = Role::kNone;
+      w_[i] = 0;
+      none_ = i;
+      last_left_z_ = false;
+      return true;
+    }
+    // Shrink: remove position p of Z and position s of R.
+    const int p = leave_col;
+    const double hps = H_(p, s);
+    if (!(std::abs(hps) > 0) || !std::isfinite(hps)) return false;
+    const VectorX Hcol = H_.col(s).head(kk);
+    const Eigen::RowVectorXd Hrow = H_.row(p).head(kk) / hps;
+    H_.topLeftCorner(kk, kk).noalias() -= Hcol * Hrow;
+    const int last = kk - 1;
+    const int leaving = cols_[p];
+    if (p != last) {
+      H_.row(p).head(kk) = H_.row(last).head(kk);
+      x_[p] = x_[last];
+      cols_[p] = cols_[last];
+      if (cols_[p] >= 0)
+        col_pos_[cols_[p]] = p;
+      else
+        z0_pos_ = p;
+    }
+    if (s != last) {
+      H_.col(s).head(kk) = H_.col(last).head(kk);
+      rows_[s] = rows_[last];
+      row_pos_[rows_[s]] = s;
+    }
+    cols_.pop_back();
+    rows_.pop_back();
+    row_pos_[c] = -1;
+    role_[c] = Role::kW;
+    w_[c] = theta;
+    if (leaving < 0) {
+      z0_pos_ = -1;
+    } else {
+      col_pos_[leaving] = -1;
+      role_[leaving] = Role::kNone;
+      none_ = leaving;
+      last_left_z_ = true;
+    }
+    return true;
+  }
+
+  const FactoredLcpMatrix& M_;
+  int n_;
+  VectorX q_;  // scaled, perturbed
+  double inv_s_;
+  double tol_;
+  std::vector<Role> role_;
+  std::vector<int> row_pos_, col_pos_;
+  std::vector<int> rows_, cols_;  // R and Z (−1 = z₀) by position
+  int z0_pos_ = -1;
+  int none_ = -1;             // the index with w and z nonbasic
+  bool last_left_z_ = false;  // the last variable to leave was a z
+  int pivots_ = 0;
+  MatrixX H_, C_;
+  VectorX x_, w_, d_;
+  VectorX a_, aR_, r_, delta_, omega_, scratch_, u_, delta_z_;
+  std::vector<int> cols_z_;
+};
+
+struct Attempt {
+  PathEnd end = PathEnd::kSingular;
+  int pivots = 0;
+  VectorX z;
+  LcpBasis basis;
+};
+
+}  // namespace
+
+LcpResult SolveLemkeFactored(const FactoredLcpMatrix& M, const VectorX& q,
+                             const LemkeParameters& params, const LcpBasis* warm_start) {
+  const int n = M.size();
+  CAIRN_THROW_UNLESS(q.size() == n, "SolveLemkeFactored: M is " << n << "x" << n << " but q has "
+                                                                << q.size() << " entries");
+  CAIRN_THROW_UNLESS(q.allFinite(), "SolveLemkeFactored: q has a NaN or infinite entry");
+  LcpResult result;
+  if (n == 0) {
+    result.status = LcpStatus::kTrivial;
+    return result;
+  }
+  const double q_inf = q.cwiseAbs().maxCoeff();
+  const double accept = params.solution_tolerance * std::max(1.0, q_inf);
+  const auto finish = [&](VectorX z, const LcpBasis& basis) {
+    VectorX w;
+    M.Multiply(z, &w);
+    w += q;
+    double res = 0;
+    for (int i = 0; i < n; ++i) res = std::max(res, std::abs(std::min(z[i], w[i])));
+    result.z = std::move(z);
+    result.w = std::move(w);
+    result.residual = res;
+    result.basis = basis;
+    return res <= accept && IsComplementarySolution(result.z, result.w, accept);
+  };
+  if (q.minCoeff() >= 0.0) {
+    result.status = LcpStatus::kTrivial;
+    finish(VectorX::Zero(n), LcpBasis{std::vector<bool>(n, false)});
+    return result;
+  }
+  const double scale = std::max(M.MagnitudeBound(), q_inf);
+  const double inv_s = 1.0 / scale;
+  const double tol =
+      params.pivot_tolerance > 0.0 ? params.pivot_tolerance : static_cast<double>(n) * kEps * 16.0;
+  const int max_pivots = params.max_pivots > 0 ? params.max_pivots : std::max(1000, 50 * (n + 1));
+
+  // The basis re-solved with the true q: z_α = −M_αα⁻¹ q_α, one refinement.
+  const auto resolve = [&](const LcpBasis& basis, VectorX* z) {
+    Path exact(M, q * inv_s, inv_s, tol);
+    if (!exact.SetBasis(basis.basic_z)) return false;
+    LcpBasis unused;
+    exact.Extract(z, &unused);
+    return z->allFinite();
+  };
+
+  // One attempt from `start` (empty: cold) with perturbation seed `seed`.
+  const auto attempt = [&](const std::vector<bool>& start, uint64_t seed, int limit) {
+    Attempt a;
+    VectorX qs = q * inv_s;
+    for (int i = 0; i < n; ++i)
+      qs[i] += internal::kLcpPerturbation * internal::PerturbationWeight(seed, i);
+    Path path(M, qs, inv_s, tol);
+    if (!path.SetBasis(start)) return a;
+    if (path.Feasible(0.0)) {
+      a.end = PathEnd::kSolution;
+    } else {
+      a.end = path.Follow(limit);
+    }
+    a.pivots = path.pivots();
+    path.Extract(&a.z, &a.basis);
+    return a;
+  };
+
+  // Warm start: the previous basis, re-solved with the true q, may already
+  // solve the problem; else Lemke's path from it.
+  const bool warm = warm_start != nullptr && warm_start->basic_z.size() == static_cast<size_t>(n);
+  std::vector<bool> start(n, false);
+  if (warm) {
+    VectorX z;
+    if (resolve(*warm_start, &z) && finish(z, *warm_start)) {
+      result.status = LcpStatus::kSolved;
+      result.warm_start_used = true;
+      return result;
+    }
+    start = warm_start->basic_z;
+  }
+
+  std::ostringstream why;
+  for (int round = 0; round < 3; ++round) {
+    // Round 0: from the warm basis (if any), else cold; then cold with two
+    // other perturbations.
+    const bool from_warm = warm && round == 0;
+    const std::vector<bool> from = from_warm ? start : std::vector<bool>(n, false);
+    const int limit = from_warm ? std::min(max_pivots, 2 * n + 100) : max_pivots;
+    Attempt a = attempt(from, static_cast<uint64_t>(round), limit);
+    result.pivots += a.pivots;
+    if (a.end == PathEnd::kSolution) {
+      VectorX z;
+      if (resolve(a.basis, &z) && finish(z, a.basis)) {
+        result.status = LcpStatus::kSolved;
+        result.message.clear();
+        return result;
+      }
+      // Keep the perturbed iterate if it is the better answer.
+      if (finish(a.z, a.basis)) {
+        result.status = LcpStatus::kSolved;
+        result.message.clear();
+        return result;
+      }
+      result.status = LcpStatus::kNumericalFailure;
+      why.str("");
+      why << "final basis does not solve the LCP: natural-map residual " << result.residual << " > "
+          << accept;
+      result.message = why.str();
+      continue;
+    }
+    if (a.end == PathEnd::kRay) {
+      // A ray from the cold start proves there is no solution (M
+      // copositive-plus); one from a warm start proves nothing: retry cold.
+      if (from_warm) continue;
+      if (finish(a.z, a.basis)) {  // ended a roundoff away from a solution
+        result.status = LcpStatus::kSolved;
+        return result;
+      }
+      result.status = LcpStatus::kRayTermination;
+      result.message = "secondary ray: the entering column has no positive entry";
+      return result;
+    }
+    if (a.end == PathEnd::kPivotLimit) {
+      result.status = LcpStatus::kPivotLimit;
+      result.message = "pivot limit reached";
+      if (!from_warm) return result;
+      continue;
+    }
+    result.status = LcpStatus::kNumericalFailure;
+    result.message = "singular basis on the path";
+  }
+  return result;
+}
+
+}  // namespace cairn
