@@ -2,6 +2,8 @@
 // Small builders of AssemblyDefs for parametric physics tests.
 #include <cmath>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "cairn/geometry/assembly.h"
 
@@ -54,6 +56,33 @@ inline AssemblyDef Ladder(double theta, double mu, double l = 4.0, double t = 0.
 /// The exact critical floor friction of Ladder(): μ ≥ (x_foot − x_c) / y_top.
 inline double LadderCriticalMu(double theta, double l = 4.0, double t = 0.05) {
   return (l * std::cos(theta) / 2 - t * std::sin(theta) / 2) / (l * std::sin(theta));
+}
+
+/// A wall of `courses` courses of bricks 2 × 1 in running bond on a fixed
+/// ground, friction mu, g = (0, −9.81): even courses hold `bricks` full
+/// bricks, odd ones bricks − 1 full bricks between a half brick 1 × 1 at each
+/// end, so both end faces are flush. Brick k of course r is named "r<r>_<k>";
+/// the wall spans x ∈ [0, 2 bricks], y ∈ [0, courses]. Statically
+/// indeterminate: every brick face carries two contact points per neighbour.
+inline AssemblyDef RunningBondWall(int courses, int bricks, double mu = 0.6) {
+  AssemblyDef def;
+  def.name = "wall";
+  def.friction = mu;
+  def.parts.push_back(Box("ground", -2, -1, 2.0 * bricks + 2, 0, true));
+  for (int r = 0; r < courses; ++r) {
+    std::vector<std::pair<double, double>> spans;
+    if (r % 2 == 0) {
+      for (int k = 0; k < bricks; ++k) spans.emplace_back(2.0 * k, 2.0 * k + 2);
+    } else {
+      spans.emplace_back(0, 1);
+      for (int k = 0; k + 1 < bricks; ++k) spans.emplace_back(1 + 2.0 * k, 3 + 2.0 * k);
+      spans.emplace_back(2.0 * bricks - 1, 2.0 * bricks);
+    }
+    for (size_t k = 0; k < spans.size(); ++k)
+      def.parts.push_back(Box("r" + std::to_string(r) + "_" + std::to_string(k), spans[k].first, r,
+                              spans[k].second, r + 1.0));
+  }
+  return def;
 }
 
 }  // namespace cairn::testing

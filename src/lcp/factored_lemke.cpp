@@ -25,8 +25,9 @@
 //   z enters, z_l leaves   column of z_l replaced by a      (Sherman–Morrison)
 //   w_c enters, w_i leaves row c replaced by row i          (Sherman–Morrison)
 //   w_c enters, z_l leaves row c and column z_l removed     (Schur complement)
-// Every kRefactorEvery pivots H is recomputed from C by LU and the values from
-// q, which bounds the drift of the updates.
+// Every kRevalueEvery pivots the values are recomputed from H and q, and every
+// kRefactorEvery pivots H itself from C by LU, which bounds the drift of the
+// updates.
 //
 // Scale. The data are divided by s = max(|q|∞, M's magnitude bound): z is
 // unchanged, w and z₀ scale by 1/s, so the tolerances are relative.
@@ -139,8 +140,10 @@ bool IsLcpSolution(const FactoredLcpMatrix& M, const VectorX& q, const VectorX& 
 namespace {
 
 constexpr double kEps = std::numeric_limits<double>::epsilon();
-// Pivots between recomputations of H and of the values.
-constexpr int kRefactorEvery = 64;
+// Pivots between recomputations of the values from H (O(k² + nnz)), and
+// between refactorisations of H itself (O(k³): LU and inverse).
+constexpr int kRevalueEvery = 25;
+constexpr int kRefactorEvery = 400;
 
 enum class Role : unsigned char { kW, kZ, kNone };
 
@@ -229,6 +232,8 @@ class Path {
       if (pivots_ >= max_pivots) return PathEnd::kPivotLimit;
       if (pivots_ % kRefactorEvery == 0) {
         if (!Refactor()) return PathEnd::kSingular;
+        RecomputeValues();
+      } else if (pivots_ % kRevalueEvery == 0) {
         RecomputeValues();
       }
       // The entering variable: the complement of the last one to leave.
@@ -561,13 +566,31 @@ LcpResult SolveLemkeFactored(const FactoredLcpMatrix& M, const VectorX& q,
       params.pivot_tolerance > 0.0 ? params.pivot_tolerance : static_cast<double>(n) * kEps * 16.0;
   const int max_pivots = params.max_pivots > 0 ? params.max_pivots : std::max(1000, 50 * (n + 1));
 
-  // The basis re-solved with the true q: z_α = −M_αα⁻¹ q_α, one refinement.
+  // The basis re-solved with the true q: z_α = −M_αα⁻¹ q_α by LU (no
+  // inverse: this is the whole cost of a warm start that needs no pivot), one
+  // refinement step.
   const auto resolve = [&](const LcpBasis& basis, VectorX* z) {
-    Path exact(M, q * inv_s, inv_s, tol);
-    if (!exact.SetBasis(basis.basic_z)) return false;
-    LcpBasis unused;
-    exact.Extract(z, &unused);
-    return z->allFinite();
+    std::vector<int> alpha;
+    for (int i = 0; i < n; ++i)
+      if (basis.basic_z[i]) alpha.push_back(i);
+    z->setZero(n);
+    const int k = static_cast<int>(alpha.size());
+    if (k == 0) return true;
+    MatrixX C(k, k);
+    VectorX col, rhs(k);
+    for (int p = 0; p < k; ++p) {
+      M.Column(alpha[p], &col);
+      for (int s = 0; s < k; ++s) C(s, p) = col[alpha[s]];
+      rhs[p] = -q[alpha[p]];
+    }
+    const Eigen::PartialPivLU<MatrixX> lu(C);
+    const double u_min = lu.matrixLU().diagonal().cwiseAbs().minCoeff();
+    if (!(u_min > k * kEps * C.cwiseAbs().maxCoeff())) return false;
+    VectorX x = lu.solve(rhs);
+    x += lu.solve(rhs - C * x);
+    if (!x.allFinite()) return false;
+    for (int p = 0; p < k; ++p) (*z)[alpha[p]] = x[p];
+    return true;
   };
 
   // One attempt from `start` (empty: cold) with perturbation seed `seed`.
