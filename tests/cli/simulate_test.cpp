@@ -42,6 +42,26 @@ TEST(Simulate, PaperFig1_DCBAStandsAndCFirstFailsWhenCLeaves) {
   EXPECT_EQ(doc["steps"][0]["time_steps"], 2);
 }
 
+// The 105-part wall from the CLI: `check` stands, pulling an end brick out
+// fails at the first move with the bricks above it named.
+TEST(Simulate, WallChecksStableAndPullingAnEndBrickDragsTheBricksAbove) {
+  const CliRun check = Cairn("check " + ExamplePath("wall.json") + " --json");
+  ASSERT_EQ(check.exit_code, 0) << check.err;
+  EXPECT_EQ(nlohmann::json::parse(check.out)["verdict"], "stable");
+
+  const CliRun pull =
+      Cairn("simulate " + ExamplePath("wall.json") + " " + Plan("wall_pull_r4_9") + " --json");
+  ASSERT_EQ(pull.exit_code, 1) << pull.err;
+  const auto doc = nlohmann::json::parse(pull.out);
+  EXPECT_EQ(doc["verdict"], "unstable");
+  ASSERT_TRUE(doc["failure"].is_object());
+  EXPECT_DOUBLE_EQ(doc["failure"]["time"].get<double>(), 0.04);
+  const std::string parts = doc["failure"]["parts"].dump();
+  EXPECT_NE(parts.find("\"r5_9\""), std::string::npos) << parts;
+  EXPECT_NE(parts.find("\"r5_10\""), std::string::npos) << parts;
+  EXPECT_EQ(parts.find("\"r4_"), std::string::npos) << parts;
+}
+
 TEST(Simulate, ContinueGivesEveryStepAVerdict) {
   const CliRun r = Cairn("simulate " + ExamplePath("paper_fig1.json") + " " +
                          Plan("paper_fig1_c_first") + " --json --continue");

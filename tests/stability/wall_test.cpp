@@ -73,5 +73,38 @@ TEST(Wall, TheHalfBrickOverAMissingEndBrickFalls) {
   EXPECT_FALSE(moves("r1_0"));
 }
 
+// The dense and the factored solver on the same LCPs (a 6-course wall, small
+// enough for the dense tableau): the same verdict, and frictionless, where the
+// body accelerations of a symmetric PSD LCP are unique, the same moving parts
+// with the same accelerations.
+TEST(Wall, DenseAndFactoredSolversAgree) {
+  for (const double mu : {0.0, 0.6}) {
+    const Assembly a = Assembly::Create(RunningBondWall(6, 5, mu), "wall");
+    for (const char* without : {"", "r0_4", "r2_0"}) {
+      SCOPED_TRACE(std::string("mu ") + std::to_string(mu) + " without " + without);
+      Configuration config = Configuration::Assembled(a);
+      if (*without) config.present[a.FindPart(without)] = false;
+      StabilityOptions dense, factored;
+      dense.lcp_storage = LcpStorage::kDense;
+      factored.lcp_storage = LcpStorage::kFactored;
+      const StabilityResult d = AnalyzeConfiguration(a, config, dense);
+      const StabilityResult f = AnalyzeConfiguration(a, config, factored);
+      ASSERT_NE(d.verdict, Verdict::kSolverFailure) << d.diagnostics;
+      ASSERT_EQ(f.verdict, d.verdict) << f.diagnostics;
+      if (d.stable()) {
+        ExpectStaticEquilibrium(a, config, d);
+        ExpectStaticEquilibrium(a, config, f);
+      }
+      if (mu > 0) continue;
+      EXPECT_EQ(f.moving, d.moving);
+      ASSERT_EQ(f.parts.size(), d.parts.size());
+      for (size_t i = 0; i < d.parts.size(); ++i) {
+        EXPECT_NEAR((f.parts[i].linear - d.parts[i].linear).norm(), 0.0, 1e-7) << i;
+        EXPECT_NEAR(f.parts[i].angular, d.parts[i].angular, 1e-7) << i;
+      }
+    }
+  }
+}
+
 }  // namespace
 }  // namespace cairn
