@@ -10,6 +10,10 @@
 //                   example scene (examples/*.json), as `cairn check` builds it.
 //   WarmStart/200   a RandomPsd problem re-solved after a 1e-6 perturbation of
 //                   q, cold (no basis) vs warm (the previous basis).
+//   Wall/<c>x<b>    the Stewart–Trinkle LCP of a running-bond wall of c
+//                   courses of b bricks at rest (one component, redundant
+//                   contacts): dense SolveLemke and Siconos on the dense M,
+//                   CairnFactored/ SolveLemkeFactored on G W Gᵀ + K.
 // Counters: n, pivots (Siconos: iterations + 1 on success, as the shared
 // README counts them), residual max_i |min(z_i, w_i)|, ok (1 when solved).
 
@@ -22,9 +26,11 @@
 #include <vector>
 
 #include "cairn/io/scene_reader.h"
+#include "cairn/lcp/factored_lcp.h"
 #include "cairn/lcp/lcp_io.h"
 #include "cairn/lcp/lemke.h"
 #include "cairn/stability/analyze.h"
+#include "scene_builders.h"
 
 #if defined(CAIRN_HAVE_SICONOS)
 #include "LCP_Solvers.h"
@@ -67,6 +73,18 @@ void BM_Cairn(benchmark::State& state, const LcpProblem& p) {
   cairn::LcpResult r;
   for (auto _ : state) {
     r = cairn::SolveLemke(p.M, p.q);
+    benchmark::DoNotOptimize(r.z.data());
+  }
+  const bool ok = r.status == cairn::LcpStatus::kSolved || r.status == cairn::LcpStatus::kTrivial;
+  SetCounters(state, p, r.pivots, r.z, ok);
+}
+
+// Lemke on the factored matrix (the dense p.M is used only for the counters).
+void BM_CairnFactored(benchmark::State& state, const cairn::FactoredLcpMatrix& F,
+                      const LcpProblem& p) {
+  cairn::LcpResult r;
+  for (auto _ : state) {
+    r = cairn::SolveLemkeFactored(F, p.q);
     benchmark::DoNotOptimize(r.z.data());
   }
   const bool ok = r.status == cairn::LcpStatus::kSolved || r.status == cairn::LcpStatus::kTrivial;
@@ -168,8 +186,29 @@ int main(int argc, char** argv) {
     if (!without.empty()) name += "-without-" + without;
     for (size_t k = 0; k < lcps.size(); ++k) {
       if (lcps[k].size() == 0) continue;
-      RegisterPair(name + "/" + std::to_string(k), LcpProblem{lcps[k].M, lcps[k].q});
+      const MatrixX M = lcps[k].has_dense() ? lcps[k].M : lcps[k].factored.ToDense();
+      RegisterPair(name + "/" + std::to_string(k), LcpProblem{M, lcps[k].q});
     }
+  }
+
+  // Running-bond walls: dense against factored on the same LCP.
+  static std::vector<cairn::FactoredLcpMatrix> wall_matrices;
+  wall_matrices.reserve(8);
+  for (const auto& [courses, bricks] :
+       std::vector<std::pair<int, int>>{{2, 3}, {3, 5}, {6, 5}, {10, 5}, {10, 10}}) {
+    const cairn::Assembly wall =
+        cairn::Assembly::Create(cairn::testing::RunningBondWall(courses, bricks), "wall");
+    cairn::StabilityOptions options;
+    options.lcp_storage = cairn::LcpStorage::kBoth;
+    const auto lcps =
+        cairn::BuildComponentLcps(wall, cairn::Configuration::Assembled(wall), options);
+    const std::string name = "Wall/" + std::to_string(courses) + "x" + std::to_string(bricks);
+    const LcpProblem p{lcps[0].M, lcps[0].q};
+    RegisterPair(name, p);
+    wall_matrices.push_back(lcps[0].factored);
+    benchmark::RegisterBenchmark(("CairnFactored/" + name).c_str(), BM_CairnFactored,
+                                 wall_matrices.back(), p)
+        ->Unit(benchmark::kMicrosecond);
   }
 
   const LcpProblem warm_problem = RandomPsd(200, 4242u);

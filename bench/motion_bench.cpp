@@ -1,5 +1,5 @@
 // Motion benchmark: SimulatePlan (Algorithm 1) and AnalyzeConfiguration along
-// motion paths, on scenes built in code.
+// motion paths, on scenes built in code or read from examples/.
 //
 // Scenes:
 //   Wall      a 2-D wall in running bond, 10 courses of bricks 2 × 1 (even
@@ -16,24 +16,40 @@
 //             [−3, 3] × [1, 1.2] on P, block C [−0.5, 0.5] × [1.2, 2.2] on B,
 //             μ = 0.6, g = (0, −1). C is moved right by 1 with support "full",
 //             at dt = 0.1, 0.01, 0.001 (speed 1: 10, 100, 1000 moves).
+//   Fig6III   the paper's Fig. 6 (examples/paper_fig6.json, frictionless):
+//             C leaves through exit III (examples/plans/
+//             paper_fig6_c_exit3.plan.json: left by 6 along E's top, then up
+//             by 4, support "none", speed 1) at the plan's dt = 0.2 and 10,
+//             100, 1000 times finer (50, 500, 5000, 50 000 moves). E tips once
+//             C passes x = −8.25 (s* of the paper's eq. 8), i.e. after 5.25 s.
 //
-// Cases:
-//   Simulate/<scene>[/dt]        SimulatePlan on the whole plan (stops at the first
-//                                failure).
+// Cases (<dt> as "%g"):
+//   Simulate/<scene>/<dt>[/continue] SimulatePlan on the whole plan: stops at the
+//                                first failure, or goes on (continue_after_failure).
 //   Check/Wall                   one AnalyzeConfiguration of the assembled wall, no
 //                                drive (what `cairn check` does), with its profile.
-//   Replay/<scene>/<dt>/warm|cold AnalyzeConfiguration on the configurations of every
-//                                tick of the path, as SimulatePlan builds them, with
-//                                one StabilityWorkspace (warm) or none (cold).
-//   Solve/<scene>/<dt>/warm|cold only SolveLemke on the LCPs of those ticks, with the
-//                                previous tick's basis (warm) or without (cold).
-//                                (T-stand only: a wall tick takes seconds to minutes.)
+//   Replay/<scene>/<dt>[/<part>]/warm|cold
+//                                AnalyzeConfiguration on every analysis SimulatePlan
+//                                makes along the path (configuration, drive, options,
+//                                tick 0's second solve included), with one
+//                                StabilityWorkspace (warm) or none (cold). A plan that
+//                                fails has two parts: to_failure (what SimulatePlan
+//                                analyses before it stops) and whole (with
+//                                continue_after_failure).
+//   Solve/<scene>/<dt>[/<part>]/warm|cold
+//                                only SolveLemke on the LCPs of those analyses (the
+//                                driven LCPs AnalyzeConfiguration solves), with the last
+//                                basis of the same component (warm) or without (cold).
+//                                (Not the wall: a wall tick takes seconds to minutes.)
 // Before the benchmarks run, a summary of every path (verdicts, contacts, LCP
-// sizes per component, pivots, warm starts, stage profile) is printed; the
-// wall's ticks are analysed one by one, warm and cold, until --wall_budget=S
-// seconds (default 120) have passed. --no_summary skips it.
+// sizes per component, pivots, warm starts, stage profile, warm and cold
+// replays and solves, and a check that the replay makes SimulatePlan's own
+// pivots and warm starts) is printed; the wall's ticks are analysed one by
+// one, warm and cold, until --wall_budget=S seconds (default 120) have
+// passed. --no_summary skips it.
 // Counters: ticks, pivots/tick, contacts/tick, lcp (largest LCP size), warm
-// (warm starts), and the stage profile per tick (seconds).
+// (warm starts), and the stage profile per tick (seconds). Times are for the
+// whole path: divide by `ticks` for a tick.
 
 #include <benchmark/benchmark.h>
 
@@ -42,9 +58,13 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
+#include <span>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "cairn/io/plan_reader.h"
+#include "cairn/io/scene_reader.h"
 #include "cairn/motion/simulate.h"
 #include "cairn/stability/analyze.h"
 #include "scene_builders.h"  // tests/: the scene builders the tests use
@@ -60,30 +80,12 @@ using cairn::Vector2;
 using cairn::Vector3;
 using cairn::testing::Box;
 
-constexpr int kCourses = 10;
 constexpr int kPulledCourse = 4;
 
-// The running-bond wall; the pulled brick is "r4_9" (course 4, x ∈ [18, 20]).
+// The running-bond wall of examples/wall.json (10 courses of 10 bricks); the
+// pulled brick is "r4_9" (course 4, x ∈ [18, 20]).
 Assembly MakeWall() {
-  AssemblyDef def;
-  def.name = "wall";
-  def.friction = 0.6;
-  def.parts.push_back(Box("ground", -2, -1, 22, 0, true));
-  for (int r = 0; r < kCourses; ++r) {
-    const double y = r;
-    std::vector<std::pair<double, double>> spans;
-    if (r % 2 == 0) {
-      for (int k = 0; k < 10; ++k) spans.emplace_back(2.0 * k, 2.0 * k + 2);
-    } else {
-      spans.emplace_back(0, 1);
-      for (int k = 0; k < 9; ++k) spans.emplace_back(1 + 2.0 * k, 3 + 2.0 * k);
-      spans.emplace_back(19, 20);
-    }
-    for (size_t k = 0; k < spans.size(); ++k)
-      def.parts.push_back(Box("r" + std::to_string(r) + "_" + std::to_string(k), spans[k].first, y,
-                              spans[k].second, y + 1));
-  }
-  return Assembly::Create(def, "motion_bench:wall");
+  return Assembly::Create(cairn::testing::RunningBondWall(10, 10), "motion_bench:wall");
 }
 
 Assembly MakeTStand() {
@@ -119,62 +121,156 @@ struct Scene {
   cairn::Plan plan;
 };
 
-// One tick of a one-step disassembly plan, as SimulatePlan builds it: the
+// "0.2", "0.0002": a dt as it appears in the benchmarks' names.
+std::string DtLabel(double dt) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", dt);
+  return buf;
+}
+
+// One analysis of a one-step disassembly plan, as SimulatePlan makes it: the
 // configuration, the drive and the options (src/motion/simulate.cpp).
 struct Tick {
   Configuration config;
   cairn::DriveInputs drive;
   cairn::StabilityOptions options;
+  int tick = 0;        // tick index within the step
+  bool judged = true;  // false: tick 0's second solve, gripper moving (gives only the motion)
 };
 
-// The ticks of the plan's single step. The velocities carried from tick to
-// tick (nu_prev) come from a warm reference pass; parts that move are not held
-// (SimulatePlan stops there, or holds them with continue_after_failure), so
-// after the first failure the ticks are those of "the wall as if nothing
-// moved", which is what continue_after_failure analyses too, held parts aside.
-std::vector<Tick> MakeTicks(const Scene& s, bool carry_velocities = true) {
-  const Assembly& a = *s.assembly;
-  const cairn::PlanStep& step = s.plan.steps[0];
-  const int n = a.num_parts();
-  const double L = step.Length(), tick_length = s.plan.speed * s.plan.dt;
-  const int moves = std::max(1, static_cast<int>(std::ceil(L / tick_length - 1e-9)));
+// Every analysis SimulatePlan makes along a one-step plan with
+// continue_after_failure, in order; without it, SimulatePlan makes the first
+// `to_failure` of them and stops (all of them when the plan is stable).
+struct TickPath {
   std::vector<Tick> ticks;
+  size_t to_failure = 0;
+  int fail_tick = -1;  // the first failing tick, -1: stable
+};
+
+// The unit direction from s towards larger s (forward) or smaller s
+// (backward); zero at that end of the path. As in src/motion/simulate.cpp.
+Vector2 TravelDirection(const cairn::PlanStep& step, double s, bool forward) {
+  const double L = step.Length();
+  const double eps = 1e-9 * std::max(1.0, L);
+  if (forward ? s >= L - eps : s <= eps) return Vector2::Zero();
+  const double s2 = forward ? std::min(L, s + eps) : std::max(0.0, s - eps);
+  const Vector2 d = step.At(s2) - step.At(s);
+  return d.norm() > 0 ? Vector2(d.normalized()) : Vector2::Zero();
+}
+
+// The analyses of the plan's single step (disassembly), built the way
+// SimulatePlan builds them: roles, gripper velocity and guide, tick 0 at rest
+// and then moving, velocities carried from tick to tick (a gripped part's
+// less the gripper's), carried parts moved, and after a failure the parts
+// that moved held in place (or an unsupported part carried). With `solve`
+// false nothing is analysed: every tick is "the scene as if nothing moved"
+// (velocities zero, no failure), for scenes whose ticks take seconds.
+// Not mirrored: SimulatePlan's collision test of the gripped parts (a
+// collision is a failure that holds nothing); PrintTicks compares the replay
+// with SimulatePlan's own counts.
+TickPath MakeTicks(const Scene& s, bool solve = true) {
+  const Assembly& a = *s.assembly;
+  const cairn::Plan& plan = s.plan;
+  if (plan.steps.size() != 1 || plan.mode != cairn::PlanMode::kDisassemble)
+    throw std::invalid_argument("MakeTicks: one-step disassembly plans only");
+  const cairn::PlanStep& step = plan.steps[0];
+  const int n = a.num_parts();
+  std::vector<bool> gripped(n, false), carried(n, false), in_group(n, false), held(n, false);
+  for (int p : step.grip) gripped[p] = in_group[p] = true;
+  for (int p : step.remove)
+    if (!gripped[p]) carried[p] = in_group[p] = true;
+  cairn::SupportMode support = step.support;
+  Configuration config = Configuration::Assembled(a);
+  for (int p = 0; p < n; ++p)
+    if (in_group[p]) config.present[p] = true, config.poses[p] = cairn::Pose2{step.At(0), 0.0};
   std::vector<Vector3> nu(n, Vector3::Zero());
   cairn::StabilityWorkspace ws;
-  Configuration config = Configuration::Assembled(a);
+  TickPath out;
+  const double L = step.Length(), tick_length = plan.speed * plan.dt;
+  const int moves = std::max(1, static_cast<int>(std::ceil(L / tick_length - 1e-9)));
   for (int tick = 0; tick <= moves; ++tick) {
     const double s_now = std::min(tick * tick_length, L);
     const double next = std::min((tick + 1) * tick_length, L);
-    const double dt = tick < moves ? (next - s_now) / s.plan.speed : s.plan.dt;
-    const bool moving_now = tick > 0 && tick < moves;
-    const Vector2 dir = (step.At(std::min(L, s_now + 1e-9)) - step.At(s_now)).normalized();
-    const Vector2 v_g = moving_now ? Vector2(s.plan.speed * dir) : Vector2::Zero();
-    Tick t;
-    for (int p : step.grip) config.poses[p] = cairn::Pose2{step.At(s_now), 0.0};
-    t.config = config;
-    t.drive.role.assign(n, PartRole::kJudged);
-    t.drive.velocity.assign(n, Vector2::Zero());
-    t.drive.nu_prev = nu;
-    for (int p : step.grip) {
-      if (tick == 0) {
-        t.drive.role[p] = PartRole::kCarried;
-      } else {
-        t.drive.role[p] =
-            step.support == cairn::SupportMode::kFull ? PartRole::kPrescribed : PartRole::kGuided;
-        t.drive.velocity[p] = v_g;
+    const double dt = tick < moves ? (next - s_now) / plan.speed : plan.dt;
+    const Vector2 v_g =
+        tick < moves ? Vector2(plan.speed * TravelDirection(step, s_now, true)) : Vector2::Zero();
+    const Vector2 guide =
+        v_g.norm() > 0 ? Vector2(v_g.normalized()) : Vector2(-TravelDirection(step, s_now, false));
+    for (int p = 0; p < n; ++p)
+      if (gripped[p]) config.poses[p] = cairn::Pose2{step.At(s_now), 0.0};
+    const auto make_tick = [&](bool at_rest) {
+      Tick t;
+      t.config = config;
+      t.tick = tick;
+      t.judged = at_rest || tick > 0;
+      cairn::DriveInputs& d = t.drive;
+      d.role.assign(n, PartRole::kJudged);
+      d.velocity.assign(n, Vector2::Zero());
+      d.guide.assign(n, guide);
+      d.nu_prev = nu;
+      for (int p = 0; p < n; ++p) {
+        if (gripped[p] && at_rest && !a.part(p).tool) {
+          d.role[p] = PartRole::kCarried;
+          d.nu_prev[p].setZero();
+        } else if (gripped[p]) {
+          const bool rigid = support == cairn::SupportMode::kFull || a.part(p).tool;
+          d.role[p] = rigid ? PartRole::kPrescribed : PartRole::kGuided;
+          d.velocity[p] = at_rest ? Vector2::Zero() : v_g;
+        } else if (carried[p]) {
+          d.role[p] = PartRole::kCarried;
+        } else if (held[p]) {
+          d.role[p] = PartRole::kPrescribed;
+        }
       }
+      t.options.dt = dt;
+      t.options.tolerances = a.MakeTolerances(dt);
+      return t;
+    };
+    out.ticks.push_back(make_tick(tick == 0));
+    if (tick == 0 && tick < moves) out.ticks.push_back(make_tick(false));
+    if (!solve) continue;
+    const size_t first = out.ticks.size() - (tick == 0 && tick < moves ? 2 : 1);
+    const Tick& t = out.ticks[first];
+    const cairn::StabilityResult r =
+        cairn::AnalyzeConfiguration(a, t.config, t.options, &t.drive, &ws);
+    // The tick's outcome, in SimulatePlan's order (collisions aside).
+    const bool jammed = !r.jammed.empty(), unstable = !jammed && !r.moving.empty();
+    const bool failure = jammed || !r.moving.empty() ||
+                         r.verdict == cairn::Verdict::kSolverFailure || !r.unsupported.empty();
+    const bool unsupported =
+        failure && !jammed && r.moving.empty() && r.verdict != cairn::Verdict::kSolverFailure;
+    cairn::StabilityResult moved;
+    const cairn::StabilityResult* motion = &r;
+    if (first + 1 < out.ticks.size()) {
+      const Tick& go = out.ticks[first + 1];
+      moved = cairn::AnalyzeConfiguration(a, go.config, go.options, &go.drive, &ws);
+      motion = &moved;
     }
-    t.options.dt = dt;
-    t.options.tolerances = a.MakeTolerances(dt);
-    if (carry_velocities) {
-      const cairn::StabilityResult r =
-          cairn::AnalyzeConfiguration(a, t.config, t.options, &t.drive, &ws);
-      for (const cairn::PartMotion& m : r.parts)
-        nu[m.part] = Vector3(m.linear.x(), m.linear.y(), m.angular);
+    if (failure && out.fail_tick < 0) {
+      out.fail_tick = tick;
+      out.to_failure = out.ticks.size();
     }
-    ticks.push_back(std::move(t));
+    for (const cairn::PartMotion& m : motion->parts) {
+      nu[m.part] = Vector3(m.linear.x(), m.linear.y(), m.angular);
+      if (gripped[m.part]) nu[m.part].head<2>() -= v_g;
+    }
+    for (int p = 0; p < n; ++p) {
+      if (!carried[p]) continue;
+      config.poses[p].translation += nu[p].head<2>() * dt;
+      config.poses[p].rotation += nu[p].z() * dt;
+    }
+    if (unstable)
+      for (int p : r.moving) held[p] = true, nu[p].setZero();
+    if (unsupported) support = cairn::SupportMode::kFull;
   }
-  return ticks;
+  if (out.fail_tick < 0) out.to_failure = out.ticks.size();
+  return out;
+}
+
+// How many ticks (tick indices) the analyses cover.
+int NumTicks(std::span<const Tick> ticks) {
+  return static_cast<int>(
+      std::count_if(ticks.begin(), ticks.end(), [](const Tick& t) { return t.judged; }));
 }
 
 using Clock = std::chrono::steady_clock;
@@ -182,15 +278,16 @@ double Since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
-// What one pass over the ticks measured.
+// What one pass over the ticks measured. `pivots` counts every analysis;
+// `judged_pivots` only the ticks' own (what SimulatePlan reports).
 struct PassStats {
   double seconds = 0;
-  int pivots = 0, contacts = 0, warm = 0, max_lcp = 0;
+  int pivots = 0, judged_pivots = 0, contacts = 0, warm = 0, max_lcp = 0;
   cairn::StageProfile profile;
   std::vector<cairn::StabilityResult> results;
 };
 
-PassStats RunTicks(const Scene& s, const std::vector<Tick>& ticks, bool warm, bool keep) {
+PassStats RunTicks(const Scene& s, std::span<const Tick> ticks, bool warm, bool keep) {
   PassStats st;
   cairn::StabilityWorkspace ws;
   const auto t0 = Clock::now();
@@ -199,6 +296,7 @@ PassStats RunTicks(const Scene& s, const std::vector<Tick>& ticks, bool warm, bo
                                                            &t.drive, warm ? &ws : nullptr);
     for (const auto& c : r.components) {
       st.pivots += c.pivots;
+      if (t.judged) st.judged_pivots += c.pivots;
       st.max_lcp = std::max(st.max_lcp, c.lcp_size);
     }
     st.contacts += static_cast<int>(r.contacts.size());
@@ -213,19 +311,56 @@ PassStats RunTicks(const Scene& s, const std::vector<Tick>& ticks, bool warm, bo
   return st;
 }
 
-// The LCPs of every tick (same M, q as AnalyzeConfiguration builds with the drive).
-std::vector<std::vector<cairn::ContactLcp>> TickLcps(const Scene& s,
-                                                     const std::vector<Tick>& ticks) {
-  // BuildComponentLcps has no drive; rebuild the driven LCPs here the way
-  // AnalyzeConfiguration does is not public, so the solve-only case uses the
-  // undriven LCPs of each tick's configuration (same sizes and structure).
-  std::vector<std::vector<cairn::ContactLcp>> out;
+// The LCP (M, q) of every component of every analysis: exactly what
+// AnalyzeConfiguration solves there (with the drive). Dense LCPs only (up to
+// kMaxDenseLcp variables; larger ones are stored factored).
+struct Lcp {
+  cairn::MatrixX M;
+  cairn::VectorX q;
+};
+std::vector<std::vector<Lcp>> TickLcps(const Scene& s, std::span<const Tick> ticks) {
+  std::vector<std::vector<Lcp>> out;
   for (const Tick& t : ticks) {
-    cairn::StabilityOptions o = t.options;
-    o.formulation = cairn::Formulation::kStewartTrinkle;
-    out.push_back(cairn::BuildComponentLcps(*s.assembly, t.config, o));
+    out.emplace_back();
+    for (cairn::ContactLcp& lcp :
+         cairn::BuildComponentLcps(*s.assembly, t.config, t.options, &t.drive)) {
+      if (!lcp.has_dense()) throw std::runtime_error("TickLcps: " + s.name + " has a factored LCP");
+      out.back().push_back({std::move(lcp.M), std::move(lcp.q)});
+    }
   }
   return out;
+}
+
+// One pass of SolveLemke over the LCPs, each component warm-started (warm)
+// from the last basis solved for the same component index and LCP size (what
+// the workspace does when the structure stays), or cold.
+struct SolveStats {
+  double seconds = 0;
+  int pivots = 0, warm = 0, solves = 0;
+};
+SolveStats SolveTicks(std::span<const std::vector<Lcp>> lcps, bool warm) {
+  SolveStats st;
+  std::map<size_t, cairn::LcpBasis> last;  // component index → basis of the last solve
+  const auto t0 = Clock::now();
+  for (const auto& tick : lcps) {
+    for (size_t k = 0; k < tick.size(); ++k) {
+      const cairn::LcpBasis* basis = nullptr;
+      if (warm) {
+        auto it = last.find(k);
+        if (it != last.end() &&
+            static_cast<Eigen::Index>(it->second.basic_z.size()) == tick[k].q.size())
+          basis = &it->second;
+      }
+      cairn::LcpResult r = cairn::SolveLemke(tick[k].M, tick[k].q, {}, basis);
+      st.pivots += r.pivots;
+      st.warm += r.warm_start_used;
+      ++st.solves;
+      if (warm && (r.status == cairn::LcpStatus::kSolved || r.status == cairn::LcpStatus::kTrivial))
+        last[k] = std::move(r.basis);
+    }
+  }
+  st.seconds = Since(t0);
+  return st;
 }
 
 void SetProfileCounters(benchmark::State& state, const PassStats& st, int nticks) {
@@ -255,6 +390,7 @@ void BM_Simulate(benchmark::State& state, const Scene* s, bool continue_after) {
   state.counters["warm"] = warm;
   state.counters["stable"] = r.stable() ? 1 : 0;
   state.counters["fail_tick"] = r.failure ? r.failure->tick : -1;
+  state.counters["fail_time"] = r.failure ? r.failure->time : -1;
 }
 
 void BM_Check(benchmark::State& state, const Assembly* a) {
@@ -281,48 +417,31 @@ void BM_Check(benchmark::State& state, const Assembly* a) {
   state.counters["classify"] = sum.classify / n;
 }
 
-void BM_Replay(benchmark::State& state, const Scene* s, const std::vector<Tick>* ticks, bool warm) {
+void BM_Replay(benchmark::State& state, const Scene* s, std::span<const Tick> ticks, bool warm) {
   PassStats st, sum;
   int64_t n = 0;
   for (auto _ : state) {
-    st = RunTicks(*s, *ticks, warm, false);
+    st = RunTicks(*s, ticks, warm, false);
     sum.profile.detect += st.profile.detect, sum.profile.build += st.profile.build;
     sum.profile.solve += st.profile.solve, sum.profile.classify += st.profile.classify;
     ++n;
   }
   st.profile.detect = sum.profile.detect / n, st.profile.build = sum.profile.build / n;
   st.profile.solve = sum.profile.solve / n, st.profile.classify = sum.profile.classify / n;
-  SetProfileCounters(state, st, static_cast<int>(ticks->size()));
+  SetProfileCounters(state, st, NumTicks(ticks));
 }
 
-void BM_Solve(benchmark::State& state, const std::vector<std::vector<cairn::ContactLcp>>* lcps,
+void BM_Solve(benchmark::State& state, std::span<const std::vector<Lcp>> lcps, int nticks,
               bool warm) {
-  int pivots = 0, warm_used = 0, nsolves = 0;
+  SolveStats st;
   for (auto _ : state) {
-    pivots = warm_used = nsolves = 0;
-    std::map<size_t, cairn::LcpBasis> last;  // component index → basis of the previous tick
-    for (const auto& tick : *lcps) {
-      for (size_t k = 0; k < tick.size(); ++k) {
-        const cairn::LcpBasis* basis = nullptr;
-        if (warm) {
-          auto it = last.find(k);
-          if (it != last.end() &&
-              static_cast<Eigen::Index>(it->second.basic_z.size()) == tick[k].q.size())
-            basis = &it->second;
-        }
-        cairn::LcpResult r = cairn::SolveLemke(tick[k].M, tick[k].q, {}, basis);
-        pivots += r.pivots;
-        warm_used += r.warm_start_used;
-        ++nsolves;
-        if (warm) last[k] = std::move(r.basis);
-      }
-    }
+    st = SolveTicks(lcps, warm);
     benchmark::ClobberMemory();
   }
-  state.counters["ticks"] = static_cast<double>(lcps->size());
-  state.counters["pivots/tick"] = static_cast<double>(pivots) / lcps->size();
-  state.counters["warm"] = warm_used;
-  state.counters["solves"] = nsolves;
+  state.counters["ticks"] = nticks;
+  state.counters["pivots/tick"] = static_cast<double>(st.pivots) / nticks;
+  state.counters["warm"] = st.warm;
+  state.counters["solves"] = st.solves;
 }
 
 // ---- The printed summary -------------------------------------------------
@@ -338,50 +457,94 @@ double Median(std::vector<double> v) {
   return v[v.size() / 2];
 }
 
-void PrintSimulation(const Scene& s, int reps, int reps_continue) {
+// SimulatePlan on the whole plan, stopping at the first failure and (reps_continue > 0)
+// with continue_after_failure: best times of `reps` runs, verdicts, counts. Returns the two
+// results (the second empty when not run).
+std::pair<cairn::SimulationResult, cairn::SimulationResult> PrintSimulation(const Scene& s,
+                                                                            int reps,
+                                                                            int reps_continue) {
+  std::pair<cairn::SimulationResult, cairn::SimulationResult> out;
   for (const bool cont : {false, true}) {
     if (cont) reps = reps_continue;
     if (reps == 0) continue;
     cairn::SimulationOptions o;
     o.continue_after_failure = cont;
-    std::vector<double> times;
-    cairn::SimulationResult r;
+    double best = 1e300;
+    cairn::SimulationResult& r = cont ? out.second : out.first;
     for (int i = 0; i < reps; ++i) {
       const auto t0 = Clock::now();
       r = cairn::SimulatePlan(*s.assembly, s.plan, o);
-      times.push_back(Since(t0));
+      best = std::min(best, Since(t0));
     }
     const auto& st = r.steps.at(0);
     std::printf(
-        "%s SimulatePlan%s: %.4f s (median of %d), verdict %s, ticks %d, pivots %d "
-        "(%.1f/tick), warm starts %d\n",
-        s.name.c_str(), cont ? " (continue_after_failure)" : "", Median(times), reps,
+        "%s SimulatePlan%s: %.4f s (best of %d, %.2f us/tick), verdict %s, ticks %d, pivots %d "
+        "(%.3f/tick), warm starts %d\n",
+        s.name.c_str(), cont ? " (continue_after_failure)" : "", best, reps, 1e6 * best / st.ticks,
         cairn::to_string(r.verdict), st.ticks, st.pivots, double(st.pivots) / st.ticks,
         st.warm_starts);
     if (r.failure) std::printf("  first failure: %s\n", r.failure->description.c_str());
-    if (!r.diagnostics.empty()) std::printf("  diagnostics: %s\n", r.diagnostics.c_str());
+    if (!r.diagnostics.empty()) std::printf("  diagnostics: %.200s\n", r.diagnostics.c_str());
   }
+  return out;
 }
 
-void PrintTicks(const Scene& s, const std::vector<Tick>& ticks, bool per_tick) {
-  const PassStats warm = RunTicks(s, ticks, true, true);
-  const PassStats cold = RunTicks(s, ticks, false, true);
-  const int nt = static_cast<int>(ticks.size());
+// Replays `ticks` warm and cold (AnalyzeConfiguration, then SolveLemke alone),
+// checks the warm replay against SimulatePlan's own counts (`ref`), and with
+// `per_tick` prints every analysis.
+void PrintTicks(const Scene& s, std::span<const Tick> ticks, const std::string& what,
+                const cairn::SimulationResult& ref, bool per_tick, int reps) {
+  // The fastest of `reps` alternating warm and cold passes (noise on a shared
+  // machine only adds time); the first pass keeps the results.
+  PassStats warm, cold;
+  for (int i = 0; i < reps; ++i) {
+    for (const bool w : {true, false}) {
+      PassStats st = RunTicks(s, ticks, w, i == 0);
+      PassStats& best = w ? warm : cold;
+      if (i == 0)
+        best = std::move(st);
+      else if (st.seconds < best.seconds)
+        best.seconds = st.seconds, best.profile = st.profile;
+    }
+  }
+  const int nt = NumTicks(ticks);
   std::printf(
-      "%s replay: %d ticks; warm %.4f s (%.1f us/tick, %.2f pivots/tick, %d warm starts), "
-      "cold %.4f s (%.1f us/tick, %.2f pivots/tick); cold/warm %.2fx\n",
-      s.name.c_str(), nt, warm.seconds, 1e6 * warm.seconds / nt, double(warm.pivots) / nt,
-      warm.warm, cold.seconds, 1e6 * cold.seconds / nt, double(cold.pivots) / nt,
-      cold.seconds / warm.seconds);
+      "%s replay %s (best of %d): %d ticks (%zu analyses); warm %.4f s (%.2f us/tick, %.3f "
+      "pivots/tick, %d "
+      "warm starts), cold %.4f s (%.2f us/tick, %.3f pivots/tick); cold/warm %.2fx\n",
+      s.name.c_str(), what.c_str(), reps, nt, ticks.size(), warm.seconds, 1e6 * warm.seconds / nt,
+      double(warm.pivots) / nt, warm.warm, cold.seconds, 1e6 * cold.seconds / nt,
+      double(cold.pivots) / nt, cold.seconds / warm.seconds);
+  const auto& st = ref.steps.at(0);
+  const bool same =
+      st.ticks == nt && st.pivots == warm.judged_pivots && st.warm_starts == warm.warm;
+  std::printf(
+      "  %s SimulatePlan: ticks %d/%d, pivots %d/%d, warm starts %d/%d (replay/SimulatePlan)\n",
+      same ? "same counts as" : "DIFFERENT from", nt, st.ticks, warm.judged_pivots, st.pivots,
+      warm.warm, st.warm_starts);
   for (const auto* p : {&warm, &cold})
     std::printf("  %s profile per tick (us): detect %.2f build %.2f solve %.2f classify %.2f\n",
                 p == &warm ? "warm" : "cold", 1e6 * p->profile.detect / nt,
                 1e6 * p->profile.build / nt, 1e6 * p->profile.solve / nt,
                 1e6 * p->profile.classify / nt);
+  const auto lcps = TickLcps(s, ticks);
+  SolveStats sw, sc;
+  for (int i = 0; i < reps; ++i) {
+    for (const bool w : {true, false}) {
+      const SolveStats pass = SolveTicks(lcps, w);
+      SolveStats& best = w ? sw : sc;
+      if (i == 0 || pass.seconds < best.seconds) best = pass;
+    }
+  }
+  std::printf(
+      "  SolveLemke alone: warm %.2f us/tick (%.3f pivots/tick, %d of %d solves warm), cold %.2f "
+      "us/tick (%.3f pivots/tick); cold/warm %.2fx\n",
+      1e6 * sw.seconds / nt, double(sw.pivots) / nt, sw.warm, sw.solves, 1e6 * sc.seconds / nt,
+      double(sc.pivots) / nt, sc.seconds / sw.seconds);
   if (!per_tick) return;
   std::printf(
       "  tick  contacts  components(lcp sizes)            pivots warm cold_pivots  moving\n");
-  for (int i = 0; i < nt; ++i) {
+  for (size_t i = 0; i < ticks.size(); ++i) {
     const auto& r = warm.results[i];
     std::string sizes;
     int pivots = 0, wu = 0, cold_pivots = 0;
@@ -391,17 +554,30 @@ void PrintTicks(const Scene& s, const std::vector<Tick>& ticks, bool per_tick) {
       wu += c.warm_start_used;
     }
     for (const auto& c : cold.results[i].components) cold_pivots += c.pivots;
-    std::printf(
-        "  %4d  %8zu  %2zu (%s)%*s %6d %4d %11d  %s%s%s\n", i, r.contacts.size(),
-        r.components.size(), sizes.c_str(), std::max(0, 28 - static_cast<int>(sizes.size())), "",
-        pivots, wu, cold_pivots, Names(*s.assembly, r.moving).c_str(),
-        r.unsupported.empty() ? "" : " unsupported: ", Names(*s.assembly, r.unsupported).c_str());
+    std::printf("  %4d%c %8zu  %2zu (%s)%*s %6d %4d %11d  %s%s%s\n", ticks[i].tick,
+                ticks[i].judged ? ' ' : '*', r.contacts.size(), r.components.size(), sizes.c_str(),
+                std::max(0, 28 - static_cast<int>(sizes.size())), "", pivots, wu, cold_pivots,
+                Names(*s.assembly, r.moving).c_str(), r.unsupported.empty() ? "" : " unsupported: ",
+                Names(*s.assembly, r.unsupported).c_str());
   }
+  std::printf("  (* tick 0's second solve, gripper moving)\n");
+}
+
+// A plan's summary: SimulatePlan, then the replays up to the first failure
+// and, when the plan fails, of the whole path (continue_after_failure); at
+// coarse steps, every analysis of the path.
+void PrintScene(const Scene& s, const TickPath& path, int reps) {
+  const auto [stop, cont] = PrintSimulation(s, reps, path.fail_tick >= 0 ? reps : 0);
+  const bool per_tick = s.plan.dt > 0.05, fails = path.fail_tick >= 0;
+  const std::span<const Tick> all(path.ticks);
+  PrintTicks(s, all.first(path.to_failure), fails ? "to the failure" : "whole path", stop,
+             per_tick && !fails, reps);
+  if (fails) PrintTicks(s, all, "whole path (continue)", cont, per_tick, reps);
 }
 
 // The wall's ticks one by one, warm (one workspace) and cold, each timed, until
 // `budget` seconds have gone by (a tick of the 105-part wall takes seconds).
-void PrintWallTicks(const Scene& s, const std::vector<Tick>& ticks, double budget) {
+void PrintWallTicks(const Scene& s, std::span<const Tick> ticks, double budget) {
   cairn::StabilityWorkspace ws;
   const auto start = Clock::now();
   std::printf(
@@ -425,15 +601,16 @@ void PrintWallTicks(const Scene& s, const std::vector<Tick>& ticks, double budge
       used += c.warm_start_used;
     }
     for (const auto& c : rc.components) pc += c.pivots;
-    std::printf("  %4d  %8zu %5zu %-7s %12d %4d %8.3f %12d %8.3f  %s [%s] %.90s\n", done,
-                rw.contacts.size(), rw.components.size(), sizes.c_str(), pw, used, tw, pc, tc,
-                cairn::to_string(rw.verdict), Names(*s.assembly, rw.moving).c_str(),
-                rw.diagnostics.c_str());
+    std::printf("  %4d%c %8zu %5zu %-7s %12d %4d %8.3f %12d %8.3f  %s [%s] %.90s\n", t.tick,
+                t.judged ? ' ' : '*', rw.contacts.size(), rw.components.size(), sizes.c_str(), pw,
+                used, tw, pc, tc, cairn::to_string(rw.verdict),
+                Names(*s.assembly, rw.moving).c_str(), rw.diagnostics.c_str());
     warm_total += tw, cold_total += tc;
     ++done;
   }
-  std::printf("  %d of %zu ticks in the budget: warm %.3f s, cold %.3f s\n", done, ticks.size(),
-              warm_total, cold_total);
+  std::printf(
+      "  %d of %zu analyses in the budget (* tick 0's second solve): warm %.3f s, cold %.3f s\n",
+      done, ticks.size(), warm_total, cold_total);
 }
 
 void PrintCheck(const Assembly& a, int reps) {
@@ -467,14 +644,24 @@ int main(int argc, char** argv) {
   std::setvbuf(stdout, nullptr, _IOLBF, 0);
   static const Assembly wall = MakeWall();
   static const Assembly tstand = MakeTStand();
+  static const Assembly fig6 =
+      cairn::ReadScene(std::string(CAIRN_SOURCE_DIR) + "/examples/paper_fig6.json");
   static const Scene wall_scene{"Wall", &wall,
                                 OneStepPlan(wall, "r" + std::to_string(kPulledCourse) + "_9",
                                             Vector2(1, 0), 2.0, cairn::SupportMode::kNone, 0.04)};
-  static std::vector<Scene> tstand_scenes;
+  // The step-refinement scenes: the T-stand at dt = 0.1, 0.01, 0.001; the
+  // Fig. 6 exit-III plan at its own dt (0.2) and 10, 100, 1000 times finer.
+  static std::vector<Scene> scenes;
   for (const double dt : {0.1, 0.01, 0.001})
-    tstand_scenes.push_back(
-        {"TStand/" + std::to_string(dt).substr(0, 5), &tstand,
-         OneStepPlan(tstand, "C", Vector2(1, 0), 1.0, cairn::SupportMode::kFull, dt)});
+    scenes.push_back({"TStand/" + DtLabel(dt), &tstand,
+                      OneStepPlan(tstand, "C", Vector2(1, 0), 1.0, cairn::SupportMode::kFull, dt)});
+  const cairn::Plan exit3 = cairn::ReadPlan(
+      std::string(CAIRN_SOURCE_DIR) + "/examples/plans/paper_fig6_c_exit3.plan.json", fig6);
+  for (const int refine : {1, 10, 100, 1000}) {
+    cairn::Plan plan = exit3;
+    plan.dt /= refine;
+    scenes.push_back({"Fig6III/" + DtLabel(plan.dt), &fig6, plan});
+  }
 
   // Summary (plain timing, median of several runs).
   // --no_summary skips the summary; --wall_budget=S bounds the wall's ticks (s).
@@ -487,45 +674,56 @@ int main(int argc, char** argv) {
   }
   // The wall's ticks carry no velocities: every tick of it ends in a solver
   // failure (see docs/benchmarks.md), after which SimulatePlan carries zero.
-  static const std::vector<Tick> wall_ticks = MakeTicks(wall_scene, false);
-  static std::vector<std::vector<Tick>> tstand_ticks;
-  for (const Scene& s : tstand_scenes) tstand_ticks.push_back(MakeTicks(s));
+  static const TickPath wall_ticks = MakeTicks(wall_scene, false);
+  static std::vector<TickPath> paths;
+  for (const Scene& s : scenes) paths.push_back(MakeTicks(s));
   if (summary) {
     std::printf("== motion_bench summary ==\n");
     PrintCheck(wall, 3);
     PrintSimulation(wall_scene, 3, 0);
-    PrintWallTicks(wall_scene, wall_ticks, wall_budget);
-    for (size_t i = 0; i < tstand_scenes.size(); ++i) {
-      PrintSimulation(tstand_scenes[i], 5, 5);
-      PrintTicks(tstand_scenes[i], tstand_ticks[i], tstand_scenes[i].plan.dt > 0.05);
-    }
+    PrintWallTicks(wall_scene, wall_ticks.ticks, wall_budget);
+    for (size_t i = 0; i < scenes.size(); ++i) PrintScene(scenes[i], paths[i], 5);
     std::printf("== end of summary ==\n");
     std::fflush(stdout);
   }
-
-  static std::vector<std::vector<std::vector<cairn::ContactLcp>>> tstand_lcps;
-  for (size_t i = 0; i < tstand_scenes.size(); ++i)
-    tstand_lcps.push_back(TickLcps(tstand_scenes[i], tstand_ticks[i]));
 
   benchmark::RegisterBenchmark("Check/Wall", BM_Check, &wall)->Unit(benchmark::kMillisecond);
   benchmark::RegisterBenchmark("Simulate/Wall", BM_Simulate, &wall_scene, false)
       ->Unit(benchmark::kMillisecond);
   // The wall's whole path (continue_after_failure), its replay and its solves
   // take minutes (seconds per tick): the summary times them tick by tick.
-  for (size_t i = 0; i < tstand_scenes.size(); ++i) {
-    const Scene* s = &tstand_scenes[i];
+  // A plan that fails is replayed up to its failure ("to_failure", what
+  // SimulatePlan analyses) and whole ("whole", continue_after_failure).
+  static std::vector<std::vector<std::vector<Lcp>>> lcps;
+  lcps.reserve(scenes.size());
+  for (size_t i = 0; i < scenes.size(); ++i) {
+    const Scene* s = &scenes[i];
+    const TickPath& path = paths[i];
+    const bool fails = path.fail_tick >= 0;
+    lcps.push_back(TickLcps(*s, path.ticks));
     benchmark::RegisterBenchmark(("Simulate/" + s->name).c_str(), BM_Simulate, s, false)
         ->Unit(benchmark::kMicrosecond);
-    for (const bool warm : {true, false})
-      benchmark::RegisterBenchmark(
-          ("Replay/" + s->name + "/" + std::string(warm ? "warm" : "cold")).c_str(), BM_Replay, s,
-          &tstand_ticks[i], warm)
+    if (fails)
+      benchmark::RegisterBenchmark(("Simulate/" + s->name + "/continue").c_str(), BM_Simulate, s,
+                                   true)
           ->Unit(benchmark::kMicrosecond);
-    for (const bool warm : {true, false})
-      benchmark::RegisterBenchmark(
-          ("Solve/" + s->name + "/" + std::string(warm ? "warm" : "cold")).c_str(), BM_Solve,
-          &tstand_lcps[i], warm)
-          ->Unit(benchmark::kMicrosecond);
+    const std::span<const Tick> all(path.ticks);
+    const std::span<const std::vector<Lcp>> all_lcps(lcps.back());
+    for (const bool whole : {false, true}) {
+      if (whole && !fails) continue;
+      const size_t count = whole ? all.size() : path.to_failure;
+      const std::string part = fails ? (whole ? "/whole" : "/to_failure") : "";
+      for (const bool warm : {true, false})
+        benchmark::RegisterBenchmark(
+            ("Replay/" + s->name + part + (warm ? "/warm" : "/cold")).c_str(), BM_Replay, s,
+            all.first(count), warm)
+            ->Unit(benchmark::kMicrosecond);
+      for (const bool warm : {true, false})
+        benchmark::RegisterBenchmark(
+            ("Solve/" + s->name + part + (warm ? "/warm" : "/cold")).c_str(), BM_Solve,
+            all_lcps.first(count), NumTicks(all.first(count)), warm)
+            ->Unit(benchmark::kMicrosecond);
+    }
   }
 
   std::vector<char*> args;

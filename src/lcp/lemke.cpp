@@ -84,31 +84,48 @@ double NaturalMapResidual(const VectorX& z, const VectorX& w) {
 // Solves the complementary basis {z_i basic : basic_z[i]} from the original
 // data: M_αα z_α = −q_α by LU with partial pivoting plus one refinement step,
 // z = 0 off α. Returns false when M_αα is numerically singular or the result
-// is not finite.
-bool SolveComplementaryBasis(const MatrixX& M, const VectorX& q, const std::vector<bool>& basic_z,
-                             VectorX* z) {
+// is not finite. kMaxN bounds |α| at compile time (Eigen::Dynamic: no bound):
+// with a bound, nothing goes on the heap, which is most of the cost of the
+// warm start of a small LCP.
+template <int kMaxN>
+bool SolveBasis(const MatrixX& M, const VectorX& q, const std::vector<bool>& basic_z, VectorX* z) {
+  using Matrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxN, kMaxN>;
+  using Vector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxN, 1>;
+  using Index = Eigen::Matrix<Eigen::Index, Eigen::Dynamic, 1, 0, kMaxN, 1>;
   const Eigen::Index n = q.size();
-  std::vector<Eigen::Index> alpha;
-  alpha.reserve(static_cast<size_t>(n));
-  for (Eigen::Index i = 0; i < n; ++i) {
-    if (basic_z[static_cast<size_t>(i)]) alpha.push_back(i);
-  }
+  Index alpha(n);
+  Eigen::Index k = 0;
+  for (Eigen::Index i = 0; i < n; ++i)
+    if (basic_z[static_cast<size_t>(i)]) alpha[k++] = i;
   z->setZero(n);
-  if (alpha.empty()) return true;
-  const MatrixX M_aa = M(alpha, alpha);
-  const VectorX rhs = -q(alpha);
-  const Eigen::PartialPivLU<MatrixX> lu(M_aa);
+  if (k == 0) return true;
+  Matrix M_aa(k, k);
+  Vector rhs(k);
+  for (Eigen::Index c = 0; c < k; ++c) {
+    for (Eigen::Index r = 0; r < k; ++r) M_aa(r, c) = M(alpha[r], alpha[c]);
+    rhs[c] = -q[alpha[c]];
+  }
+  const Eigen::PartialPivLU<Matrix> lu(M_aa);
   // A pivot of U that is tiny against the largest entry of M_αα means singular.
   const double u_min = lu.matrixLU().diagonal().cwiseAbs().minCoeff();
   const double m_max = M_aa.cwiseAbs().maxCoeff();
-  if (!(u_min > static_cast<double>(alpha.size()) * kEps * m_max)) return false;
-  VectorX x = lu.solve(rhs);
+  if (!(u_min > static_cast<double>(k) * kEps * m_max)) return false;
+  Vector x = lu.solve(rhs);
   // One step of iterative refinement.
-  const VectorX r = rhs - M_aa * x;
+  const Vector r = rhs - M_aa * x;
   x += lu.solve(r);
   if (!x.allFinite()) return false;
-  (*z)(alpha) = x;
+  for (Eigen::Index c = 0; c < k; ++c) (*z)[alpha[c]] = x[c];
   return true;
+}
+
+// Problems up to this size are solved without heap allocation.
+constexpr int kSmallN = 16;
+
+bool SolveComplementaryBasis(const MatrixX& M, const VectorX& q, const std::vector<bool>& basic_z,
+                             VectorX* z) {
+  return q.size() <= kSmallN ? SolveBasis<kSmallN>(M, q, basic_z, z)
+                             : SolveBasis<Eigen::Dynamic>(M, q, basic_z, z);
 }
 
 // The pivoting engine: the compact tableau and the bookkeeping of which
@@ -341,9 +358,6 @@ bool FollowPath(const MatrixX& M, const VectorX& q, double scale, double tol, in
   return at_solution;
 }
 
-// Problems up to this size are solved without heap allocation.
-constexpr int kSmallN = 16;
-
 }  // namespace
 
 const char* to_string(LcpStatus status) {
@@ -392,37 +406,19 @@ LcpResult SolveLemke(const MatrixX& M, const VectorX& q, const LemkeParameters& 
   CAIRN_THROW_UNLESS(M.rows() == n && M.cols() == n, "SolveLemke: M is "
                                                          << M.rows() << "x" << M.cols()
                                                          << " but q has " << n << " entries");
-  CAIRN_THROW_UNLESS(M.allFinite() && q.allFinite(),
-                     "SolveLemke: M or q has a NaN or infinite entry");
 
   LcpResult result;
   if (n == 0) {
     result.status = LcpStatus::kTrivial;
     return result;
   }
-
-  // Tolerances: relative to s = max |entry| of [M q] through the scaling.
   const double q_inf = q.cwiseAbs().maxCoeff();
-  const double m_max = M.cwiseAbs().maxCoeff();
-  const double scale = std::max(m_max, q_inf);
-  const double tol =
-      params.pivot_tolerance > 0.0 ? params.pivot_tolerance : static_cast<double>(n) * kEps * 16.0;
   const double accept = params.solution_tolerance * std::max(1.0, q_inf);
-  const int max_pivots =
-      params.max_pivots > 0 ? params.max_pivots : std::max(1000, 50 * (static_cast<int>(n) + 1));
-
-  // q ≥ 0: z = 0 with all w basic. (A q that is nonnegative only up to
-  // roundoff takes one pivot and ends on the near-zero-z₀ rule below.)
-  if (q.minCoeff() >= 0.0) {
-    result.status = LcpStatus::kTrivial;
-    result.z.setZero(n);
-    result.w = q;
-    result.residual = NaturalMapResidual(result.z, result.w);
-    result.basis.basic_z.assign(static_cast<size_t>(n), false);
-    return result;
-  }
 
   // Warm start: one LU of the previous basis; accept it if it solves the LCP.
+  // This comes before the input check, which it implies: a NaN or infinite
+  // entry of M or q makes w = M z + q non-finite (0 · ∞ = NaN), and the check
+  // of w fails.
   if (warm_start != nullptr && warm_start->basic_z.size() == static_cast<size_t>(n)) {
     VectorX z;
     if (SolveComplementaryBasis(M, q, warm_start->basic_z, &z)) {
@@ -438,6 +434,29 @@ LcpResult SolveLemke(const MatrixX& M, const VectorX& q, const LemkeParameters& 
         return result;
       }
     }
+  }
+  // Every entry finite: (M · 0) sums to 0 exactly, else to NaN (vectorised,
+  // unlike a test per entry).
+  CAIRN_THROW_UNLESS((M.array() * 0.0).sum() == 0.0 && (q.array() * 0.0).sum() == 0.0,
+                     "SolveLemke: M or q has a NaN or infinite entry");
+
+  // Tolerances: relative to s = max |entry| of [M q] through the scaling.
+  const double m_max = M.cwiseAbs().maxCoeff();
+  const double scale = std::max(m_max, q_inf);
+  const double tol =
+      params.pivot_tolerance > 0.0 ? params.pivot_tolerance : static_cast<double>(n) * kEps * 16.0;
+  const int max_pivots =
+      params.max_pivots > 0 ? params.max_pivots : std::max(1000, 50 * (static_cast<int>(n) + 1));
+
+  // q ≥ 0: z = 0 with all w basic. (A q that is nonnegative only up to
+  // roundoff takes one pivot and ends on the near-zero-z₀ rule below.)
+  if (q.minCoeff() >= 0.0) {
+    result.status = LcpStatus::kTrivial;
+    result.z.setZero(n);
+    result.w = q;
+    result.residual = NaturalMapResidual(result.z, result.w);
+    result.basis.basic_z.assign(static_cast<size_t>(n), false);
+    return result;
   }
 
   // Follow the path on q_path (q, or q perturbed), on the stack for small

@@ -1,10 +1,11 @@
 #include "cairn/stability/analyze.h"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <numeric>
-#include <sstream>
 
 #include "cairn/contact/detect_contacts.h"
 
@@ -107,7 +108,8 @@ PartRole RoleOf(const DriveInputs* drive, int part) {
 // moving with the gripper), its contacts.
 ContactLcp BuildComponent(const Assembly& assembly, const Configuration& config,
                           const std::vector<Contact>& contacts, const Component& comp,
-                          Formulation formulation, double dt, const DriveInputs* drive) {
+                          Formulation formulation, double dt, const DriveInputs* drive,
+                          LcpStorage storage) {
   std::vector<BodyDynamics> bodies;
   for (int p : comp.parts) {
     const Part& part = assembly.part(p);
@@ -140,24 +142,71 @@ ContactLcp BuildComponent(const Assembly& assembly, const Configuration& config,
   std::vector<Contact> comp_contacts;
   for (int c : comp.contacts) comp_contacts.push_back(contacts[c]);
   return BuildContactLcp(std::move(bodies), std::move(comp_contacts), formulation, dt,
-                         /*use_gaps=*/false);
+                         /*use_gaps=*/false, storage);
 }
 
-// A key for warm starts: the component's bodies and contact features, in order.
-std::string Signature(const ContactLcp& lcp) {
-  std::string key;
-  for (const BodyDynamics& b : lcp.bodies) key += std::to_string(b.part) + ",";
-  key += "|";
-  for (const Contact& c : lcp.contacts)
-    key += std::to_string(c.part_a) + ":" + std::to_string(c.part_b) + ":" +
-           std::to_string(static_cast<int>(c.feature)) + ":" + std::to_string(c.vertex) + ":" +
-           std::to_string(c.edge) + ";";
+// The structure of a component for warm starts (StabilityWorkspace::Entry::key):
+// the LCP size, the bodies' part indices, then each contact's part_a, part_b,
+// feature, vertex and edge. Visits the key's integers in order, without
+// building it.
+template <typename Visit>
+void ForEachKeyInt(const ContactLcp& lcp, Visit&& visit) {
+  visit(lcp.size());
+  visit(static_cast<int>(lcp.bodies.size()));
+  for (const BodyDynamics& b : lcp.bodies) visit(b.part);
+  for (const Contact& c : lcp.contacts) {
+    visit(c.part_a);
+    visit(c.part_b);
+    visit(static_cast<int>(c.feature));
+    visit(c.vertex);
+    visit(c.edge);
+  }
+}
+
+size_t KeySize(const ContactLcp& lcp) { return 2 + lcp.bodies.size() + 5 * lcp.contacts.size(); }
+
+// 64-bit FNV-1a over the key's integers.
+std::uint64_t KeyHash(const ContactLcp& lcp) {
+  std::uint64_t h = 0xcbf29ce484222325ULL;
+  ForEachKeyInt(lcp, [&h](int v) {
+    const auto u = static_cast<std::uint32_t>(v);
+    for (int byte = 0; byte < 4; ++byte) {
+      h ^= (u >> (8 * byte)) & 0xffU;
+      h *= 0x100000001b3ULL;
+    }
+  });
+  return h;
+}
+
+bool KeyMatches(const std::vector<int>& key, const ContactLcp& lcp) {
+  if (key.size() != KeySize(lcp)) return false;
+  size_t i = 0;
+  bool same = true;
+  ForEachKeyInt(lcp, [&](int v) { same = same && key[i++] == v; });
+  return same;
+}
+
+std::vector<int> MakeKey(const ContactLcp& lcp) {
+  std::vector<int> key;
+  key.reserve(KeySize(lcp));
+  ForEachKeyInt(lcp, [&key](int v) { key.push_back(v); });
   return key;
 }
 
-Formulation ChooseFormulation(const Assembly& assembly, const StabilityOptions& options) {
-  return options.formulation.value_or(assembly.IsFrictionless() ? Formulation::kBaraff
-                                                                : Formulation::kStewartTrinkle);
+// The workspace's basis for this component's structure, or null.
+LcpBasis* FindBasis(StabilityWorkspace& ws, std::uint64_t hash, const ContactLcp& lcp) {
+  const auto [first, last] = ws.bases.equal_range(hash);
+  for (auto it = first; it != last; ++it)
+    if (KeyMatches(it->second.key, lcp)) return &it->second.basis;
+  return nullptr;
+}
+
+// Baraff for a frictionless scene, else Stewart–Trinkle; with a drive always
+// Stewart–Trinkle (velocity level); options.formulation overrides both.
+Formulation ChooseFormulation(const Assembly& assembly, const StabilityOptions& options,
+                              const DriveInputs* drive) {
+  return options.formulation.value_or(
+      drive || !assembly.IsFrictionless() ? Formulation::kStewartTrinkle : Formulation::kBaraff);
 }
 
 // How a part with centroid motion (lin, ang) moves, given whether it keeps any
@@ -188,14 +237,16 @@ void ClassifyMotion(PartMotion& m, bool keeps_contact, double size, double scene
 }  // namespace
 
 std::vector<ContactLcp> BuildComponentLcps(const Assembly& assembly, const Configuration& config,
-                                           const StabilityOptions& options) {
+                                           const StabilityOptions& options,
+                                           const DriveInputs* drive) {
   const Tolerances tol =
       options.tolerances ? *options.tolerances : assembly.MakeTolerances(options.dt);
   const std::vector<Contact> contacts = DetectContacts(assembly, config, tol.length, tol.angle);
   std::vector<ContactLcp> out;
   for (const Component& comp : SplitComponents(assembly, config, contacts))
     out.push_back(BuildComponent(assembly, config, contacts, comp,
-                                 ChooseFormulation(assembly, options), options.dt, nullptr));
+                                 ChooseFormulation(assembly, options, drive), options.dt, drive,
+                                 options.lcp_storage));
   return out;
 }
 
@@ -206,8 +257,7 @@ StabilityResult AnalyzeConfiguration(const Assembly& assembly, const Configurati
   result.dt = options.dt;
   result.tolerances =
       options.tolerances ? *options.tolerances : assembly.MakeTolerances(options.dt);
-  result.formulation = drive ? options.formulation.value_or(Formulation::kStewartTrinkle)
-                             : ChooseFormulation(assembly, options);
+  result.formulation = ChooseFormulation(assembly, options, drive);
   const Tolerances& tol = result.tolerances;
   const bool st = result.formulation == Formulation::kStewartTrinkle;
   const double motion_tol = st ? tol.velocity : tol.acceleration;
@@ -223,31 +273,31 @@ StabilityResult AnalyzeConfiguration(const Assembly& assembly, const Configurati
   for (size_t c = 0; c < contacts.size(); ++c) result.contacts[c].contact = contacts[c];
 
   bool any_moving = false, any_failure = false;
-  std::ostringstream diag;
   for (int ci = 0; ci < static_cast<int>(components.size()); ++ci) {
     const Component& comp = components[ci];
 
     // BuildContactLcp.
     t0 = Clock::now();
-    const ContactLcp lcp =
-        BuildComponent(assembly, config, contacts, comp, result.formulation, options.dt, drive);
+    const ContactLcp lcp = BuildComponent(assembly, config, contacts, comp, result.formulation,
+                                          options.dt, drive, options.lcp_storage);
     result.profile.build += Seconds(t0);
 
     // SolveLemke, then re-check the answer independently of the status.
     t0 = Clock::now();
     LcpBasis* basis = nullptr;
-    std::string key;
+    std::uint64_t hash = 0;
     if (workspace) {
-      key = Signature(lcp);
-      for (auto& [k, b] : workspace->bases)
-        if (k == key) basis = &b;
+      hash = KeyHash(lcp);
+      basis = FindBasis(*workspace, hash, lcp);
     }
-    const LcpResult sol = SolveLemke(lcp.M, lcp.q, options.lemke, basis);
+    LcpResult sol = SolveContactLcp(lcp, options.lemke, basis);
     if (workspace && (sol.status == LcpStatus::kSolved || sol.status == LcpStatus::kTrivial)) {
-      if (basis)
-        *basis = sol.basis;
-      else
-        workspace->bases.emplace_back(key, sol.basis);
+      // A warm start returns the basis it was given: nothing to store.
+      if (!basis)
+        workspace->bases.emplace(hash,
+                                 StabilityWorkspace::Entry{MakeKey(lcp), std::move(sol.basis)});
+      else if (!sol.warm_start_used)
+        *basis = std::move(sol.basis);
       if (sol.warm_start_used) ++workspace->warm_starts;
     }
     result.profile.solve += Seconds(t0);
@@ -262,7 +312,7 @@ StabilityResult AnalyzeConfiguration(const Assembly& assembly, const Configurati
     bool solved = sol.status == LcpStatus::kSolved || sol.status == LcpStatus::kTrivial;
     const double check_tol =
         options.lemke.solution_tolerance * std::max(1.0, lcp.q.lpNorm<Eigen::Infinity>());
-    if (solved && !IsLcpSolution(lcp.M, lcp.q, sol.z, check_tol)) {
+    if (solved && !IsContactLcpSolution(lcp, sol.z, check_tol)) {
       solved = false;
       report.status = LcpStatus::kNumericalFailure;
       report.message = "the solver's answer failed the independent LCP check";
@@ -286,9 +336,10 @@ StabilityResult AnalyzeConfiguration(const Assembly& assembly, const Configurati
     }
     if (!solved) {
       if (report.message.empty()) report.message = sol.message;
-      diag << "component " << ci << " (" << comp.parts.size() << " parts, " << lcp.size()
-           << " LCP variables): " << to_string(report.status)
-           << (report.message.empty() ? "" : ": " + report.message) << "; ";
+      result.diagnostics +=
+          "component " + std::to_string(ci) + " (" + std::to_string(comp.parts.size()) +
+          " parts, " + std::to_string(lcp.size()) + " LCP variables): " + to_string(report.status) +
+          (report.message.empty() ? "" : ": " + report.message) + "; ";
       for (int p : comp.parts) {
         PartMotion m;
         m.part = p;
@@ -332,7 +383,8 @@ StabilityResult AnalyzeConfiguration(const Assembly& assembly, const Configurati
       // The fastest point of the part: |lin + ang ẑ × r| over its vertices.
       const Vector2 c = lcp.bodies[b].p_WBcm;
       double radius = 0;
-      for (const Vector2& v : config.WorldPolygon(assembly, p)) {
+      const Polygon polygon = config.WorldPolygon(assembly, p);
+      for (const Vector2& v : polygon) {
         m.point_motion = std::max(m.point_motion, (m.linear + CrossZ(m.angular, v - c)).norm());
         radius = std::max(radius, (v - c).norm());
       }
@@ -348,7 +400,7 @@ StabilityResult AnalyzeConfiguration(const Assembly& assembly, const Configurati
           // Off-path motion: everything but the gripper's own velocity.
           const Vector2 v_g = drive->velocity[p];
           double off = 0;
-          for (const Vector2& v : config.WorldPolygon(assembly, p))
+          for (const Vector2& v : polygon)
             off = std::max(off, (m.linear - v_g + CrossZ(m.angular, v - c)).norm());
           if (off > motion_tol) result.unsupported.push_back(p);
           break;
@@ -375,7 +427,6 @@ StabilityResult AnalyzeConfiguration(const Assembly& assembly, const Configurati
   result.verdict = (any_moving || !result.jammed.empty())
                        ? Verdict::kUnstable
                        : (any_failure ? Verdict::kSolverFailure : Verdict::kStable);
-  result.diagnostics = diag.str();
   return result;
 }
 

@@ -165,6 +165,14 @@ TEST(Lemke, InvalidInputThrows) {
   VectorX q = -VectorX::Ones(2);
   q[1] = std::numeric_limits<double>::infinity();
   EXPECT_THROW(SolveLemke(MatrixX::Identity(2, 2), q), std::invalid_argument);
+  // Also with a warm start, which is tried before the input check: a NaN off
+  // the basis (M(0, 1), z_1 = 0) or an infinite q still makes it throw.
+  for (const auto& flags : {std::vector<bool>{true, false}, std::vector<bool>{true, true},
+                            std::vector<bool>{false, false}}) {
+    const LcpBasis basis{flags};
+    EXPECT_THROW(SolveLemke(M, -VectorX::Ones(2), {}, &basis), std::invalid_argument);
+    EXPECT_THROW(SolveLemke(MatrixX::Identity(2, 2), q, {}, &basis), std::invalid_argument);
+  }
 }
 
 TEST(Lemke, StatusNames) {

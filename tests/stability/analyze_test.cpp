@@ -6,6 +6,7 @@
 #include <numbers>
 
 #include "cairn/io/scene_reader.h"
+#include "equilibrium.h"
 #include "scene_builders.h"
 #include "test_paths.h"
 
@@ -15,6 +16,7 @@ namespace {
 using testing::BlockOnIncline;
 using testing::Box;
 using testing::ExamplePath;
+using testing::ExpectStaticEquilibrium;
 using testing::Ladder;
 using testing::LadderCriticalMu;
 
@@ -36,33 +38,6 @@ const PartMotion& MotionOf(const Assembly& a, const StabilityResult& r, const st
   for (const PartMotion& m : r.parts)
     if (m.part == i) return m;
   throw std::runtime_error("no motion for " + name);
-}
-
-// Postcondition, computed from the reported forces alone: in a stable
-// configuration every movable part is in static equilibrium, Σ f + m g = 0 and
-// Σ (p − c) × f = 0.
-void ExpectStaticEquilibrium(const Assembly& a, const Configuration& config,
-                             const StabilityResult& r) {
-  const double W = 1e-7 * std::max(1.0, a.gravity().norm());
-  for (const PartMotion& m : r.parts) {
-    const Part& part = a.part(m.part);
-    const Vector2 c = config.WorldCentroid(a, m.part);
-    Vector2 force = part.mass * a.gravity();
-    double torque = 0;
-    for (const ContactReport& cr : r.contacts) {
-      const Contact& k = cr.contact;
-      const Vector2 f = cr.normal_force * k.n_W + cr.friction_force * k.t_W();
-      if (k.part_a == m.part) {
-        force += f;
-        torque += Cross2(k.p_WC - c, f);
-      } else if (k.part_b == m.part) {
-        force -= f;
-        torque -= Cross2(k.p_WC - c, f);
-      }
-    }
-    EXPECT_NEAR(force.norm(), 0.0, W * part.mass) << part.name;
-    EXPECT_NEAR(torque, 0.0, W * part.mass * a.scene_size()) << part.name;
-  }
 }
 
 // --- A block on an incline: holds iff tan θ ≤ μ. ---------------------------
@@ -300,6 +275,91 @@ TEST(Determinism, SameSceneTwiceGivesBitIdenticalForces) {
     EXPECT_EQ(r1.contacts[i].normal_force, r2.contacts[i].normal_force);
     EXPECT_EQ(r1.contacts[i].contact.p_WC, r2.contacts[i].contact.p_WC);
   }
+}
+
+// --- Warm starts (StabilityWorkspace). --------------------------------------
+
+// Two identical two-block stacks far apart on a fixed table (μ = 0.5): two
+// components whose LCPs are equal (same M and q, nontrivial: the blocks press
+// on the table), but whose parts differ.
+Assembly TwinStacks() {
+  AssemblyDef def;
+  def.friction = 0.5;
+  def.gravity = {0, -1};
+  def.parts = {Box("table", -10, -1, 10, 0, true), Box("A", -6, 0, -4, 1),
+               Box("B", -5.5, 1, -4.5, 2), Box("C", 4, 0, 6, 1), Box("D", 4.5, 1, 5.5, 2)};
+  return Assembly::Create(def);
+}
+
+int TotalPivots(const StabilityResult& r) {
+  int pivots = 0;
+  for (const ComponentReport& c : r.components) pivots += c.pivots;
+  return pivots;
+}
+
+TEST(WarmStart, TheSameAnalysisTwiceIsAnsweredByTheWorkspaceWithTheSameResult) {
+  const Assembly a = TwinStacks();
+  const Configuration config = Configuration::Assembled(a);
+  StabilityWorkspace ws;
+  const StabilityResult first = AnalyzeConfiguration(a, config, {}, nullptr, &ws);
+  ASSERT_EQ(first.components.size(), 2u);
+  EXPECT_EQ(ws.warm_starts, 0);
+  EXPECT_EQ(ws.bases.size(), 2u);  // one entry per component structure
+  for (const ComponentReport& c : first.components) {
+    EXPECT_FALSE(c.warm_start_used);
+    EXPECT_GT(c.pivots, 0);  // a cold solve pivots: the second's 0 means something
+  }
+
+  const StabilityResult second = AnalyzeConfiguration(a, config, {}, nullptr, &ws);
+  EXPECT_EQ(ws.warm_starts, 2);
+  EXPECT_EQ(ws.bases.size(), 2u);
+  EXPECT_EQ(TotalPivots(second), 0);
+  for (const ComponentReport& c : second.components) EXPECT_TRUE(c.warm_start_used);
+
+  // The same answer as a cold analysis.
+  const StabilityResult cold = AnalyzeConfiguration(a, config);
+  EXPECT_EQ(second.verdict, cold.verdict);
+  EXPECT_EQ(second.moving, cold.moving);
+  ASSERT_EQ(second.contacts.size(), cold.contacts.size());
+  for (size_t i = 0; i < cold.contacts.size(); ++i) {
+    EXPECT_NEAR(second.contacts[i].normal_force, cold.contacts[i].normal_force, 1e-12);
+    EXPECT_NEAR(second.contacts[i].friction_force, cold.contacts[i].friction_force, 1e-12);
+  }
+  ASSERT_EQ(second.parts.size(), cold.parts.size());
+  for (size_t i = 0; i < cold.parts.size(); ++i)
+    EXPECT_NEAR((second.parts[i].linear - cold.parts[i].linear).norm(), 0.0, 1e-12);
+}
+
+TEST(WarmStart, AComponentOfAnotherStructureNeverGetsItsBasis) {
+  // C-D's LCP equals A-B's, so A-B's basis would solve it at once; but its
+  // parts differ, so it is solved cold and gets its own entry.
+  const Assembly a = TwinStacks();
+  const Configuration config = Configuration::Assembled(a);
+  StabilityWorkspace ws;
+  const StabilityResult r = AnalyzeConfiguration(a, config, {}, nullptr, &ws);
+  ASSERT_EQ(r.components.size(), 2u);
+  ASSERT_EQ(r.components[0].lcp_size, r.components[1].lcp_size);
+  EXPECT_EQ(r.components[0].pivots, r.components[1].pivots);
+  EXPECT_FALSE(r.components[1].warm_start_used);
+  EXPECT_EQ(ws.warm_starts, 0);
+
+  // Without D, C alone is a third structure (solved cold); A-B is unchanged
+  // (warm). Then the whole scene again: both stacks' own bases are still there.
+  Configuration without_d = config;
+  without_d.present[a.FindPart("D")] = false;
+  const StabilityResult r2 = AnalyzeConfiguration(a, without_d, {}, nullptr, &ws);
+  ASSERT_EQ(r2.components.size(), 2u);
+  EXPECT_TRUE(r2.components[0].warm_start_used);
+  EXPECT_FALSE(r2.components[1].warm_start_used);
+  EXPECT_GT(r2.components[1].pivots, 0);
+  EXPECT_EQ(ws.warm_starts, 1);
+  EXPECT_EQ(ws.bases.size(), 3u);
+
+  const StabilityResult r3 = AnalyzeConfiguration(a, config, {}, nullptr, &ws);
+  EXPECT_TRUE(r3.components[0].warm_start_used);
+  EXPECT_TRUE(r3.components[1].warm_start_used);
+  EXPECT_EQ(ws.warm_starts, 3);
+  EXPECT_EQ(ws.bases.size(), 3u);
 }
 
 TEST(Postconditions, LcpSolutionsAreConsistentWithBodyMotion) {

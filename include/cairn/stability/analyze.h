@@ -14,8 +14,11 @@
 /// step (Stewart–Trinkle) faster than the scene's tolerance
 /// (Tolerances::acceleration, Tolerances::velocity).
 
+#include <array>
+#include <cstdint>
 #include <optional>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include "cairn/contact/contact.h"
@@ -134,10 +137,19 @@ struct DriveInputs {
   std::vector<Vector3> nu_prev;  ///< (num_parts) each part's (v_x, v_y, ω) before this step
 };
 
-/// Warm starts kept between calls (one per component structure: the same
-/// bodies and contacts in the same order), e.g. along a motion path.
+/// Warm starts kept between calls, e.g. along a motion path: the last basis of
+/// each component structure (the same bodies, the same contact features in the
+/// same order, the same LCP size). A basis is only ever offered to a component
+/// of exactly its structure.
 struct StabilityWorkspace {
-  std::vector<std::pair<std::string, LcpBasis>> bases;  ///< component signature → last basis
+  /// One component structure and its last basis.
+  struct Entry {
+    /// The structure: LCP size, the bodies' part indices, then each contact's
+    /// part_a, part_b, feature, vertex, edge (compared exactly).
+    std::vector<int> key;
+    LcpBasis basis;
+  };
+  std::unordered_multimap<std::uint64_t, Entry> bases;  ///< hash of Entry::key → entry
   int warm_starts = 0;                                  ///< solves answered by a warm start
 };
 
@@ -147,13 +159,18 @@ struct StabilityOptions {
   std::optional<Formulation> formulation;  ///< default: Baraff when the scene is frictionless
   std::optional<Tolerances> tolerances;    ///< default: Assembly::MakeTolerances(dt)
   LemkeParameters lemke;
+  /// Dense or factored LCP matrices (kAuto: dense up to kMaxDenseLcp
+  /// variables); the solver follows the storage. kBoth solves densely.
+  LcpStorage lcp_storage = LcpStorage::kAuto;
 };
 
 /// The contact LCP of every contact-graph component of `config`: the first
 /// stages of AnalyzeConfiguration (DetectContacts → SplitComponents →
-/// BuildContactLcp), for benchmarks and diagnostics.
+/// BuildContactLcp), for benchmarks and diagnostics. With `drive`, the LCPs
+/// are those AnalyzeConfiguration solves with that drive (same formulation).
 std::vector<ContactLcp> BuildComponentLcps(const Assembly& assembly, const Configuration& config,
-                                           const StabilityOptions& options = {});
+                                           const StabilityOptions& options = {},
+                                           const DriveInputs* drive = nullptr);
 
 /// Decides whether the movable parts of `config` stay put under gravity.
 /// With `drive`, gripped parts move with their gripper and the Stewart–Trinkle
