@@ -147,123 +147,24 @@ struct TickPath {
   int fail_tick = -1;  // the first failing tick, -1: stable
 };
 
-// The unit direction from s towards larger s (forward) or smaller s
-// (backward); zero at that end of the path. As in src/motion/simulate.cpp.
-Vector2 TravelDirection(const cairn::PlanStep& step, double s, bool forward) {
-  const double L = step.Length();
-  const double eps = 1e-9 * std::max(1.0, L);
-  if (forward ? s >= L - eps : s <= eps) return Vector2::Zero();
-  const double s2 = forward ? std::min(L, s + eps) : std::max(0.0, s - eps);
-  const Vector2 d = step.At(s2) - step.At(s);
-  return d.norm() > 0 ? Vector2(d.normalized()) : Vector2::Zero();
-}
-
-// The analyses of the plan's single step (disassembly), built the way
-// SimulatePlan builds them: roles, gripper velocity and guide, tick 0 at rest
-// and then moving, velocities carried from tick to tick (a gripped part's
-// less the gripper's), carried parts moved, and after a failure the parts
-// that moved held in place (or an unsupported part carried). With `solve`
-// false nothing is analysed: every tick is "the scene as if nothing moved"
-// (velocities zero, no failure), for scenes whose ticks take seconds.
-// Not mirrored: SimulatePlan's collision test of the gripped parts (a
-// collision is a failure that holds nothing); PrintTicks compares the replay
-// with SimulatePlan's own counts.
-TickPath MakeTicks(const Scene& s, bool solve = true) {
-  const Assembly& a = *s.assembly;
-  const cairn::Plan& plan = s.plan;
-  if (plan.steps.size() != 1 || plan.mode != cairn::PlanMode::kDisassemble)
-    throw std::invalid_argument("MakeTicks: one-step disassembly plans only");
-  const cairn::PlanStep& step = plan.steps[0];
-  const int n = a.num_parts();
-  std::vector<bool> gripped(n, false), carried(n, false), in_group(n, false), held(n, false);
-  for (int p : step.grip) gripped[p] = in_group[p] = true;
-  for (int p : step.remove)
-    if (!gripped[p]) carried[p] = in_group[p] = true;
-  cairn::SupportMode support = step.support;
-  Configuration config = Configuration::Assembled(a);
-  for (int p = 0; p < n; ++p)
-    if (in_group[p]) config.present[p] = true, config.poses[p] = cairn::Pose2{step.At(0), 0.0};
-  std::vector<Vector3> nu(n, Vector3::Zero());
-  cairn::StabilityWorkspace ws;
+// The analyses of a plan, recorded from SimulatePlan itself (with
+// continue_after_failure, so the whole path; `to_failure` marks where a run
+// without it stops: after the failing tick's analyses).
+TickPath MakeTicks(const Scene& s) {
   TickPath out;
-  const double L = step.Length(), tick_length = plan.speed * plan.dt;
-  const int moves = std::max(1, static_cast<int>(std::ceil(L / tick_length - 1e-9)));
-  for (int tick = 0; tick <= moves; ++tick) {
-    const double s_now = std::min(tick * tick_length, L);
-    const double next = std::min((tick + 1) * tick_length, L);
-    const double dt = tick < moves ? (next - s_now) / plan.speed : plan.dt;
-    const Vector2 v_g =
-        tick < moves ? Vector2(plan.speed * TravelDirection(step, s_now, true)) : Vector2::Zero();
-    const Vector2 guide =
-        v_g.norm() > 0 ? Vector2(v_g.normalized()) : Vector2(-TravelDirection(step, s_now, false));
-    for (int p = 0; p < n; ++p)
-      if (gripped[p]) config.poses[p] = cairn::Pose2{step.At(s_now), 0.0};
-    const auto make_tick = [&](bool at_rest) {
-      Tick t;
-      t.config = config;
-      t.tick = tick;
-      t.judged = at_rest || tick > 0;
-      cairn::DriveInputs& d = t.drive;
-      d.role.assign(n, PartRole::kJudged);
-      d.velocity.assign(n, Vector2::Zero());
-      d.guide.assign(n, guide);
-      d.nu_prev = nu;
-      for (int p = 0; p < n; ++p) {
-        if (gripped[p] && at_rest && !a.part(p).tool) {
-          d.role[p] = PartRole::kCarried;
-          d.nu_prev[p].setZero();
-        } else if (gripped[p]) {
-          const bool rigid = support == cairn::SupportMode::kFull || a.part(p).tool;
-          d.role[p] = rigid ? PartRole::kPrescribed : PartRole::kGuided;
-          d.velocity[p] = at_rest ? Vector2::Zero() : v_g;
-        } else if (carried[p]) {
-          d.role[p] = PartRole::kCarried;
-        } else if (held[p]) {
-          d.role[p] = PartRole::kPrescribed;
-        }
-      }
-      t.options.dt = dt;
-      t.options.tolerances = a.MakeTolerances(dt);
-      return t;
-    };
-    out.ticks.push_back(make_tick(tick == 0));
-    if (tick == 0 && tick < moves) out.ticks.push_back(make_tick(false));
-    if (!solve) continue;
-    const size_t first = out.ticks.size() - (tick == 0 && tick < moves ? 2 : 1);
-    const Tick& t = out.ticks[first];
-    const cairn::StabilityResult r =
-        cairn::AnalyzeConfiguration(a, t.config, t.options, &t.drive, &ws);
-    // The tick's outcome, in SimulatePlan's order (collisions aside).
-    const bool jammed = !r.jammed.empty(), unstable = !jammed && !r.moving.empty();
-    const bool failure = jammed || !r.moving.empty() ||
-                         r.verdict == cairn::Verdict::kSolverFailure || !r.unsupported.empty();
-    const bool unsupported =
-        failure && !jammed && r.moving.empty() && r.verdict != cairn::Verdict::kSolverFailure;
-    cairn::StabilityResult moved;
-    const cairn::StabilityResult* motion = &r;
-    if (first + 1 < out.ticks.size()) {
-      const Tick& go = out.ticks[first + 1];
-      moved = cairn::AnalyzeConfiguration(a, go.config, go.options, &go.drive, &ws);
-      motion = &moved;
-    }
-    if (failure && out.fail_tick < 0) {
-      out.fail_tick = tick;
-      out.to_failure = out.ticks.size();
-    }
-    for (const cairn::PartMotion& m : motion->parts) {
-      nu[m.part] = Vector3(m.linear.x(), m.linear.y(), m.angular);
-      if (gripped[m.part]) nu[m.part].head<2>() -= v_g;
-    }
-    for (int p = 0; p < n; ++p) {
-      if (!carried[p]) continue;
-      config.poses[p].translation += nu[p].head<2>() * dt;
-      config.poses[p].rotation += nu[p].z() * dt;
-    }
-    if (unstable)
-      for (int p : r.moving) held[p] = true, nu[p].setZero();
-    if (unsupported) support = cairn::SupportMode::kFull;
+  cairn::SimulationOptions options;
+  options.continue_after_failure = true;
+  options.on_analysis = [&out](const cairn::AnalysisInputs& in) {
+    out.ticks.push_back(Tick{*in.config, *in.drive, *in.options, in.tick, in.judged});
+  };
+  const cairn::SimulationResult r = cairn::SimulatePlan(*s.assembly, s.plan, options);
+  out.fail_tick = r.failure ? r.failure->tick : -1;
+  out.to_failure = out.ticks.size();
+  if (r.failure) {
+    out.to_failure = 0;
+    while (out.to_failure < out.ticks.size() && out.ticks[out.to_failure].tick <= out.fail_tick)
+      ++out.to_failure;
   }
-  if (out.fail_tick < 0) out.to_failure = out.ticks.size();
   return out;
 }
 
@@ -672,9 +573,7 @@ int main(int argc, char** argv) {
     if (arg == "--no_summary") summary = false;
     if (arg.rfind("--wall_budget=", 0) == 0) wall_budget = std::stod(arg.substr(14));
   }
-  // The wall's ticks carry no velocities: every tick of it ends in a solver
-  // failure (see docs/benchmarks.md), after which SimulatePlan carries zero.
-  static const TickPath wall_ticks = MakeTicks(wall_scene, false);
+  static const TickPath wall_ticks = MakeTicks(wall_scene);
   static std::vector<TickPath> paths;
   for (const Scene& s : scenes) paths.push_back(MakeTicks(s));
   if (summary) {

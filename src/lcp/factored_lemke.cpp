@@ -171,7 +171,9 @@ class Path {
 
   // Sets the complementary basis {z_i basic : basic_z[i]} and its values.
   // Returns false when its reduced matrix is singular.
-  bool SetBasis(const std::vector<bool>& basic_z) {
+  // Without `with_inverse` only the LU of C is made (enough for SolveWith):
+  // the O(k³) inverse is then left to EnsureInverse, needed only to pivot.
+  bool SetBasis(const std::vector<bool>& basic_z, bool with_inverse = true) {
     rows_.clear();
     cols_.clear();
     for (int i = 0; i < n_; ++i) {
@@ -184,7 +186,51 @@ class Path {
       }
     }
     z0_pos_ = -1;
-    return Refactor() && (RecomputeValues(), true);
+    if (!Refactor(with_inverse)) return false;
+    if (with_inverse) RecomputeValues();
+    return true;
+  }
+
+  // Makes H = C⁻¹ from the LU of the last Refactor, if not made yet.
+  bool EnsureInverse() {
+    if (h_valid_ || k() == 0) return true;
+    H_.topLeftCorner(k(), k()) = lu_.inverse();
+    h_valid_ = true;
+    return H_.topLeftCorner(k(), k()).allFinite();
+  }
+
+  // Replaces q (scaled) and recomputes the values.
+  void SetQ(const VectorX& q_scaled) {
+    q_ = q_scaled;
+    RecomputeValues();
+  }
+
+  // z of the current complementary basis (z₀ not basic) for the scaled
+  // right-hand side `q_scaled`, from H with one step of iterative refinement
+  // through the data: O(k² + nnz), no factorisation.
+  void SolveWith(const VectorX& q_scaled, VectorX* z) {
+    CAIRN_CHECK(z0_pos_ < 0);
+    const int kk = k();
+    Restrict(q_scaled, &aR_);
+    if (!h_valid_) {  // straight after Refactor: C and its LU are current
+      VectorX x = lu_.solve(-aR_);
+      x += lu_.solve(-aR_ - C_ * x);
+      z->setZero(n_);
+      for (int p = 0; p < kk; ++p) (*z)[cols_[p]] = x[p];
+      return;
+    }
+    VectorX x = -(H_.topLeftCorner(kk, kk) * aR_);
+    for (int pass = 0; pass < 2; ++pass) {
+      // Residual of the tight rows: q_R + M(R, Z) x, which should be 0.
+      scratch_.setZero(n_);
+      M_.AddColumns(cols_, x.data(), &scratch_, &u_);
+      VectorX r(kk);
+      for (int s = 0; s < kk; ++s) r[s] = q_scaled[rows_[s]] + scratch_[rows_[s]] * inv_s_;
+      if (pass == 1) break;
+      x -= H_.topLeftCorner(kk, kk) * r;
+    }
+    z->setZero(n_);
+    for (int p = 0; p < kk; ++p) (*z)[cols_[p]] = x[p];
   }
 
   // True when the current complementary basis is feasible (up to `slack`).
@@ -341,9 +387,10 @@ class Path {
   }
 
   // Rebuilds C from the data and H = C⁻¹ by LU. False when C is singular.
-  bool Refactor() {
+  bool Refactor(bool with_inverse = true) {
     const int kk = k();
     EnsureCapacity(kk + 1);
+    h_valid_ = kk == 0;
     if (kk == 0) return true;
     C_.resize(kk, kk);
     for (int p = 0; p < kk; ++p) {
@@ -354,12 +401,11 @@ class Path {
         for (int s = 0; s < kk; ++s) C_(s, p) = scratch_[rows_[s]] * inv_s_;
       }
     }
-    const Eigen::PartialPivLU<MatrixX> lu(C_);
-    const double u_min = lu.matrixLU().diagonal().cwiseAbs().minCoeff();
+    lu_.compute(C_);
+    const double u_min = lu_.matrixLU().diagonal().cwiseAbs().minCoeff();
     const double c_max = C_.cwiseAbs().maxCoeff();
     if (!(u_min > kk * kEps * c_max)) return false;
-    H_.topLeftCorner(kk, kk) = lu.inverse();
-    return H_.topLeftCorner(kk, kk).allFinite();
+    return !with_inverse || EnsureInverse();
   }
 
   // x = −H q_R and w = q + [M/s | d](:, Z) x on the basic w.
@@ -516,6 +562,8 @@ class Path {
   bool last_left_z_ = false;  // the last variable to leave was a z
   int pivots_ = 0;
   MatrixX H_, C_;
+  Eigen::PartialPivLU<MatrixX> lu_;  // of C_, as of the last Refactor
+  bool h_valid_ = false;             // H_ holds C⁻¹ (else only lu_ is current)
   VectorX x_, w_, d_;
   VectorX a_, aR_, r_, delta_, omega_, scratch_, u_, delta_z_;
   std::vector<int> cols_z_;
@@ -523,8 +571,10 @@ class Path {
 
 struct Attempt {
   PathEnd end = PathEnd::kSingular;
+  bool start_solves = false;  ///< the starting basis solves the true problem (no pivot)
   int pivots = 0;
-  VectorX z;
+  VectorX z;        ///< the path's iterate (perturbed problem)
+  VectorX z_exact;  ///< kSolution: the final basis solved with the true q (from H)
   LcpBasis basis;
 };
 
@@ -594,36 +644,37 @@ LcpResult SolveLemkeFactored(const FactoredLcpMatrix& M, const VectorX& q,
   };
 
   // One attempt from `start` (empty: cold) with perturbation seed `seed`.
+  // The starting basis is factorised once: with the true q it may already
+  // solve the problem (a warm start without pivots); otherwise the same
+  // factorisation starts the path on the perturbed q.
   const auto attempt = [&](const std::vector<bool>& start, uint64_t seed, int limit) {
     Attempt a;
-    VectorX qs = q * inv_s;
+    const VectorX q_true = q * inv_s;
+    Path path(M, q_true, inv_s, tol);
+    if (!path.SetBasis(start, /*with_inverse=*/false)) return a;
+    if (std::find(start.begin(), start.end(), true) != start.end()) {
+      VectorX z;
+      path.SolveWith(q_true, &z);
+      if (finish(z, LcpBasis{start})) {
+        a.end = PathEnd::kSolution;
+        a.start_solves = true;
+        return a;
+      }
+    }
+    VectorX qs = q_true;
     for (int i = 0; i < n; ++i)
       qs[i] += internal::kLcpPerturbation * internal::PerturbationWeight(seed, i);
-    Path path(M, qs, inv_s, tol);
-    if (!path.SetBasis(start)) return a;
-    if (path.Feasible(0.0)) {
-      a.end = PathEnd::kSolution;
-    } else {
-      a.end = path.Follow(limit);
-    }
+    if (!path.EnsureInverse()) return a;
+    path.SetQ(qs);
+    a.end = path.Feasible(0.0) ? PathEnd::kSolution : path.Follow(limit);
     a.pivots = path.pivots();
     path.Extract(&a.z, &a.basis);
+    if (a.end == PathEnd::kSolution) path.SolveWith(q_true, &a.z_exact);
     return a;
   };
 
-  // Warm start: the previous basis, re-solved with the true q, may already
-  // solve the problem; else Lemke's path from it.
   const bool warm = warm_start != nullptr && warm_start->basic_z.size() == static_cast<size_t>(n);
-  std::vector<bool> start(n, false);
-  if (warm) {
-    VectorX z;
-    if (resolve(*warm_start, &z) && finish(z, *warm_start)) {
-      result.status = LcpStatus::kSolved;
-      result.warm_start_used = true;
-      return result;
-    }
-    start = warm_start->basic_z;
-  }
+  const std::vector<bool> start = warm ? warm_start->basic_z : std::vector<bool>(n, false);
 
   std::ostringstream why;
   for (int round = 0; round < 3; ++round) {
@@ -634,9 +685,16 @@ LcpResult SolveLemkeFactored(const FactoredLcpMatrix& M, const VectorX& q,
     const int limit = from_warm ? std::min(max_pivots, 2 * n + 100) : max_pivots;
     Attempt a = attempt(from, static_cast<uint64_t>(round), limit);
     result.pivots += a.pivots;
+    if (a.start_solves) {  // finish() has filled the result
+      result.status = LcpStatus::kSolved;
+      result.warm_start_used = true;
+      return result;
+    }
     if (a.end == PathEnd::kSolution) {
+      // The final basis with the true q: from the path's H, else by a fresh
+      // LU of the basis (when H has drifted), else the perturbed iterate.
       VectorX z;
-      if (resolve(a.basis, &z) && finish(z, a.basis)) {
+      if (finish(a.z_exact, a.basis) || (resolve(a.basis, &z) && finish(z, a.basis))) {
         result.status = LcpStatus::kSolved;
         result.message.clear();
         return result;

@@ -212,6 +212,7 @@ SimulationResult SimulatePlan(const Assembly& assembly, const Plan& plan,
       // first interval (who gets pushed) comes from a second solve with the
       // gripper moving, used only to move the carried parts.
       const DriveInputs drive = make_drive(tick == 0);
+      if (options.on_analysis) options.on_analysis({k, tick, true, &config, &drive, &so});
       const StabilityResult r = AnalyzeConfiguration(assembly, config, so, &drive, &workspace);
       ++report.ticks;
       for (const ComponentReport& c : r.components) report.pivots += c.pivots;
@@ -278,6 +279,7 @@ SimulationResult SimulatePlan(const Assembly& assembly, const Plan& plan,
       const StabilityResult* motion = &r;
       if (tick == 0 && tick < moves) {
         const DriveInputs go = make_drive(false);
+        if (options.on_analysis) options.on_analysis({k, tick, false, &config, &go, &so});
         moved = AnalyzeConfiguration(assembly, config, so, &go, &workspace);
         motion = &moved;
       }

@@ -27,6 +27,7 @@
 /// each failure had been prevented (parts that should stay put are held in
 /// place), so every step gets a verdict.
 
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -84,11 +85,25 @@ struct SimulationResult {
   std::string diagnostics;               ///< solver trouble, if any
 };
 
+/// One analysis SimulatePlan is about to make (for benchmarks that replay a
+/// path, and diagnostics): its inputs, exactly as AnalyzeConfiguration gets
+/// them. Valid only during the call.
+struct AnalysisInputs {
+  int step = -1;       ///< index into Plan::steps
+  int tick = 0;        ///< tick within the step
+  bool judged = true;  ///< false: tick 0's second solve (gripper moving), used for motion only
+  const Configuration* config = nullptr;
+  const DriveInputs* drive = nullptr;
+  const StabilityOptions* options = nullptr;
+};
+
 /// Options of SimulatePlan.
 struct SimulationOptions {
   bool continue_after_failure = false;
   bool record_timeline = false;
   LemkeParameters lemke;
+  /// Called before every AnalyzeConfiguration, in order (may be empty).
+  std::function<void(const AnalysisInputs&)> on_analysis;
 };
 
 /// Runs `plan` on `assembly` (disassembly, or assembly when plan.mode says so).
