@@ -714,7 +714,8 @@ LcpResult SolveLemkeFactored(const FactoredLcpMatrix& M, const VectorX& q,
     }
     if (a.end == PathEnd::kRay) {
       // A ray from the cold start proves there is no solution (M
-      // copositive-plus); one from a warm start proves nothing: retry cold.
+      // copositive-plus, or Stewart–Trinkle's with physical q); one from a
+      // warm start proves nothing: retry cold.
       if (from_warm) continue;
       if (finish(a.z, a.basis)) {  // ended a roundoff away from a solution
         result.status = LcpStatus::kSolved;

@@ -119,8 +119,11 @@ bool SolveBasis(const MatrixX& M, const VectorX& q, const std::vector<bool>& bas
   return true;
 }
 
-// Problems up to this size are solved without heap allocation.
-constexpr int kSmallN = 16;
+// Problems up to this size are solved without heap allocation (the tableau
+// is then at most 32 × 34 doubles, 8.7 kB of stack). 32 covers the LCPs of
+// one or two bodies with a handful of frictional contacts (the T-stand's 24,
+// paper Fig. 6's 18).
+constexpr int kSmallN = 32;
 
 bool SolveComplementaryBasis(const MatrixX& M, const VectorX& q, const std::vector<bool>& basic_z,
                              VectorX* z) {
@@ -134,8 +137,8 @@ bool SolveComplementaryBasis(const MatrixX& M, const VectorX& q, const std::vect
 //
 // kMaxN bounds n at compile time (Eigen::Dynamic: no bound). Contact LCPs are
 // mostly tiny (one per contact-graph component), and for them the heap
-// allocations of a dynamic tableau cost more than the pivots: with kMaxN = 16
-// every array lives on the stack.
+// allocations of a dynamic tableau cost more than the pivots: with kMaxN =
+// kSmallN every array lives on the stack.
 template <int kMaxN>
 class LemkeTableau {
   static constexpr int kMaxCols = kMaxN == Eigen::Dynamic ? Eigen::Dynamic : kMaxN + 2;

@@ -15,9 +15,12 @@
 /// degenerate problems (e.g. the cycling circulant matrix).
 ///
 /// Termination guarantees [CPS 1992, Thm 4.4.13]: for M copositive-plus (PSD
-/// matrices, and the Stewart–Trinkle friction LCP of Cairn's mechanics stage)
-/// ray termination proves that LCP(M, q) has no solution. For P-matrices the
-/// method always finds the unique solution.
+/// matrices: the frictionless contact LCP) ray termination proves that
+/// LCP(M, q) has no solution. The Stewart–Trinkle friction LCP is copositive
+/// but not copositive-plus in general (zᵀMz = 0 allows λ > 0 with p_n = 0);
+/// for it Stewart & Trinkle (1996) prove that Lemke's method processes the
+/// LCP whenever q has the physical structure the mechanics stage builds. For
+/// P-matrices the method always finds the unique solution.
 ///
 /// Numerical robustness: after the last pivot the basic system is re-solved
 /// from the original data (LU with partial pivoting and one step of iterative
