@@ -9,6 +9,7 @@ packages=(
   libeigen3-dev          # dense and sparse linear algebra
   nlohmann-json3-dev     # scene and report JSON
   libcli11-dev           # command-line parsing
+  libglpk-dev            # the static-equilibrium linear program
   libgtest-dev libgmock-dev  # tests
   libbenchmark-dev       # bench/
   libsiconos-numerics-dev    # bench/: Siconos' Lemke, the peer we compare against

@@ -37,7 +37,9 @@ int RunCheck(const CheckArgs& args, std::ostream& out, std::ostream& err) {
       config.present[i] = false;
       report.without.push_back(i);
     }
-    const StabilityResult result = AnalyzeConfiguration(assembly, config);
+    StabilityOptions analysis;
+    analysis.check_equilibrium = true;  // report jamming (weak stability) too
+    const StabilityResult result = AnalyzeConfiguration(assembly, config, analysis);
     if (args.json)
       out << StabilityToJson(assembly, config, result, report).dump(2) << '\n';
     else

@@ -40,6 +40,9 @@ nlohmann::json StabilityToJson(const Assembly& assembly, const Configuration& co
   json moving = json::array();
   for (int i : result.moving) moving.push_back(assembly.part(i).name);
   doc["moving"] = moving;
+  doc["static_equilibrium"] =
+      result.static_equilibrium ? json(*result.static_equilibrium) : json(nullptr);
+  doc["weakly_stable"] = result.weakly_stable;
   doc["force_unit"] = force_unit;
 
   // Parts: every present part; movable ones carry their motion.

@@ -50,6 +50,11 @@ std::string StabilityToText(const Assembly& assembly, const Configuration& confi
      << result.contacts.size() << " contacts, " << result.components.size() << " component"
      << (result.components.size() == 1 ? "" : "s") << "; LCP " << lcp_vars << " variables, "
      << pivots << " pivots\n";
+  if (result.weakly_stable)
+    os << "  WEAKLY STABLE: a static equilibrium exists, but only with forces nothing produces\n"
+          "  from rest (a squeeze between faces: jamming); the contact dynamics move\n";
+  else if (result.static_equilibrium)
+    os << "  static equilibrium: " << (*result.static_equilibrium ? "exists" : "none") << '\n';
 
   // What moves, and how.
   for (const PartMotion& m : result.parts) {

@@ -8,6 +8,7 @@
 #include <numeric>
 
 #include "cairn/contact/detect_contacts.h"
+#include "cairn/mechanics/static_equilibrium.h"
 
 namespace cairn {
 
@@ -281,6 +282,14 @@ StabilityResult AnalyzeConfiguration(const Assembly& assembly, const Configurati
     const ContactLcp lcp = BuildComponent(assembly, config, contacts, comp, result.formulation,
                                           options.dt, drive, options.lcp_storage);
     result.profile.build += Seconds(t0);
+    std::optional<bool> equilibrium;
+    if (options.check_equilibrium) {
+      const StaticEquilibrium eq = FindStaticEquilibrium(lcp);
+      if (eq.solved)
+        equilibrium = eq.exists;
+      else
+        result.diagnostics += "component " + std::to_string(ci) + ": " + eq.message + "; ";
+    }
 
     // SolveLemke, then re-check the answer independently of the status.
     t0 = Clock::now();
@@ -302,6 +311,7 @@ StabilityResult AnalyzeConfiguration(const Assembly& assembly, const Configurati
     }
     result.profile.solve += Seconds(t0);
     ComponentReport report;
+    report.static_equilibrium = equilibrium;
     report.parts = comp.parts;
     report.num_contacts = static_cast<int>(comp.contacts.size());
     report.lcp_size = lcp.size();
@@ -427,6 +437,16 @@ StabilityResult AnalyzeConfiguration(const Assembly& assembly, const Configurati
   result.verdict = (any_moving || !result.jammed.empty())
                        ? Verdict::kUnstable
                        : (any_failure ? Verdict::kSolverFailure : Verdict::kStable);
+  if (options.check_equilibrium) {
+    bool all = true, known = true;
+    for (const ComponentReport& c : result.components) {
+      known = known && c.static_equilibrium.has_value();
+      all = all && c.static_equilibrium.value_or(false);
+    }
+    if (known) result.static_equilibrium = all;
+    result.weakly_stable =
+        result.verdict == Verdict::kUnstable && result.jammed.empty() && known && all;
+  }
   return result;
 }
 

@@ -88,6 +88,24 @@ TEST(CheckJson, HasTheContractKeysAndNamesTheMovingPart) {
       EXPECT_TRUE(c.contains(key)) << key;
 }
 
+// A block that just fits between two walls, nothing under it: it falls (the
+// LCP from rest), though friction could hold it if the walls squeezed it.
+TEST(CheckJson, AJammedBlockIsReportedWeaklyStable) {
+  const auto path = std::filesystem::temp_directory_path() / "cairn_jammed_block.json";
+  std::ofstream(path) << R"({"cairn": 1, "name": "jammed", "friction": 0.5, "parts": [
+    {"name": "left", "fixed": true, "box": {"min": [-1, -2], "max": [0, 2]}},
+    {"name": "right", "fixed": true, "box": {"min": [1, -2], "max": [2, 2]}},
+    {"name": "block", "box": {"min": [0, 0], "max": [1, 1]}}]})";
+  const CliRun run = Cairn("check " + path.string() + " --json");
+  ASSERT_EQ(run.exit_code, 1) << run.err;
+  const auto doc = nlohmann::json::parse(run.out);
+  EXPECT_EQ(doc["verdict"], "unstable");
+  EXPECT_EQ(doc["static_equilibrium"], true);
+  EXPECT_EQ(doc["weakly_stable"], true);
+  const CliRun text = Cairn("check " + path.string());
+  EXPECT_NE(text.out.find("WEAKLY STABLE"), std::string::npos) << text.out;
+}
+
 TEST(CheckJson, NormalizeDividesForcesByThatPartsWeight) {
   // Frictionless Fig. 1 with g = 1: the four table contacts under A carry the
   // whole weight of A–D; normalised by A's weight they sum to (total / m_A).

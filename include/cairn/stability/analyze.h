@@ -91,6 +91,10 @@ struct ComponentReport {
   double consistency_residual = 0;  ///< LCP w against the recovered body motions
   bool warm_start_used = false;
   std::string message;  ///< diagnostics when the solve failed
+  /// With StabilityOptions::check_equilibrium: whether the component could
+  /// stand in static equilibrium (mechanics/static_equilibrium.h); empty when
+  /// not asked for or when the LP solver failed.
+  std::optional<bool> static_equilibrium;
 };
 
 /// The overall answer.
@@ -123,6 +127,14 @@ struct StabilityResult {
   std::vector<int> jammed;       ///< driven parts whose prescribed motion no contact forces allow
   StageProfile profile;
   std::string diagnostics;  ///< what went wrong numerically, if anything
+  /// With StabilityOptions::check_equilibrium: every component could stand in
+  /// static equilibrium (empty: not asked for, or an LP failed).
+  std::optional<bool> static_equilibrium;
+  /// Some part moves (the LCP from rest finds motion) although a static
+  /// equilibrium exists: the configuration can only be held by forces nothing
+  /// produces, such as a squeeze between faces (jamming; Pang and Trinkle's
+  /// weak stability).
+  bool weakly_stable = false;
 };
 
 /// How the gripper drives the parts of one configuration (motion stage). Every
@@ -162,6 +174,10 @@ struct StabilityOptions {
   /// Dense or factored LCP matrices (kAuto: dense up to kMaxDenseLcp
   /// variables); the solver follows the storage. kBoth solves densely.
   LcpStorage lcp_storage = LcpStorage::kAuto;
+  /// Also decide, by a linear program over the contact forces, whether a
+  /// static equilibrium exists (StabilityResult::static_equilibrium,
+  /// weakly_stable). One LP per component; off along motion paths.
+  bool check_equilibrium = false;
 };
 
 /// The contact LCP of every contact-graph component of `config`: the first

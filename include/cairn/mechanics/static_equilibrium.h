@@ -1,0 +1,48 @@
+#pragma once
+/// @file
+/// Does a static equilibrium exist? A linear program over the contact forces
+/// of one component, independent of the LCP:
+///
+///     find f_n ≥ 0, f_t± ≥ 0 (per contact)
+///     with  Σ_c J_cᵀ (f_n n + (f_t+ − f_t−) t) + F_ext = 0  on every free body
+///           f_t+ + f_t− ≤ μ f_n                             (Coulomb, exact in 2-D)
+///     minimising Σ f_n (a canonical answer among the many of a statically
+///     indeterminate assembly).
+///
+/// The contact LCP decides what the parts *do* from rest; this decides
+/// whether they *could* stand. The two differ where parts can only be held by
+/// a squeeze that nothing produces: a block jammed between two walls, an arch
+/// of wedges, the COMPAS H and A frames. There the LCP finds motion (from
+/// rest no force builds the squeeze) while an equilibrium exists: the
+/// configuration is *weakly stable* in the sense of Pang and Trinkle (paper
+/// ref. [28]): some solution of the contact problem is at rest, not every
+/// one. A configuration the LCP finds at rest always has an equilibrium (its
+/// forces are one).
+///
+/// Guided bodies (pushed along a path) are in equilibrium only in their free
+/// directions (the gripper supplies the rest); prescribed bodies are not
+/// constrained. Solved with GLPK's simplex; the answer is re-checked from the
+/// returned forces.
+
+#include <string>
+
+#include "cairn/mechanics/contact_model.h"
+
+namespace cairn {
+
+/// The outcome of FindStaticEquilibrium.
+struct StaticEquilibrium {
+  bool solved = false;  ///< the LP solver reached a verdict (false: numerical trouble, see message)
+  bool exists = false;  ///< an equilibrium exists
+  VectorX normal_force;    ///< (nc) force units, when it exists
+  VectorX friction_force;  ///< (nc) signed along t_W, when it exists
+  double residual = 0;     ///< max over body equations of |Σ J f + F_ext| (force units)
+  std::string message;     ///< diagnostics when !solved
+};
+
+/// Solves the equilibrium LP of one component (see the file comment). Uses the
+/// component's bodies, contact rows and contacts' μ; works for either
+/// formulation of `lcp`.
+StaticEquilibrium FindStaticEquilibrium(const ContactLcp& lcp);
+
+}  // namespace cairn
