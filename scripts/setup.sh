@@ -10,6 +10,8 @@ packages=(
   nlohmann-json3-dev     # scene and report JSON
   libcli11-dev           # command-line parsing
   libglpk-dev            # the static-equilibrium linear program
+  libassimp-dev          # mesh parts (OBJ, STL)
+  libboost-dev           # Boost.Geometry: clipping coplanar faces of 3-D contacts
   libgtest-dev libgmock-dev  # tests
   libbenchmark-dev       # bench/
   libsiconos-numerics-dev    # bench/: Siconos' Lemke, the peer we compare against

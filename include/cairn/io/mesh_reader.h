@@ -1,0 +1,34 @@
+#pragma once
+/// @file
+/// Triangle meshes (Wavefront OBJ, STL ASCII or binary, and whatever else
+/// Assimp reads) as polyhedra with planar polygonal faces: the scene format's
+/// `"mesh": "parts/e.obj"` (issue 4).
+///
+/// The file is read with Assimp (Debian libassimp-dev), identical vertices are
+/// welded, every mesh in the file joins one solid (one part per file), and
+/// coplanar triangles are merged into planar faces (MergeCoplanarTriangles).
+/// The result is not yet validated: Polyhedron::Check says whether it is a
+/// closed, manifold, non-self-intersecting solid.
+
+#include <string>
+
+#include "cairn/geometry/mesh_faces.h"
+
+namespace cairn {
+
+/// Tolerances of ReadMesh's face merging.
+struct MeshReadOptions {
+  /// rad: triangles whose normals differ more are not coplanar. CAD exports
+  /// print coordinates to 7–9 digits, so exact planarity is not on offer.
+  double angle_tol = 1e-5;
+  /// length (the file's units): largest distance of a vertex from its face's
+  /// plane; ≤ 0 means 1e-6 × the diagonal of the mesh's bounding box.
+  double length_tol = 0;
+};
+
+/// Reads `path` and returns its faces. @throws InputError(path, "", why) when
+/// the file cannot be read, has no triangles, or is not a mesh.
+PolyhedronDef ReadMesh(const std::string& path, const MeshReadOptions& options = {},
+                       MeshMergeStats* stats = nullptr);
+
+}  // namespace cairn

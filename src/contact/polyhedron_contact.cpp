@@ -1,0 +1,343 @@
+#include "cairn/contact/polyhedron_contact.h"
+
+// Boost.Geometry's default "robustness" rescales coordinates to an integer
+// grid before clipping, which moves the intersection points by ~1e-8 of the
+// face size: contact points must lie exactly on both faces' edges. Cairn's
+// faces are validated simple polygons, so plain floating point suffices.
+#define BOOST_GEOMETRY_NO_ROBUSTNESS
+
+#include <algorithm>
+#include <boost/geometry.hpp>
+#include <boost/geometry/geometries/linestring.hpp>
+#include <boost/geometry/geometries/point_xy.hpp>
+#include <boost/geometry/geometries/polygon.hpp>
+#include <cmath>
+#include <map>
+
+namespace cairn {
+
+const char* to_string(ContactKind3 kind) {
+  switch (kind) {
+    case ContactKind3::kFaceFace:
+      return "face-face";
+    case ContactKind3::kVertexFace:
+      return "vertex-face";
+    case ContactKind3::kFaceVertex:
+      return "face-vertex";
+    case ContactKind3::kEdgeFace:
+      return "edge-face";
+    case ContactKind3::kFaceEdge:
+      return "face-edge";
+    case ContactKind3::kEdgeEdge:
+      return "edge-edge";
+  }
+  return "unknown";
+}
+
+std::vector<std::array<int, 2>> PolyhedronEdges(const Polyhedron& p) {
+  std::vector<std::array<int, 2>> edges;
+  for (const auto& f : p.faces())
+    for (size_t i = 0; i < f.size(); ++i) {
+      const int a = f[i], b = f[(i + 1) % f.size()];
+      edges.push_back({std::min(a, b), std::max(a, b)});
+    }
+  std::sort(edges.begin(), edges.end());
+  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+  return edges;
+}
+
+namespace {
+
+namespace bg = boost::geometry;
+using Point2 = bg::model::d2::point_xy<double>;
+using Polygon2 = bg::model::polygon<Point2>;
+using MultiPolygon2 = bg::model::multi_polygon<Polygon2>;
+using Line2 = bg::model::linestring<Point2>;
+using MultiLine2 = bg::model::multi_linestring<Line2>;
+
+// A polyhedron placed in the world, with the adjacency the tests need.
+struct Placed {
+  std::vector<Vector3> v;                      // vertices, world
+  std::vector<Vector3> n;                      // face normals, world
+  std::vector<double> offset;                  // n · x on each face's plane
+  std::vector<Vector3> lo, hi;                 // face bounding boxes
+  std::vector<std::vector<int>> neighbours;    // vertex → adjacent vertices
+  std::vector<std::array<int, 2>> edges;       // PolyhedronEdges order
+  std::vector<std::array<int, 2>> edge_faces;  // edge → its two faces
+  const Polyhedron* shape = nullptr;
+
+  Placed(const Polyhedron& p, const Eigen::Isometry3d& X) : shape(&p) {
+    for (const Vector3& x : p.vertices()) v.push_back(X * x);
+    const int nf = static_cast<int>(p.faces().size());
+    for (int f = 0; f < nf; ++f) {
+      n.push_back(X.linear() * p.face_normals()[f]);
+      offset.push_back(n[f].dot(v[p.faces()[f][0]]));
+      Vector3 l = v[p.faces()[f][0]], h = l;
+      for (int i : p.faces()[f]) l = l.cwiseMin(v[i]), h = h.cwiseMax(v[i]);
+      lo.push_back(l);
+      hi.push_back(h);
+    }
+    neighbours.resize(v.size());
+    edges = PolyhedronEdges(p);
+    edge_faces.assign(edges.size(), {-1, -1});
+    for (int f = 0; f < nf; ++f) {
+      const auto& face = p.faces()[f];
+      for (size_t i = 0; i < face.size(); ++i) {
+        const int a = face[i], b = face[(i + 1) % face.size()];
+        neighbours[a].push_back(b);
+        const std::array<int, 2> key{std::min(a, b), std::max(a, b)};
+        const auto e = std::lower_bound(edges.begin(), edges.end(), key) - edges.begin();
+        (edge_faces[e][0] < 0 ? edge_faces[e][0] : edge_faces[e][1]) = f;
+      }
+    }
+  }
+};
+
+// An orthonormal basis (u, w) of the plane with normal n; fixed by n alone.
+void PlaneBasis(const Vector3& n, Vector3* u, Vector3* w) {
+  const Vector3 seed = std::abs(n.x()) < 0.9 ? Vector3::UnitX() : Vector3::UnitY();
+  *u = n.cross(seed).normalized();
+  *w = n.cross(*u);
+}
+
+Polygon2 FacePolygon(const Placed& P, int f, const Vector3& o, const Vector3& u, const Vector3& w) {
+  Polygon2 poly;
+  for (int i : P.shape->faces()[f]) {
+    const Vector3 d = P.v[i] - o;
+    bg::append(poly.outer(), Point2(d.dot(u), d.dot(w)));
+  }
+  bg::correct(poly);
+  return poly;
+}
+
+bool BoxesApart(const Vector3& lo1, const Vector3& hi1, const Vector3& lo2, const Vector3& hi2,
+                double tol) {
+  return (lo1.array() > hi2.array() + tol).any() || (lo2.array() > hi1.array() + tol).any();
+}
+
+// Whether every neighbour of vertex i of P lies on the +n side of the plane
+// n · x = c (within tol): P's material near i is on that side.
+bool MaterialAbove(const Placed& P, int i, const Vector3& n, double c, double tol) {
+  for (int j : P.neighbours[i])
+    if (n.dot(P.v[j]) - c < -tol) return false;
+  return true;
+}
+
+// The face–face patches found so far on each face of b (in b-face 2-D
+// coordinates), to skip vertex and edge points inside them.
+struct Patch {
+  int face_b;
+  MultiPolygon2 area;
+};
+
+}  // namespace
+
+std::vector<PolyhedronContactPoint> FindPolyhedronContacts(const Polyhedron& a,
+                                                           const Eigen::Isometry3d& X_WA,
+                                                           const Polyhedron& b,
+                                                           const Eigen::Isometry3d& X_WB,
+                                                           double length_tol, double angle_tol) {
+  const Placed A(a, X_WA), B(b, X_WB);
+  const double cos_tol = std::cos(angle_tol);
+  const double area_tol = length_tol * length_tol;
+  std::vector<PolyhedronContactPoint> out;
+  std::vector<Patch> patches;  // by face of b (face–face, a's faces pressed onto b's)
+  std::vector<std::pair<int, int>> face_pairs;  // (face a, face b) of each patch
+  int next_patch = 0;
+
+  // Face–face.
+  for (int fb = 0; fb < static_cast<int>(B.n.size()); ++fb) {
+    Vector3 u, w;
+    PlaneBasis(B.n[fb], &u, &w);
+    const Vector3 o = B.v[b.faces()[fb][0]];
+    Polygon2 poly_b;
+    bool have_b = false;
+    for (int fa = 0; fa < static_cast<int>(A.n.size()); ++fa) {
+      if (A.n[fa].dot(B.n[fb]) > -cos_tol) continue;
+      if (BoxesApart(A.lo[fa], A.hi[fa], B.lo[fb], B.hi[fb], length_tol)) continue;
+      bool on_plane = true;
+      double gap = 0;
+      for (int i : a.faces()[fa]) {
+        const double d = B.n[fb].dot(A.v[i]) - B.offset[fb];
+        on_plane = on_plane && std::abs(d) <= length_tol;
+        gap += d;
+      }
+      if (!on_plane) continue;
+      gap /= static_cast<double>(a.faces()[fa].size());
+      if (!have_b) poly_b = FacePolygon(B, fb, o, u, w), have_b = true;
+      MultiPolygon2 pieces;
+      bg::intersection(FacePolygon(A, fa, o, u, w), poly_b, pieces);
+      MultiPolygon2 kept;
+      for (const Polygon2& piece : pieces) {
+        if (bg::area(piece) <= area_tol) continue;
+        kept.push_back(piece);
+        const auto& ring = piece.outer();
+        for (size_t k = 0; k + 1 < ring.size(); ++k) {  // the ring repeats its first point
+          PolyhedronContactPoint c;
+          c.p_W = o + ring[k].x() * u + ring[k].y() * w + gap * B.n[fb];
+          c.n_W = B.n[fb];
+          c.gap = gap;
+          c.kind = ContactKind3::kFaceFace;
+          c.patch = next_patch;
+          c.feature_a = fa;
+          c.feature_b = fb;
+          out.push_back(c);
+        }
+        ++next_patch;
+      }
+      if (!kept.empty()) {
+        patches.push_back({fb, kept});
+        face_pairs.emplace_back(fa, fb);
+      }
+    }
+  }
+
+  // Is the point p (on face f of `faces_of`'s side) inside a face–face patch?
+  const auto in_patch = [&](const Vector3& p, int face, bool face_is_b) {
+    for (size_t k = 0; k < patches.size(); ++k) {
+      const int f = face_is_b ? patches[k].face_b : face_pairs[k].first;
+      if (f != face) continue;
+      const int fb = patches[k].face_b;
+      Vector3 u, w;
+      PlaneBasis(B.n[fb], &u, &w);
+      const Vector3 d = p - B.v[b.faces()[fb][0]];
+      if (bg::distance(Point2(d.dot(u), d.dot(w)), patches[k].area) <= length_tol) return true;
+    }
+    return false;
+  };
+
+  // Vertex–face, both ways: a vertex of P on a face of Q.
+  const auto vertex_face = [&](const Placed& P, const Placed& Q, bool p_is_a) {
+    for (int i = 0; i < static_cast<int>(P.v.size()); ++i) {
+      for (int f = 0; f < static_cast<int>(Q.n.size()); ++f) {
+        const double d = Q.n[f].dot(P.v[i]) - Q.offset[f];
+        if (std::abs(d) > length_tol) continue;
+        if (BoxesApart(P.v[i], P.v[i], Q.lo[f], Q.hi[f], length_tol)) continue;
+        if (!MaterialAbove(P, i, Q.n[f], Q.offset[f], length_tol)) continue;
+        Vector3 u, w;
+        PlaneBasis(Q.n[f], &u, &w);
+        const Vector3 o = Q.v[Q.shape->faces()[f][0]];
+        const Vector3 r = P.v[i] - o;
+        if (bg::distance(Point2(r.dot(u), r.dot(w)), FacePolygon(Q, f, o, u, w)) > length_tol)
+          continue;
+        // Inside a face–face patch of this face: already a contact.
+        if (p_is_a ? in_patch(P.v[i], f, true) : in_patch(P.v[i], f, false)) continue;
+        PolyhedronContactPoint c;
+        c.p_W = P.v[i];
+        c.n_W = p_is_a ? Q.n[f] : Vector3(-Q.n[f]);
+        c.gap = d;
+        c.kind = p_is_a ? ContactKind3::kVertexFace : ContactKind3::kFaceVertex;
+        c.patch = next_patch++;
+        c.feature_a = p_is_a ? i : f;
+        c.feature_b = p_is_a ? f : i;
+        out.push_back(c);
+      }
+    }
+  };
+  vertex_face(A, B, true);
+  vertex_face(B, A, false);
+
+  // Edge–face, both ways: an edge of P lying on a face of Q, clipped to it
+  // (its ends inside the face are vertex–face points already; the clip points
+  // on the face's boundary are new).
+  const auto edge_face = [&](const Placed& P, const Placed& Q, bool p_is_a) {
+    for (int e = 0; e < static_cast<int>(P.edges.size()); ++e) {
+      const int i = P.edges[e][0], j = P.edges[e][1];
+      for (int f = 0; f < static_cast<int>(Q.n.size()); ++f) {
+        const double di = Q.n[f].dot(P.v[i]) - Q.offset[f];
+        const double dj = Q.n[f].dot(P.v[j]) - Q.offset[f];
+        if (std::abs(di) > length_tol || std::abs(dj) > length_tol) continue;
+        if (BoxesApart(P.v[i].cwiseMin(P.v[j]), P.v[i].cwiseMax(P.v[j]), Q.lo[f], Q.hi[f],
+                       length_tol))
+          continue;
+        // An edge of a face already pressed onto this face: inside that patch.
+        bool in_face_pair = false;
+        for (const auto& [fa, fb] : face_pairs)
+          for (int s = 0; s < 2; ++s) {
+            const int pf = P.edge_faces[e][s];
+            in_face_pair = in_face_pair || (p_is_a ? (pf == fa && f == fb) : (pf == fb && f == fa));
+          }
+        if (in_face_pair) continue;
+        if (!MaterialAbove(P, i, Q.n[f], Q.offset[f], length_tol) ||
+            !MaterialAbove(P, j, Q.n[f], Q.offset[f], length_tol))
+          continue;
+        Vector3 u, w;
+        PlaneBasis(Q.n[f], &u, &w);
+        const Vector3 o = Q.v[Q.shape->faces()[f][0]];
+        Line2 seg;
+        for (int k : {i, j}) {
+          const Vector3 r = P.v[k] - o;
+          bg::append(seg, Point2(r.dot(u), r.dot(w)));
+        }
+        MultiLine2 clipped;
+        bg::intersection(seg, FacePolygon(Q, f, o, u, w), clipped);
+        for (const Line2& piece : clipped) {
+          if (piece.size() < 2) continue;
+          for (const Point2& q : {piece.front(), piece.back()}) {
+            PolyhedronContactPoint c;
+            c.p_W = o + q.x() * u + q.y() * w + 0.5 * (di + dj) * Q.n[f];
+            c.n_W = p_is_a ? Q.n[f] : Vector3(-Q.n[f]);
+            c.gap = 0.5 * (di + dj);
+            c.kind = p_is_a ? ContactKind3::kEdgeFace : ContactKind3::kFaceEdge;
+            c.patch = next_patch;
+            c.feature_a = p_is_a ? e : f;
+            c.feature_b = p_is_a ? f : e;
+            out.push_back(c);
+          }
+          ++next_patch;
+        }
+      }
+    }
+  };
+  edge_face(A, B, true);
+  edge_face(B, A, false);
+
+  // Edge–edge crossings.
+  for (int ea = 0; ea < static_cast<int>(A.edges.size()); ++ea) {
+    const Vector3 p0 = A.v[A.edges[ea][0]], p1 = A.v[A.edges[ea][1]];
+    for (int eb = 0; eb < static_cast<int>(B.edges.size()); ++eb) {
+      const Vector3 q0 = B.v[B.edges[eb][0]], q1 = B.v[B.edges[eb][1]];
+      if (BoxesApart(p0.cwiseMin(p1), p0.cwiseMax(p1), q0.cwiseMin(q1), q0.cwiseMax(q1),
+                     length_tol))
+        continue;
+      const Vector3 d1 = p1 - p0, d2 = q1 - q0, r = p0 - q0;
+      const Vector3 cr = d1.cross(d2);
+      if (cr.norm() <= std::sin(angle_tol) * d1.norm() * d2.norm()) continue;  // parallel
+      // Closest points p0 + s d1, q0 + t d2.
+      const double a11 = d1.dot(d1), a12 = d1.dot(d2), a22 = d2.dot(d2);
+      const double det = a11 * a22 - a12 * a12;
+      const double s = (a12 * d2.dot(r) - a22 * d1.dot(r)) / det;
+      const double t = (a11 * d2.dot(r) - a12 * d1.dot(r)) / det;
+      const double margin1 = length_tol / std::sqrt(a11), margin2 = length_tol / std::sqrt(a22);
+      if (s <= margin1 || s >= 1 - margin1 || t <= margin2 || t >= 1 - margin2) continue;
+      const Vector3 pa = p0 + s * d1, pb = q0 + t * d2;
+      if ((pa - pb).norm() > length_tol) continue;
+      // Into a's material: against the outward normals of a's faces at ea.
+      Vector3 n = cr.normalized();
+      const Vector3 out_a = A.n[A.edge_faces[ea][0]] + A.n[A.edge_faces[ea][1]];
+      if (n.dot(out_a) > 0) n = -n;
+      PolyhedronContactPoint c;
+      c.p_W = 0.5 * (pa + pb);
+      c.n_W = n;
+      c.gap = n.dot(pa - pb);
+      c.kind = ContactKind3::kEdgeEdge;
+      c.patch = next_patch++;
+      c.feature_a = ea;
+      c.feature_b = eb;
+      out.push_back(c);
+    }
+  }
+
+  // Merge points closer than length_tol with the same normal (an edge end on
+  // a face that is also a vertex–face point, ...): the first one stays.
+  std::vector<PolyhedronContactPoint> merged;
+  for (const PolyhedronContactPoint& c : out) {
+    bool dup = false;
+    for (const PolyhedronContactPoint& m : merged)
+      dup = dup || ((m.p_W - c.p_W).norm() <= length_tol && m.n_W.dot(c.n_W) >= cos_tol);
+    if (!dup) merged.push_back(c);
+  }
+  return merged;
+}
+
+}  // namespace cairn

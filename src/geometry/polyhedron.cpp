@@ -1,0 +1,529 @@
+#include "cairn/geometry/polyhedron.h"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <numeric>
+#include <queue>
+#include <sstream>
+#include <stdexcept>
+#include <utility>
+
+#include "cairn/core/check.h"
+#include "cairn/geometry/polygon.h"
+
+namespace cairn {
+namespace {
+
+using Triangle = std::array<int, 3>;
+
+// Relative precision for the purely numerical decisions (a straight angle, a
+// point on a diagonal) that are not the user's tolerance: 1e-12 of the size.
+constexpr double kRelEps = 1e-12;
+
+int Size(const std::vector<int>& v) { return static_cast<int>(v.size()); }
+
+std::string Num(double x) {
+  std::ostringstream os;
+  os << x;
+  return os.str();
+}
+
+PolyhedronFault Fault(int face, const std::string& message) { return {face, message}; }
+
+std::string FaceName(int f) { return "face " + std::to_string(f); }
+
+std::string VertexPair(int a, int b) {
+  return "(" + std::to_string(a) + ", " + std::to_string(b) + ")";
+}
+
+std::string EdgeName(int a, int b) { return "edge " + VertexPair(a, b); }
+
+// Newell's normal of the polygon through `face`: its length is twice the area
+// and it points to where the vertices run counter-clockwise. Computed about
+// `center` for precision far from the origin.
+Vector3 NewellNormal(const std::vector<Vector3>& vertices, const std::vector<int>& face,
+                     const Vector3& center) {
+  Vector3 n = Vector3::Zero();
+  const int m = Size(face);
+  for (int i = 0; i < m; ++i) {
+    const Vector3 p = vertices[face[i]] - center;
+    const Vector3 q = vertices[face[(i + 1) % m]] - center;
+    n.x() += (p.y() - q.y()) * (p.z() + q.z());
+    n.y() += (p.z() - q.z()) * (p.x() + q.x());
+    n.z() += (p.x() - q.x()) * (p.y() + q.y());
+  }
+  return n;
+}
+
+Vector3 Centroid(const std::vector<Vector3>& vertices, const std::vector<int>& face) {
+  Vector3 c = Vector3::Zero();
+  for (int v : face) c += vertices[v];
+  return c / static_cast<double>(face.size());
+}
+
+// Ear clipping of a simple counter-clockwise polygon; returns triangles of
+// local indices, counter-clockwise. An ear's tip must be strictly convex and no
+// other vertex may lie inside or on its triangle, so straight-angle vertices
+// never end up on a diagonal and every triangle has positive area. O(n³),
+// fine for faces of tens of vertices.
+std::vector<Triangle> EarClip(const std::vector<Vector2>& p) {
+  std::vector<int> idx(p.size());
+  std::iota(idx.begin(), idx.end(), 0);
+  double scale = 0;
+  for (const Vector2& q : p) scale = std::max(scale, (q - p[0]).norm());
+  const double eps_len = kRelEps * scale;
+  const double eps_area = kRelEps * scale * scale;
+  std::vector<Triangle> out;
+  while (idx.size() > 3) {
+    const int m = Size(idx);
+    int chosen = -1;
+    int most_convex = 0;
+    double best_cross = -std::numeric_limits<double>::infinity();
+    for (int k = 0; k < m && chosen < 0; ++k) {
+      const int prev = (k + m - 1) % m, next = (k + 1) % m;
+      const Vector2& a = p[idx[prev]];
+      const Vector2& b = p[idx[k]];
+      const Vector2& c = p[idx[next]];
+      const double cross = Cross2(b - a, c - b);
+      if (cross > best_cross) {
+        best_cross = cross;
+        most_convex = k;
+      }
+      if (cross <= eps_area) continue;
+      bool blocked = false;
+      for (int j = 0; j < m && !blocked; ++j) {
+        if (j == k || j == prev || j == next) continue;
+        const Vector2& q = p[idx[j]];
+        blocked = LineSide(a, b, q) >= -eps_len && LineSide(b, c, q) >= -eps_len &&
+                  LineSide(c, a, q) >= -eps_len;
+      }
+      if (!blocked) chosen = k;
+    }
+    // Only roundoff on a nearly degenerate face leaves no ear: clip the most
+    // convex vertex so the loop ends; the triangles still cover the face.
+    if (chosen < 0) chosen = most_convex;
+    out.push_back({idx[(chosen + m - 1) % m], idx[chosen], idx[(chosen + 1) % m]});
+    idx.erase(idx.begin() + chosen);
+  }
+  out.push_back({idx[0], idx[1], idx[2]});
+  return out;
+}
+
+// Closest point to p on triangle abc (Ericson, Real-Time Collision Detection,
+// 5.1.5).
+Vector3 ClosestPointOnTriangle(const Vector3& p, const Vector3& a, const Vector3& b,
+                               const Vector3& c) {
+  const Vector3 ab = b - a, ac = c - a, ap = p - a;
+  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
+  if (d1 <= 0 && d2 <= 0) return a;
+  const Vector3 bp = p - b;
+  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
+  if (d3 >= 0 && d4 <= d3) return b;
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0) return a + ab * (d1 / (d1 - d3));
+  const Vector3 cp = p - c;
+  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
+  if (d6 >= 0 && d5 <= d6) return c;
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0 && d2 >= 0 && d6 <= 0) return a + ac * (d2 / (d2 - d6));
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0 && d4 - d3 >= 0 && d5 - d6 >= 0) {
+    return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
+  }
+  const double denom = 1 / (va + vb + vc);
+  return a + ab * (vb * denom) + ac * (vc * denom);
+}
+
+// Distance between segments [p1, q1] and [p2, q2] (Ericson 5.1.9).
+double SegmentSegmentDistance(const Vector3& p1, const Vector3& q1, const Vector3& p2,
+                              const Vector3& q2) {
+  const Vector3 d1 = q1 - p1, d2 = q2 - p2, r = p1 - p2;
+  const double a = d1.squaredNorm(), e = d2.squaredNorm(), f = d2.dot(r);
+  double s = 0, t = 0;
+  if (a == 0 && e == 0) return r.norm();
+  if (a == 0) {
+    t = std::clamp(f / e, 0.0, 1.0);
+  } else {
+    const double c = d1.dot(r);
+    if (e == 0) {
+      s = std::clamp(-c / a, 0.0, 1.0);
+    } else {
+      const double b = d1.dot(d2);
+      const double denom = a * e - b * b;
+      s = denom > 0 ? std::clamp((b * f - c * e) / denom, 0.0, 1.0) : 0.0;
+      t = (b * s + f) / e;
+      if (t < 0) {
+        t = 0;
+        s = std::clamp(-c / a, 0.0, 1.0);
+      } else if (t > 1) {
+        t = 1;
+        s = std::clamp((b - c) / a, 0.0, 1.0);
+      }
+    }
+  }
+  return ((p1 + d1 * s) - (p2 + d2 * t)).norm();
+}
+
+struct Tri3 {
+  Vector3 a, b, c;
+};
+
+// Distance from segment [p, q] to a triangle of nonzero area: 0 when the
+// segment pierces it, else the least of its endpoints' distances and its
+// distances to the triangle's edges.
+double SegmentTriangleDistance(const Vector3& p, const Vector3& q, const Tri3& t) {
+  const Vector3 n = (t.b - t.a).cross(t.c - t.a).normalized();
+  const double dp = n.dot(p - t.a), dq = n.dot(q - t.a);
+  double d = std::min((p - ClosestPointOnTriangle(p, t.a, t.b, t.c)).norm(),
+                      (q - ClosestPointOnTriangle(q, t.a, t.b, t.c)).norm());
+  if ((dp < 0 && dq > 0) || (dp > 0 && dq < 0)) {
+    const Vector3 x = p + (q - p) * (dp / (dp - dq));
+    d = std::min(d, (x - ClosestPointOnTriangle(x, t.a, t.b, t.c)).norm());
+  }
+  d = std::min(d, SegmentSegmentDistance(p, q, t.a, t.b));
+  d = std::min(d, SegmentSegmentDistance(p, q, t.b, t.c));
+  d = std::min(d, SegmentSegmentDistance(p, q, t.c, t.a));
+  return d;
+}
+
+// Distance between two triangles of nonzero area. Two triangles that meet
+// have an edge of one meeting the other, and two apart are closest at a
+// vertex–face or an edge–edge pair, so six segment–triangle distances decide.
+double TriangleDistance(const Tri3& s, const Tri3& t) {
+  return std::min({SegmentTriangleDistance(s.a, s.b, t), SegmentTriangleDistance(s.b, s.c, t),
+                   SegmentTriangleDistance(s.c, s.a, t), SegmentTriangleDistance(t.a, t.b, s),
+                   SegmentTriangleDistance(t.b, t.c, s), SegmentTriangleDistance(t.c, t.a, s)});
+}
+
+// One triangle of a face, for the face–face intersection test.
+struct FaceTriangle {
+  int face;
+  Triangle v;
+  Vector3 lo, hi;  // bounding box
+};
+
+// True when triangles s and t (of different faces) meet anywhere but at the
+// vertices and edge they share, within tol.
+bool TrianglesIntersect(const std::vector<Vector3>& x, const FaceTriangle& s, const FaceTriangle& t,
+                        double tol) {
+  int shared_s[3], shared_t[3], n_shared = 0;
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) {
+      if (s.v[i] == t.v[j]) {
+        shared_s[n_shared] = i;
+        shared_t[n_shared] = j;
+        ++n_shared;
+      }
+    }
+  }
+  const Tri3 ts{x[s.v[0]], x[s.v[1]], x[s.v[2]]};
+  const Tri3 tt{x[t.v[0]], x[t.v[1]], x[t.v[2]]};
+  if (n_shared == 0) return TriangleDistance(ts, tt) <= tol;
+  if (n_shared == 1) {
+    // Meeting beyond the shared vertex v, the two meet along a segment from v
+    // that leaves one of them through the edge opposite v.
+    const int i = shared_s[0], j = shared_t[0];
+    return SegmentTriangleDistance(x[s.v[(i + 1) % 3]], x[s.v[(i + 2) % 3]], tt) <= tol ||
+           SegmentTriangleDistance(x[t.v[(j + 1) % 3]], x[t.v[(j + 2) % 3]], ts) <= tol;
+  }
+  if (n_shared == 2) {
+    // Sharing edge uv, they overlap only when folded flat onto each other:
+    // s's third vertex within tol of the half-plane of t beyond uv.
+    const Vector3& u = x[s.v[shared_s[0]]];
+    const Vector3 e = (x[s.v[shared_s[1]]] - u).normalized();
+    const Vector3 a = x[s.v[3 - shared_s[0] - shared_s[1]]] - u;
+    const Vector3 b = x[t.v[3 - shared_t[0] - shared_t[1]]] - u;
+    const Vector3 pa = a - e * e.dot(a), pb = b - e * e.dot(b);
+    if (pa.dot(pb) <= 0) return false;
+    const Vector3 hb = pb.normalized();
+    return (pa - hb * hb.dot(pa)).norm() <= tol;
+  }
+  return false;  // the same triangle twice: caught as zero volume
+}
+
+}  // namespace
+
+PolyhedronMass ComputePolyhedronMass(const std::vector<Vector3>& vertices,
+                                     const std::vector<Triangle>& triangles) {
+  PolyhedronMass mass;
+  if (triangles.empty()) return mass;
+  // Reference point: the mean of the triangles' corners, so that the sums stay
+  // well conditioned for meshes far from the origin.
+  Vector3 ref = Vector3::Zero();
+  for (const Triangle& t : triangles) {
+    for (int v : t) ref += vertices[v];
+  }
+  ref /= 3.0 * static_cast<double>(triangles.size());
+  // Each outward triangle abc with the reference point spans a tetrahedron of
+  // signed volume det(a, b, c)/6; over a closed surface the signed
+  // tetrahedra sum to the solid (divergence theorem). For a tetrahedron with
+  // one corner at the origin: ∫ r dV = V (a + b + c)/4 and
+  // ∫ r rᵀ dV = V/20 (a aᵀ + b bᵀ + c cᵀ + s sᵀ), s = a + b + c.
+  double volume = 0;
+  Vector3 first = Vector3::Zero();
+  Eigen::Matrix3d second = Eigen::Matrix3d::Zero();
+  for (const Triangle& t : triangles) {
+    const Vector3 a = vertices[t[0]] - ref, b = vertices[t[1]] - ref, c = vertices[t[2]] - ref;
+    const double v = a.dot(b.cross(c)) / 6;
+    const Vector3 s = a + b + c;
+    volume += v;
+    first += v * s / 4;
+    second +=
+        v / 20 * (a * a.transpose() + b * b.transpose() + c * c.transpose() + s * s.transpose());
+  }
+  mass.volume = volume;
+  if (volume == 0) {
+    // No solid: no centroid. Report the moments about the reference point.
+    mass.centroid = ref;
+    mass.inertia = second.trace() * Eigen::Matrix3d::Identity() - second;
+    return mass;
+  }
+  const Vector3 c = first / volume;
+  const Eigen::Matrix3d central = second - volume * c * c.transpose();
+  mass.centroid = ref + c;
+  mass.inertia = central.trace() * Eigen::Matrix3d::Identity() - central;
+  mass.inertia = (0.5 * (mass.inertia + mass.inertia.transpose())).eval();
+  return mass;
+}
+
+namespace {
+
+// Everything Check finds out, for Create to keep.
+struct Checked {
+  std::vector<std::vector<int>> faces;
+  std::vector<Vector3> normals;
+  std::vector<std::vector<Triangle>> triangles;
+  PolyhedronMass mass;
+};
+
+std::optional<PolyhedronFault> Validate(const PolyhedronDef& def, double tol, Checked& out) {
+  CAIRN_THROW_UNLESS(std::isfinite(tol) && tol >= 0,
+                     "the polyhedron tolerance must be finite and >= 0 (got " << tol << ")");
+  const std::vector<Vector3>& x = def.vertices;
+  const int num_vertices = static_cast<int>(x.size());
+  const int num_faces = static_cast<int>(def.faces.size());
+  for (int v = 0; v < num_vertices; ++v) {
+    if (!x[v].allFinite()) return Fault(-1, "vertex " + std::to_string(v) + " is not finite");
+  }
+  if (num_faces < 4) {
+    return Fault(-1, "a polyhedron needs at least 4 faces (got " + std::to_string(num_faces) + ")");
+  }
+
+  // Each face on its own: indices, area, planarity, simplicity; triangles.
+  out.faces = def.faces;
+  out.normals.assign(num_faces, Vector3::Zero());
+  out.triangles.assign(num_faces, {});
+  for (int f = 0; f < num_faces; ++f) {
+    const std::vector<int>& face = def.faces[f];
+    const int m = Size(face);
+    const std::string name = FaceName(f);
+    if (m < 3) {
+      return Fault(f, name + " has " + std::to_string(m) + " vertices (at least 3 needed)");
+    }
+    for (int i = 0; i < m; ++i) {
+      if (face[i] < 0 || face[i] >= num_vertices) {
+        return Fault(f, name + ": vertex index " + std::to_string(face[i]) +
+                            " is out of range (there are " + std::to_string(num_vertices) +
+                            " vertices)");
+      }
+    }
+    for (int i = 0; i < m; ++i) {
+      for (int j = i + 1; j < m; ++j) {
+        if (face[i] == face[j]) {
+          return Fault(f, name + " lists vertex " + std::to_string(face[i]) + " twice");
+        }
+      }
+    }
+    const Vector3 center = Centroid(x, face);
+    const Vector3 newell = NewellNormal(x, face, center);
+    const double area = newell.norm() / 2;
+    double perimeter = 0;
+    for (int i = 0; i < m; ++i) perimeter += (x[face[(i + 1) % m]] - x[face[i]]).norm();
+    // A face of width w and perimeter P has area about w P / 2: zero area or
+    // collinear vertices (within tol) make it degenerate.
+    if (area <= std::max(tol * perimeter / 2, kRelEps * perimeter * perimeter)) {
+      return Fault(
+          f, name + " is degenerate: zero area or collinear vertices (area " + Num(area) + ")");
+    }
+    const Vector3 n = newell / (2 * area);
+    for (int v : face) {
+      const double off = std::abs(n.dot(x[v] - center));
+      if (off > tol) {
+        return Fault(f, name + " is not planar: vertex " + std::to_string(v) + " is " + Num(off) +
+                            " off its plane (tolerance " + Num(tol) + ")");
+      }
+    }
+    // Project onto the plane; (u, w, n) is right-handed, so the projection runs
+    // counter-clockwise.
+    const Vector3 u = n.unitOrthogonal();
+    const Vector3 w = n.cross(u);
+    Polygon poly;
+    poly.reserve(m);
+    for (int v : face) poly.push_back(Vector2(u.dot(x[v] - center), w.dot(x[v] - center)));
+    if (const auto hit = FindSelfIntersection(poly, tol)) {
+      const int a = hit->edge_a, b = hit->edge_b;
+      return Fault(f, name + " is self-intersecting: its edges " +
+                          VertexPair(face[a], face[(a + 1) % m]) + " and " +
+                          VertexPair(face[b], face[(b + 1) % m]) + " cross or touch");
+    }
+    out.normals[f] = n;
+    for (const Triangle& t : EarClip(poly)) {
+      out.triangles[f].push_back({face[t[0]], face[t[1]], face[t[2]]});
+    }
+  }
+
+  // Edges: each must be used by exactly two faces. key (low, high) → the
+  // faces using it and the direction (+1: low → high).
+  std::map<std::pair<int, int>, std::vector<std::pair<int, int>>> edges;
+  for (int f = 0; f < num_faces; ++f) {
+    const std::vector<int>& face = def.faces[f];
+    const int m = Size(face);
+    for (int i = 0; i < m; ++i) {
+      const int a = face[i], b = face[(i + 1) % m];
+      edges[{std::min(a, b), std::max(a, b)}].push_back({f, a < b ? 1 : -1});
+    }
+  }
+  for (int f = 0; f < num_faces; ++f) {
+    const std::vector<int>& face = def.faces[f];
+    const int m = Size(face);
+    for (int i = 0; i < m; ++i) {
+      const int a = face[i], b = face[(i + 1) % m];
+      const auto& users = edges.at({std::min(a, b), std::max(a, b)});
+      if (users.size() == 1) {
+        return Fault(f, "the surface is open: " + EdgeName(a, b) + " of " + FaceName(f) +
+                            " belongs to no other face");
+      }
+      if (users.size() > 2) {
+        std::string list;
+        for (const auto& [g, dir] : users) list += (list.empty() ? "" : ", ") + std::to_string(g);
+        return Fault(users[2].first, "the surface is non-manifold: " + EdgeName(a, b) +
+                                         " is shared by " + std::to_string(users.size()) +
+                                         " faces (" + list + "), not 2");
+      }
+    }
+  }
+
+  // Orientation: breadth-first over the faces, flipping a face when it runs a
+  // shared edge the same way as its (already oriented) neighbour.
+  std::vector<std::vector<std::pair<int, int>>> neighbours(num_faces);  // (face, same way?)
+  for (const auto& [key, users] : edges) {
+    const bool same = users[0].second == users[1].second;
+    neighbours[users[0].first].push_back({users[1].first, same ? 1 : 0});
+    neighbours[users[1].first].push_back({users[0].first, same ? 1 : 0});
+  }
+  std::vector<int> flip(num_faces, -1);
+  int shells = 0;
+  int second_shell_face = -1;
+  for (int start = 0; start < num_faces; ++start) {
+    if (flip[start] >= 0) continue;
+    ++shells;
+    if (shells == 2) second_shell_face = start;
+    flip[start] = 0;
+    std::queue<int> queue;
+    queue.push(start);
+    while (!queue.empty()) {
+      const int f = queue.front();
+      queue.pop();
+      for (const auto& [g, same] : neighbours[f]) {
+        const int want = flip[f] ^ same;
+        if (flip[g] < 0) {
+          flip[g] = want;
+          queue.push(g);
+        } else if (flip[g] != want) {
+          return Fault(g, FaceName(g) +
+                              " cannot be oriented consistently with its neighbours: the "
+                              "surface is not orientable");
+        }
+      }
+    }
+  }
+  if (shells > 1) {
+    return Fault(second_shell_face, "the faces form " + std::to_string(shells) +
+                                        " separate shells (" + FaceName(second_shell_face) +
+                                        " is not connected to face 0); one part must be one solid");
+  }
+  for (int f = 0; f < num_faces; ++f) {
+    if (!flip[f]) continue;
+    std::reverse(out.faces[f].begin(), out.faces[f].end());
+    out.normals[f] = -out.normals[f];
+    for (Triangle& t : out.triangles[f]) std::swap(t[1], t[2]);
+  }
+
+  // Outward: positive volume.
+  std::vector<Triangle> all;
+  double surface = 0;
+  for (int f = 0; f < num_faces; ++f) {
+    for (const Triangle& t : out.triangles[f]) {
+      all.push_back(t);
+      surface += (x[t[1]] - x[t[0]]).cross(x[t[2]] - x[t[0]]).norm() / 2;
+    }
+  }
+  out.mass = ComputePolyhedronMass(x, all);
+  // A solid thinner than tol everywhere has volume at most about tol × area / 2.
+  if (std::abs(out.mass.volume) <=
+      std::max(tol * surface / 2, kRelEps * surface * std::sqrt(surface))) {
+    return Fault(-1, "the solid has zero volume (" + Num(out.mass.volume) + ")");
+  }
+  if (out.mass.volume < 0) {
+    for (int f = 0; f < num_faces; ++f) {
+      std::reverse(out.faces[f].begin(), out.faces[f].end());
+      out.normals[f] = -out.normals[f];
+      for (Triangle& t : out.triangles[f]) std::swap(t[1], t[2]);
+    }
+    for (Triangle& t : all) std::swap(t[1], t[2]);
+    out.mass = ComputePolyhedronMass(x, all);
+  }
+
+  // Faces intersecting each other. Every pair of triangles of different faces
+  // is tested: O(T²), acceptable for parts of tens to hundreds of faces; a
+  // bounding-volume hierarchy would be the next step. Bounding boxes apart by
+  // more than tol skip the exact test.
+  std::vector<FaceTriangle> tris;
+  for (int f = 0; f < num_faces; ++f) {
+    for (const Triangle& t : out.triangles[f]) {
+      FaceTriangle ft{f, t, x[t[0]], x[t[0]]};
+      for (int v : t) {
+        ft.lo = ft.lo.cwiseMin(x[v]);
+        ft.hi = ft.hi.cwiseMax(x[v]);
+      }
+      tris.push_back(ft);
+    }
+  }
+  for (size_t i = 0; i < tris.size(); ++i) {
+    for (size_t j = i + 1; j < tris.size(); ++j) {
+      const FaceTriangle& s = tris[i];
+      const FaceTriangle& t = tris[j];
+      if (s.face == t.face) continue;
+      if (((s.lo - t.hi).array() > tol).any() || ((t.lo - s.hi).array() > tol).any()) continue;
+      if (TrianglesIntersect(x, s, t, tol)) {
+        return Fault(s.face, FaceName(s.face) + " intersects " + FaceName(t.face) +
+                                 " (the surface is self-intersecting)");
+      }
+    }
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
+std::optional<PolyhedronFault> Polyhedron::Check(const PolyhedronDef& def, double tol) {
+  Checked checked;
+  return Validate(def, tol, checked);
+}
+
+Polyhedron Polyhedron::Create(const PolyhedronDef& def, double tol) {
+  Checked checked;
+  if (const auto fault = Validate(def, tol, checked)) throw std::invalid_argument(fault->message);
+  Polyhedron p;
+  p.vertices_ = def.vertices;
+  p.faces_ = std::move(checked.faces);
+  p.normals_ = std::move(checked.normals);
+  p.triangles_ = std::move(checked.triangles);
+  p.mass_ = checked.mass;
+  return p;
+}
+
+}  // namespace cairn
