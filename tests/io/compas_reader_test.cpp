@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "cairn/core/error.h"
+#include "cairn/geometry/polyhedron.h"
 #include "io/bad_input.h"
 #include "test_paths.h"
 
@@ -388,6 +389,38 @@ TEST(SharedCompasFiles, TwoBlocksGeometry) {
     EXPECT_TRUE((hi - lo).isApprox(Vector3(1, 1, 1), 1e-9)) << "block " << i;
     EXPECT_NEAR(lo.z(), i == 0 ? -0.5 : 0.5, 1e-9) << "block " << i;
   }
+}
+
+// The blocks of the flat-faced COMPAS files are valid polyhedra (closed,
+// manifold, planar faces to 1e-6 of the block's size, no faces crossing),
+// with positive volume; the two-block file's are unit cubes. (The curved
+// files — armadillo, crossvault, cube-curve-*, curve-3-blocks — have quad
+// faces 1e-5 to 4e-4 of the block's size off plane: their import needs a
+// planarity policy, issue 4.)
+TEST(SharedCompasFiles, FlatFacedBlocksAreValidPolyhedra) {
+  int checked = 0;
+  for (const char* rel :
+       {"compas_assembly/arch_assembly.json", "compas_assembly/wall_assembly.json",
+        "compas_assembly/stack_assembly.json", "compas_assembly/two-blocks_assembly.json",
+        "compas_cra/bridge.json", "compas_cra/H.json", "compas_cra/A.json", "compas_cra/cubes.json",
+        "compas_cra/shelf.json", "compas_cra/snake.json", "compas_cra/type-a.json"}) {
+    const std::string path = SharedFilePath(rel);
+    if (path.empty()) continue;
+    SCOPED_TRACE(rel);
+    for (const CompasBlock& b : ReadCompasAssembly(path).blocks) {
+      Vector3 lo = b.shape.vertices[0], hi = lo;
+      for (const Vector3& v : b.shape.vertices) lo = lo.cwiseMin(v), hi = hi.cwiseMax(v);
+      const auto fault = Polyhedron::Check(b.shape, 1e-6 * (hi - lo).norm());
+      ASSERT_FALSE(fault.has_value()) << "block " << b.name << ": " << fault->message;
+      const double volume = Polyhedron::Create(b.shape, 1e-6 * (hi - lo).norm()).mass().volume;
+      EXPECT_GT(volume, 0.0) << b.name;
+      if (std::string(rel).find("two-blocks") != std::string::npos) {
+        EXPECT_NEAR(volume, 1.0, 1e-9) << b.name;
+      }
+      ++checked;
+    }
+  }
+  if (checked == 0) GTEST_SKIP() << "shared/datasets not found: skipping the COMPAS blocks";
 }
 
 // wall.json is the input of the wall example (parameters, a curve), not an
