@@ -15,6 +15,7 @@ packages=(
   libgtest-dev libgmock-dev  # tests
   libbenchmark-dev       # bench/
   libsiconos-numerics-dev    # bench/: Siconos' Lemke, the peer we compare against
+  libbullet-dev          # bench/: Bullet, the simulator a user would otherwise threshold
 )
 
 missing=()

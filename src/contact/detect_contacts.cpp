@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "cairn/contact/polyhedron_contact.h"
+
 namespace cairn {
 
 const char* to_string(ContactFeature feature) {
@@ -13,8 +15,39 @@ const char* to_string(ContactFeature feature) {
       return "edge-vertex";
     case ContactFeature::kFixture:
       return "fixture";
+    case ContactFeature::kFaceFace:
+      return "face-face";
+    case ContactFeature::kVertexFace:
+      return "vertex-face";
+    case ContactFeature::kFaceVertex:
+      return "face-vertex";
+    case ContactFeature::kEdgeFace:
+      return "edge-face";
+    case ContactFeature::kFaceEdge:
+      return "face-edge";
+    case ContactFeature::kEdgeEdge:
+      return "edge-edge";
   }
   return "unknown";
+}
+
+std::pair<Vector3, Vector3> TangentBasis(const Vector3& n) {
+  // Project the world x axis onto the tangent plane, or the y axis when n is
+  // within 45° of x (the projection would be short).
+  const Vector3 axis = std::abs(n.x()) < std::sqrt(0.5) ? Vector3::UnitX() : Vector3::UnitY();
+  const Vector3 t1 = (axis - n * n.dot(axis)).normalized();
+  return {t1, n.cross(t1)};
+}
+
+std::vector<Vector3> FrictionDirections(const Contact& c, int dimension, int D) {
+  if (dimension == 2) return {c.t_W(), -c.t_W()};
+  const auto [t1, t2] = TangentBasis(c.n_W);
+  std::vector<Vector3> out(D);
+  for (int k = 0; k < D; ++k) {
+    const double angle = 2 * M_PI * k / D;
+    out[k] = std::cos(angle) * t1 + std::sin(angle) * t2;
+  }
+  return out;
 }
 
 namespace {
@@ -60,24 +93,19 @@ void VertexEdgeContacts(const Polygon& vp, const Polygon& ep, int a, int b, doub
       Contact c;
       c.part_a = a;
       c.part_b = b;
-      c.p_WC = vp[k];
-      c.n_W = vertex_of_a ? n_e : Vector2(-n_e);
+      c.p_WC = Embed(vp[k]);
+      c.n_W = Embed(vertex_of_a ? n_e : Vector2(-n_e));
       c.gap = s;
       c.mu = mu;
       c.feature =
           vertex_of_a ? ContactFeature::kVertexOfAOnEdgeOfB : ContactFeature::kVertexOfBOnEdgeOfA;
-      c.vertex = k;
-      c.edge = e;
+      c.index_a = vertex_of_a ? k : e;
+      c.index_b = vertex_of_a ? e : k;
       out.push_back(c);
     }
   }
 }
 
-bool BoxesTouch(const std::pair<Vector2, Vector2>& x, const std::pair<Vector2, Vector2>& y,
-                double tol) {
-  return x.first.x() <= y.second.x() + tol && y.first.x() <= x.second.x() + tol &&
-         x.first.y() <= y.second.y() + tol && y.first.y() <= x.second.y() + tol;
-}
 
 }  // namespace
 
@@ -104,54 +132,124 @@ void DetectPairContacts(const Polygon& poly_i, const Polygon& poly_j, int i, int
   out.resize(kept);
 }
 
+namespace {
+
+ContactFeature FeatureOf(ContactKind3 kind) {
+  switch (kind) {
+    case ContactKind3::kFaceFace:
+      return ContactFeature::kFaceFace;
+    case ContactKind3::kVertexFace:
+      return ContactFeature::kVertexFace;
+    case ContactKind3::kFaceVertex:
+      return ContactFeature::kFaceVertex;
+    case ContactKind3::kEdgeFace:
+      return ContactFeature::kEdgeFace;
+    case ContactKind3::kFaceEdge:
+      return ContactFeature::kFaceEdge;
+    case ContactKind3::kEdgeEdge:
+      return ContactFeature::kEdgeEdge;
+  }
+  return ContactFeature::kFaceFace;
+}
+
+using Box3 = std::pair<Vector3, Vector3>;
+
+bool BoxesTouch3(const Box3& x, const Box3& y, double tol) {
+  return ((x.first.array() <= y.second.array() + tol) && (y.first.array() <= x.second.array() + tol))
+      .all();
+}
+
+}  // namespace
+
 std::vector<Contact> DetectContacts(const Assembly& assembly, const Configuration& config,
                                     double tol, double angle_tol, ContactStats* stats) {
   const int n = assembly.num_parts();
+  const bool is3 = assembly.is_3d();
   std::vector<Polygon> polys(n);
-  std::vector<std::pair<Vector2, Vector2>> boxes(n);
+  std::vector<Eigen::Isometry3d> X(n);
+  std::vector<Box3> boxes(n);
   for (int i = 0; i < n; ++i) {
     if (!config.present[i]) continue;
-    polys[i] = config.WorldPolygon(assembly, i);
-    boxes[i] = BoundingBox(polys[i]);
+    if (is3) {
+      X[i] = config.WorldTransform(assembly, i);
+    } else {
+      polys[i] = config.WorldPolygon(assembly, i);
+    }
+    const std::vector<Vector3> v = config.WorldVertices(assembly, i);
+    boxes[i] = {v[0], v[0]};
+    for (const Vector3& p : v) boxes[i] = {boxes[i].first.cwiseMin(p), boxes[i].second.cwiseMax(p)};
   }
   ContactStats local;
   std::vector<Contact> contacts;
-  // Part pairs. The movable part of a movable–fixed pair is made part a, so
-  // that "the force on a" is the force on the part that might move.
-  for (int i = 0; i < n; ++i) {
-    if (!config.present[i]) continue;
-    for (int j = i + 1; j < n; ++j) {
-      if (!config.present[j]) continue;
-      const bool fi = assembly.part(i).fixed, fj = assembly.part(j).fixed;
-      if (fi && fj) continue;
-      if (!BoxesTouch(boxes[i], boxes[j], tol)) continue;
-      ++local.pairs_tested;
-      const size_t before = contacts.size();
-      const double mu = assembly.Friction(i, j);
-      if (fi) {
-        DetectPairContacts(polys[j], polys[i], j, i, mu, tol, angle_tol, contacts);
-      } else {
-        DetectPairContacts(polys[i], polys[j], i, j, mu, tol, angle_tol, contacts);
-      }
-      if (contacts.size() > before) ++local.pairs_touching;
+  int patches = 0;
+  // Part pairs, pruned by a sweep over the boxes sorted by their low x. The
+  // movable part of a movable–fixed pair is made part a, so that "the force
+  // on a" is the force on the part that might move. Pairs are visited in
+  // (i, j) order whatever the sweep: deterministic.
+  std::vector<int> order;
+  for (int i = 0; i < n; ++i)
+    if (config.present[i]) order.push_back(i);
+  std::sort(order.begin(), order.end(), [&](int x, int y) {
+    return boxes[x].first.x() < boxes[y].first.x() || (boxes[x].first.x() == boxes[y].first.x() && x < y);
+  });
+  std::vector<std::pair<int, int>> pairs;
+  for (size_t oi = 0; oi < order.size(); ++oi) {
+    const int i = order[oi];
+    for (size_t oj = oi + 1; oj < order.size(); ++oj) {
+      const int j = order[oj];
+      if (boxes[j].first.x() > boxes[i].second.x() + tol) break;
+      if (assembly.part(i).fixed && assembly.part(j).fixed) continue;
+      if (!BoxesTouch3(boxes[i], boxes[j], tol)) continue;
+      pairs.emplace_back(std::min(i, j), std::max(i, j));
     }
+  }
+  std::sort(pairs.begin(), pairs.end());
+  for (const auto& [i, j] : pairs) {
+    ++local.pairs_tested;
+    const size_t before = contacts.size();
+    const double mu = assembly.Friction(i, j);
+    const bool swap = assembly.part(i).fixed;
+    const int a = swap ? j : i, b = swap ? i : j;
+    if (is3) {
+      for (const PolyhedronContactPoint& p :
+           FindPolyhedronContacts(*assembly.part(a).polyhedron, X[a], *assembly.part(b).polyhedron,
+                                  X[b], tol, angle_tol)) {
+        Contact c;
+        c.part_a = a;
+        c.part_b = b;
+        c.p_WC = p.p_W;
+        c.n_W = p.n_W;
+        c.gap = p.gap;
+        c.mu = mu;
+        c.feature = FeatureOf(p.kind);
+        c.index_a = p.feature_a;
+        c.index_b = p.feature_b;
+        c.patch = patches + p.patch;
+        contacts.push_back(c);
+      }
+      int most = -1;
+      for (size_t k = before; k < contacts.size(); ++k) most = std::max(most, contacts[k].patch);
+      if (most >= 0) patches = most + 1;
+    } else {
+      DetectPairContacts(polys[a], polys[b], a, b, mu, tol, angle_tol, contacts);
+    }
+    if (contacts.size() > before) ++local.pairs_touching;
   }
   // Fixtures: frictionless contacts with the fixed world, moving with their part.
   const auto& fixtures = assembly.fixtures();
   for (int f = 0; f < static_cast<int>(fixtures.size()); ++f) {
     const Fixture& fx = fixtures[f];
     if (!config.present[fx.part] || assembly.part(fx.part).fixed) continue;
-    const Pose2& pose = config.poses[fx.part];
+    const Pose& pose = config.poses[fx.part];
     Contact c;
     c.part_a = fx.part;
     c.part_b = kWorld;
     c.p_WC = pose.Apply(fx.point, assembly.part(fx.part).centroid);
-    const double cs = std::cos(pose.rotation), sn = std::sin(pose.rotation);
-    c.n_W =
-        Vector2(cs * fx.normal.x() - sn * fx.normal.y(), sn * fx.normal.x() + cs * fx.normal.y());
+    c.n_W = pose.rotation * fx.normal;
     c.mu = 0;
     c.feature = ContactFeature::kFixture;
-    c.vertex = f;
+    c.index_a = f;
+    if (is3) c.patch = patches++;
     contacts.push_back(c);
   }
   if (stats) *stats = local;

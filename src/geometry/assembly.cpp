@@ -26,7 +26,12 @@ std::string Num(double x) {
 
 std::string Point(const Vector2& p) { return "(" + Num(p.x()) + ", " + Num(p.y()) + ")"; }
 
+std::string Point(const Vector3& p) {
+  return "(" + Num(p.x()) + ", " + Num(p.y()) + ", " + Num(p.z()) + ")";
+}
+
 bool Finite(const Vector2& v) { return std::isfinite(v.x()) && std::isfinite(v.y()); }
+bool Finite(const Vector3& v) { return v.allFinite(); }
 
 // Throws the InputError of one fault; all validation goes through it.
 class Validator {
@@ -40,6 +45,9 @@ class Validator {
     if (!std::isfinite(x)) Fail(path, "must be a finite number (got " + Num(x) + ")");
   }
   void FinitePoint(const Vector2& v, const std::string& path) const {
+    if (!Finite(v)) Fail(path, "must have finite coordinates (got " + Point(v) + ")");
+  }
+  void FinitePoint(const Vector3& v, const std::string& path) const {
     if (!Finite(v)) Fail(path, "must have finite coordinates (got " + Point(v) + ")");
   }
   void Positive(double x, const std::string& path) const {
@@ -116,21 +124,114 @@ std::string DescribeSelfIntersection(const Polygon& poly, const SelfIntersection
 
 }  // namespace
 
+namespace {
+
+// The JSON path of a part's shape.
+std::string ShapePath(const PartDef& p, int i) {
+  const std::string key = !p.shape_key.empty() ? p.shape_key
+                          : p.polyhedron       ? "polyhedron"
+                                               : "polygon";
+  return Indexed("parts", i) + "." + key;
+}
+
+// A 2-D part's validated polygon and mass properties.
+Part Make2dPart(const PartDef& p, const std::string& path, double tol, const Validator& check) {
+  const int nv = static_cast<int>(p.polygon.size());
+  for (int k = 1; k < nv; ++k) {
+    for (int l = 0; l < k; ++l) {
+      if ((p.polygon[k] - p.polygon[l]).norm() <= tol) {
+        check.Fail(path + Indexed("", k), "self-intersecting: vertex " + std::to_string(k) +
+                                              " repeats vertex " + std::to_string(l));
+      }
+    }
+  }
+  const auto box = BoundingBox(p.polygon);
+  const double size = (box.second - box.first).norm();
+  if (Collinear(p.polygon, tol)) check.Fail(path, "has zero area: its vertices are collinear");
+  if (const auto s = FindSelfIntersection(p.polygon, tol)) {
+    check.Fail(path, DescribeSelfIntersection(p.polygon, *s));
+  }
+  const double area = std::abs(SignedArea(p.polygon));
+  if (area <= tol * size) {
+    check.Fail(path, "has zero area (" + Num(area) + ", at most the tolerance times its size, " +
+                         Num(tol * size) + ")");
+  }
+  Part part;
+  part.polygon = p.polygon;
+  MakeCounterClockwise(part.polygon);
+  for (const Vector2& v : part.polygon) part.vertices.push_back(Embed(v));
+  const PolygonMass pm = ComputePolygonMass(part.polygon);
+  part.area = pm.area;
+  part.centroid = Embed(pm.centroid);
+  // An explicit mass wins over a density.
+  part.mass = p.mass ? *p.mass : p.density.value_or(1.0) * pm.area;
+  part.inertia = Matrix3::Identity() * (part.mass * pm.polar_moment / pm.area);
+  return part;
+}
+
+// A 3-D part's validated polyhedron and mass properties.
+Part Make3dPart(const PartDef& p, const std::string& path, double tol, const Validator& check) {
+  if (const auto fault = Polyhedron::Check(*p.polyhedron, tol)) check.Fail(path, fault->message);
+  Part part;
+  part.polyhedron = std::make_shared<const Polyhedron>(Polyhedron::Create(*p.polyhedron, tol));
+  part.vertices = part.polyhedron->vertices();
+  const PolyhedronMass& pm = part.polyhedron->mass();
+  part.area = pm.volume;
+  part.centroid = pm.centroid;
+  part.mass = p.mass ? *p.mass : p.density.value_or(1.0) * pm.volume;
+  part.inertia = pm.inertia * (part.mass / pm.volume);
+  return part;
+}
+
+// True when the normal n at the point p on the boundary of a 3-D part points
+// into the part: a short step along n from p goes inside.
+bool PointsInto3d(const Polyhedron& poly, const Vector3& p, const Vector3& n, double tol) {
+  const double step = 100 * tol;
+  return SignedDistance(poly, Eigen::Isometry3d::Identity(), p + step * n) < -0.5 * step;
+}
+
+}  // namespace
+
 Assembly Assembly::Create(const AssemblyDef& def, const std::string& source_file) {
   const Validator check(source_file);
   Assembly out;
   out.name_ = def.name;
+  const int num_parts = static_cast<int>(def.parts.size());
+
+  // The dimension: that of the parts' shapes, which must agree.
+  for (int i = 0; i < num_parts; ++i) {
+    const int dim = def.parts[i].polyhedron ? 3 : 2;
+    if (i == 0) out.dimension_ = dim;
+    if (dim != out.dimension_) {
+      check.Fail(ShapePath(def.parts[i], i),
+                 "mixes 2-D and 3-D shapes (this part is " + std::to_string(dim) +
+                     "-D, parts[0] is " + std::to_string(out.dimension_) + "-D)");
+    }
+  }
+  const bool is3 = out.dimension_ == 3;
 
   // Scene-wide numbers.
-  check.FinitePoint(def.gravity, "gravity");
+  const Vector3 gravity = def.gravity.value_or(is3 ? Vector3(0, 0, -9.81) : Vector3(0, -9.81, 0));
+  check.FinitePoint(gravity, "gravity");
+  if (!is3 && gravity.z() != 0) check.Fail("gravity", "must have z = 0 in a 2-D scene");
   check.NonNegative(def.friction, "friction");
   check.FiniteNumber(def.tolerance, "tolerance");
-  out.gravity_ = def.gravity;
+  out.gravity_ = gravity;
   out.default_friction_ = def.friction;
   out.tolerance_override_ = def.tolerance > 0 ? def.tolerance : 0.0;
+  if (def.friction_directions != 0) {
+    if (!is3) {
+      check.Fail("friction_directions",
+                 "applies to 3-D scenes only (2-D friction has the two directions ±t)");
+    }
+    if (def.friction_directions < 3) {
+      check.Fail("friction_directions",
+                 "must be at least 3 (got " + std::to_string(def.friction_directions) + ")");
+    }
+  }
+  out.friction_directions_ = is3 ? (def.friction_directions ? def.friction_directions : 4) : 2;
 
   // Names, mass numbers and vertex counts of every part.
-  const int num_parts = static_cast<int>(def.parts.size());
   std::unordered_map<std::string, int> index;
   for (int i = 0; i < num_parts; ++i) {
     const PartDef& p = def.parts[i];
@@ -147,6 +248,12 @@ Assembly Assembly::Create(const AssemblyDef& def, const std::string& source_file
     }
     if (p.density) check.Positive(*p.density, path + ".density");
     if (p.mass) check.Positive(*p.mass, path + ".mass");
+    if (is3) {
+      for (size_t k = 0; k < p.polyhedron->vertices.size(); ++k)
+        check.FinitePoint(p.polyhedron->vertices[k],
+                          ShapePath(p, i) + ".vertices" + Indexed("", static_cast<int>(k)));
+      continue;
+    }
     const int nv = static_cast<int>(p.polygon.size());
     if (nv < 3) {
       check.Fail(path + ".polygon",
@@ -158,13 +265,14 @@ Assembly Assembly::Create(const AssemblyDef& def, const std::string& source_file
   }
 
   // The scene's size and its length tolerance.
-  Box scene_box{Vector2(0, 0), Vector2(0, 0)};
-  for (int i = 0; i < num_parts; ++i) {
-    const Box b = BoundingBox(def.parts[i].polygon);
-    scene_box =
-        i == 0 ? b : Box{scene_box.first.cwiseMin(b.first), scene_box.second.cwiseMax(b.second)};
+  Vector3 lo = Vector3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+  for (const PartDef& p : def.parts) {
+    if (is3)
+      for (const Vector3& v : p.polyhedron->vertices) lo = lo.cwiseMin(v), hi = hi.cwiseMax(v);
+    else
+      for (const Vector2& v : p.polygon) lo = lo.cwiseMin(Embed(v)), hi = hi.cwiseMax(Embed(v));
   }
-  out.scene_size_ = (scene_box.second - scene_box.first).norm();
+  out.scene_size_ = num_parts ? (hi - lo).norm() : 0.0;
   const double tol =
       Tolerances::Scaled(out.scene_size_, 1.0, 1.0, 1.0, out.tolerance_override_).length;
   const double angle_tol = Tolerances{}.angle;
@@ -172,68 +280,52 @@ Assembly Assembly::Create(const AssemblyDef& def, const std::string& source_file
   // Each part's shape, then its mass properties.
   for (int i = 0; i < num_parts; ++i) {
     const PartDef& p = def.parts[i];
-    const std::string path = Indexed("parts", i) + ".polygon";
-    const int nv = static_cast<int>(p.polygon.size());
-    for (int k = 1; k < nv; ++k) {
-      for (int l = 0; l < k; ++l) {
-        if ((p.polygon[k] - p.polygon[l]).norm() <= tol) {
-          check.Fail(path + Indexed("", k), "self-intersecting: vertex " + std::to_string(k) +
-                                                " repeats vertex " + std::to_string(l));
-        }
-      }
-    }
-    const Box box = BoundingBox(p.polygon);
-    const double size = (box.second - box.first).norm();
-    if (Collinear(p.polygon, tol)) check.Fail(path, "has zero area: its vertices are collinear");
-    if (const auto s = FindSelfIntersection(p.polygon, tol)) {
-      check.Fail(path, DescribeSelfIntersection(p.polygon, *s));
-    }
-    const double area = std::abs(SignedArea(p.polygon));
-    if (area <= tol * size) {
-      check.Fail(path, "has zero area (" + Num(area) + ", at most the tolerance times its size, " +
-                           Num(tol * size) + ")");
-    }
-
-    Part part;
+    Part part = is3 ? Make3dPart(p, ShapePath(p, i), tol, check)
+                    : Make2dPart(p, Indexed("parts", i) + ".polygon", tol, check);
     part.name = p.name;
     part.fixed = p.fixed;
     part.tool = p.tool;
-    part.polygon = p.polygon;
-    MakeCounterClockwise(part.polygon);
-    const PolygonMass pm = ComputePolygonMass(part.polygon);
-    part.area = pm.area;
-    part.centroid = pm.centroid;
-    // An explicit mass wins over a density.
-    part.mass = p.mass ? *p.mass : p.density.value_or(1.0) * pm.area;
-    part.inertia = part.mass * pm.polar_moment / pm.area;
     out.parts_.push_back(std::move(part));
   }
 
   // Overlap between every pair of parts, skipping pairs whose bounding boxes
-  // are apart (a sweep over boxes sorted by their left side). Of all the
+  // are apart (a sweep over boxes sorted by their low x). Of all the
   // overlapping pairs the one with the lowest indices is reported.
-  std::vector<Box> boxes(num_parts);
-  for (int i = 0; i < num_parts; ++i) boxes[i] = BoundingBox(out.parts_[i].polygon);
+  std::vector<std::pair<Vector3, Vector3>> boxes(num_parts);
+  for (int i = 0; i < num_parts; ++i) {
+    boxes[i] = {out.parts_[i].vertices[0], out.parts_[i].vertices[0]};
+    for (const Vector3& v : out.parts_[i].vertices)
+      boxes[i] = {boxes[i].first.cwiseMin(v), boxes[i].second.cwiseMax(v)};
+  }
   std::vector<int> order(num_parts);
   std::iota(order.begin(), order.end(), 0);
   std::sort(order.begin(), order.end(),
             [&](int a, int b) { return boxes[a].first.x() < boxes[b].first.x(); });
   std::optional<std::pair<int, int>> worst;  // (later, earlier) index
-  Vector2 witness(0, 0);
+  Vector3 witness(0, 0, 0);
   for (int oi = 0; oi < num_parts; ++oi) {
     const int i = order[oi];
     for (int oj = oi + 1; oj < num_parts; ++oj) {
       const int j = order[oj];
       if (boxes[j].first.x() >= boxes[i].second.x() - tol) break;
-      if (boxes[j].first.y() >= boxes[i].second.y() - tol ||
-          boxes[i].first.y() >= boxes[j].second.y() - tol) {
-        continue;
-      }
+      bool apart = false;
+      for (int d = 1; d < out.dimension_; ++d)
+        apart = apart || boxes[j].first(d) >= boxes[i].second(d) - tol ||
+                boxes[i].first(d) >= boxes[j].second(d) - tol;
+      if (apart) continue;
       const std::pair<int, int> key{std::max(i, j), std::min(i, j)};
       if (worst && *worst <= key) continue;
-      if (const auto w = FindOverlap(out.parts_[i].polygon, out.parts_[j].polygon, tol)) {
+      if (is3) {
+        const Eigen::Isometry3d I = Eigen::Isometry3d::Identity();
+        if (const auto w = FindPolyhedronOverlap(*out.parts_[i].polyhedron, I,
+                                                 *out.parts_[j].polyhedron, I, tol)) {
+          worst = key;
+          witness = *w;
+        }
+      } else if (const auto w =
+                     FindOverlap(out.parts_[i].polygon, out.parts_[j].polygon, tol)) {
         worst = key;
-        witness = *w;
+        witness = Embed(*w);
       }
     }
   }
@@ -242,7 +334,7 @@ Assembly Assembly::Create(const AssemblyDef& def, const std::string& source_file
     check.Fail(Indexed("parts", later),
                "part '" + out.parts_[later].name + "' overlaps part '" + out.parts_[earlier].name +
                    "' (" + Indexed("parts", earlier) + ") by more than the tolerance " + Num(tol) +
-                   ", e.g. at " + Point(witness));
+                   ", e.g. at " + (is3 ? Point(witness) : Point(Vector2(witness.head<2>()))));
   }
 
   // Friction pairs.
@@ -277,18 +369,28 @@ Assembly Assembly::Create(const AssemblyDef& def, const std::string& source_file
     if (part < 0) check.Fail(path + ".part", "no part named '" + fd.part + "'");
     check.FinitePoint(fd.point, path + ".point");
     check.FinitePoint(fd.normal, path + ".normal");
-    const double len = std::hypot(fd.normal.x(), fd.normal.y());
+    const double len = fd.normal.norm();
     if (len == 0) check.Fail(path + ".normal", "must not be zero");
-    const Polygon& poly = out.parts_[part].polygon;
-    const double dist = DistanceToBoundary(poly, fd.point);
+    const Vector3 n = fd.normal / len;
+    const auto show = [&](const Vector3& v) { return is3 ? Point(v) : Point(Vector2(v.head<2>())); };
+    double dist = 0;
+    bool into = false;
+    if (is3) {
+      const Polyhedron& poly = *out.parts_[part].polyhedron;
+      dist = std::abs(SignedDistance(poly, Eigen::Isometry3d::Identity(), fd.point));
+      into = dist <= tol && PointsInto3d(poly, fd.point, n, tol);
+    } else {
+      const Polygon& poly = out.parts_[part].polygon;
+      dist = DistanceToBoundary(poly, fd.point.head<2>());
+      into = dist <= tol && PointsInto(poly, fd.point.head<2>(), n.head<2>(), tol, angle_tol);
+    }
     if (dist > tol) {
-      check.Fail(path + ".point", Point(fd.point) + " is not on the boundary of part '" + fd.part +
+      check.Fail(path + ".point", show(fd.point) + " is not on the boundary of part '" + fd.part +
                                       "' (distance " + Num(dist) + " > tolerance " + Num(tol) +
                                       ")");
     }
-    const Vector2 n = fd.normal / len;
-    if (!PointsInto(poly, fd.point, n, tol, angle_tol)) {
-      check.Fail(path + ".normal", Point(fd.normal) + " points out of part '" + fd.part +
+    if (!into) {
+      check.Fail(path + ".normal", show(fd.normal) + " points out of part '" + fd.part +
                                        "' (a fixel pushes: its normal must point into the part)");
     }
     out.fixtures_.push_back(Fixture{part, fd.point, n});
@@ -329,10 +431,29 @@ Tolerances Assembly::MakeTolerances(double dt) const {
   return Tolerances::Scaled(scene_size_, gravity_.norm(), dt, max_weight_, tolerance_override_);
 }
 
-Vector2 Pose2::Apply(const Vector2& p_assembled, const Vector2& centroid_assembled) const {
-  const double c = std::cos(rotation), s = std::sin(rotation);
-  const Vector2 r = p_assembled - centroid_assembled;
-  return centroid_assembled + Vector2(c * r.x() - s * r.y(), s * r.x() + c * r.y()) + translation;
+Pose Pose::Planar(const Vector2& translation, double angle) {
+  Pose pose;
+  pose.translation = Embed(translation);
+  pose.rotation = Eigen::AngleAxisd(angle, Vector3::UnitZ()).toRotationMatrix();
+  return pose;
+}
+
+Pose Pose::Translation(const Vector3& translation) {
+  Pose pose;
+  pose.translation = translation;
+  return pose;
+}
+
+Vector3 Pose::Apply(const Vector3& p_assembled, const Vector3& centroid_assembled) const {
+  return centroid_assembled + rotation * (p_assembled - centroid_assembled) + translation;
+}
+
+double Pose::angle() const { return std::atan2(rotation(1, 0), rotation(0, 0)); }
+
+void Pose::Rotate(const Vector3& rotation_vector) {
+  const double angle = rotation_vector.norm();
+  if (angle == 0) return;
+  rotation = Eigen::AngleAxisd(angle, rotation_vector / angle).toRotationMatrix() * rotation;
 }
 
 Configuration Configuration::Assembled(const Assembly& assembly) {
@@ -340,22 +461,46 @@ Configuration Configuration::Assembled(const Assembly& assembly) {
   // Tools are no part of the assembly: absent until a plan step grips them.
   config.present.resize(assembly.num_parts());
   for (int i = 0; i < assembly.num_parts(); ++i) config.present[i] = !assembly.part(i).tool;
-  config.poses.assign(assembly.num_parts(), Pose2{});
+  config.poses.assign(assembly.num_parts(), Pose{});
   return config;
 }
 
 Polygon Configuration::WorldPolygon(const Assembly& assembly, int i) const {
   const Part& part = assembly.part(i);
-  const Pose2& pose = poses.at(i);
+  const Pose& pose = poses.at(i);
+  const Eigen::Matrix2d R = pose.rotation.topLeftCorner<2, 2>();
+  const Vector2 c = part.centroid.head<2>(), t = pose.translation.head<2>();
   Polygon out;
   out.reserve(part.polygon.size());
   // A rotation keeps the counter-clockwise order.
-  for (const Vector2& v : part.polygon) out.push_back(pose.Apply(v, part.centroid));
+  for (const Vector2& v : part.polygon) out.push_back(c + R * (v - c) + t);
   return out;
 }
 
-Vector2 Configuration::WorldCentroid(const Assembly& assembly, int i) const {
+std::vector<Vector3> Configuration::WorldVertices(const Assembly& assembly, int i) const {
+  const Part& part = assembly.part(i);
+  std::vector<Vector3> out;
+  out.reserve(part.vertices.size());
+  for (const Vector3& v : part.vertices) out.push_back(poses.at(i).Apply(v, part.centroid));
+  return out;
+}
+
+Eigen::Isometry3d Configuration::WorldTransform(const Assembly& assembly, int i) const {
+  const Pose& pose = poses.at(i);
+  const Vector3& c = assembly.part(i).centroid;
+  Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+  X.linear() = pose.rotation;
+  X.translation() = c + pose.translation - pose.rotation * c;
+  return X;
+}
+
+Vector3 Configuration::WorldCentroid(const Assembly& assembly, int i) const {
   return assembly.part(i).centroid + poses.at(i).translation;
+}
+
+Matrix3 Configuration::WorldInertia(const Assembly& assembly, int i) const {
+  const Matrix3& R = poses.at(i).rotation;
+  return R * assembly.part(i).inertia * R.transpose();
 }
 
 }  // namespace cairn

@@ -526,4 +526,117 @@ Polyhedron Polyhedron::Create(const PolyhedronDef& def, double tol) {
   return p;
 }
 
+namespace {
+
+// The solid angle of triangle abc seen from the origin (Van Oosterom and
+// Strackee 1983), signed positive for a counter-clockwise triangle seen from
+// outside when the origin is inside.
+double SolidAngle(const Vector3& a, const Vector3& b, const Vector3& c) {
+  const double la = a.norm(), lb = b.norm(), lc = c.norm();
+  const double num = a.dot(b.cross(c));
+  const double den = la * lb * lc + a.dot(b) * lc + a.dot(c) * lb + b.dot(c) * la;
+  return 2 * std::atan2(num, den);
+}
+
+}  // namespace
+
+double SignedDistance(const Polyhedron& poly, const Eigen::Isometry3d& X_WB, const Vector3& p_W) {
+  // In the polyhedron's own frame.
+  const Vector3 p = X_WB.inverse() * p_W;
+  const auto& x = poly.vertices();
+  double dist = std::numeric_limits<double>::infinity();
+  double winding = 0;
+  for (const auto& face : poly.face_triangles()) {
+    for (const auto& t : face) {
+      const Vector3& a = x[t[0]];
+      const Vector3& b = x[t[1]];
+      const Vector3& c = x[t[2]];
+      dist = std::min(dist, (ClosestPointOnTriangle(p, a, b, c) - p).norm());
+      winding += SolidAngle(a - p, b - p, c - p);
+    }
+  }
+  // The winding number is 1 inside and 0 outside (4π steradians per turn).
+  const bool inside = winding > 2 * M_PI;
+  return inside ? -dist : dist;
+}
+
+namespace {
+
+// A point of `a` deeper than tol inside `b`, among a's sample points.
+std::optional<Vector3> SampleInside(const Polyhedron& a, const Eigen::Isometry3d& X_WA,
+                                    const Polyhedron& b, const Eigen::Isometry3d& X_WB,
+                                    double tol) {
+  const auto& x = a.vertices();
+  std::vector<Vector3> samples;
+  samples.push_back(a.mass().centroid);
+  for (const Vector3& v : x) samples.push_back(v);
+  for (const auto& face : a.face_triangles())
+    for (const auto& t : face) {
+      samples.push_back((x[t[0]] + x[t[1]] + x[t[2]]) / 3);
+      for (int k = 0; k < 3; ++k) samples.push_back((x[t[k]] + x[t[(k + 1) % 3]]) / 2);
+    }
+  for (const Vector3& s : samples) {
+    const Vector3 s_W = X_WA * s;
+    if (SignedDistance(b, X_WB, s_W) < -tol) return s_W;
+  }
+  return std::nullopt;
+}
+
+// An edge of `a` crossing a face of `b` properly (both ends more than tol off
+// the face's plane, the crossing more than tol inside the face polygon).
+std::optional<Vector3> EdgeThroughFace(const Polyhedron& a, const Eigen::Isometry3d& X_WA,
+                                       const Polyhedron& b, const Eigen::Isometry3d& X_WB,
+                                       double tol) {
+  std::vector<Vector3> xa, xb;
+  for (const Vector3& v : a.vertices()) xa.push_back(X_WA * v);
+  for (const Vector3& v : b.vertices()) xb.push_back(X_WB * v);
+  for (const auto& face : a.faces()) {
+    const int m = static_cast<int>(face.size());
+    for (int i = 0; i < m; ++i) {
+      const Vector3& p = xa[face[i]];
+      const Vector3& q = xa[face[(i + 1) % m]];
+      if (face[i] > face[(i + 1) % m]) continue;  // each edge once
+      for (int f = 0; f < static_cast<int>(b.faces().size()); ++f) {
+        const Vector3 n = X_WB.linear() * b.face_normals()[f];
+        const double c = n.dot(xb[b.faces()[f][0]]);
+        const double dp = n.dot(p) - c, dq = n.dot(q) - c;
+        if (!((dp > tol && dq < -tol) || (dp < -tol && dq > tol))) continue;
+        const Vector3 hit = p + (q - p) * (dp / (dp - dq));
+        // Inside the face polygon by more than tol: in one of its triangles,
+        // and more than tol from every edge of the face.
+        bool in = false;
+        for (const auto& t : b.face_triangles()[f]) {
+          const Vector3 &ta = xb[t[0]], &tb = xb[t[1]], &tc = xb[t[2]];
+          if (n.dot((tb - ta).cross(hit - ta)) >= 0 && n.dot((tc - tb).cross(hit - tb)) >= 0 &&
+              n.dot((ta - tc).cross(hit - tc)) >= 0)
+            in = true;
+        }
+        if (!in) continue;
+        const auto& fb = b.faces()[f];
+        const int k = static_cast<int>(fb.size());
+        double edge_dist = std::numeric_limits<double>::infinity();
+        for (int e = 0; e < k; ++e) {
+          const Vector3 &u = xb[fb[e]], &w = xb[fb[(e + 1) % k]];
+          const double s = std::clamp((hit - u).dot(w - u) / (w - u).squaredNorm(), 0.0, 1.0);
+          edge_dist = std::min(edge_dist, (u + s * (w - u) - hit).norm());
+        }
+        if (edge_dist > tol) return hit;
+      }
+    }
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
+std::optional<Vector3> FindPolyhedronOverlap(const Polyhedron& a, const Eigen::Isometry3d& X_WA,
+                                             const Polyhedron& b, const Eigen::Isometry3d& X_WB,
+                                             double tol) {
+  if (auto p = SampleInside(a, X_WA, b, X_WB, tol)) return p;
+  if (auto p = SampleInside(b, X_WB, a, X_WA, tol)) return p;
+  if (auto p = EdgeThroughFace(a, X_WA, b, X_WB, tol)) return p;
+  if (auto p = EdgeThroughFace(b, X_WB, a, X_WA, tol)) return p;
+  return std::nullopt;
+}
+
 }  // namespace cairn

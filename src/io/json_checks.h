@@ -39,6 +39,9 @@ inline std::string Num(double x) {
 }
 
 inline std::string Point(const Vector2& p) { return "(" + Num(p.x()) + ", " + Num(p.y()) + ")"; }
+inline std::string Point(const Vector3& p) {
+  return "(" + Num(p.x()) + ", " + Num(p.y()) + ", " + Num(p.z()) + ")";
+}
 
 inline std::string JoinKeys(std::initializer_list<const char*> keys) {
   std::string out;
@@ -124,6 +127,18 @@ class JsonChecker {
       Fail(path, "must have 2 numbers [x, y] in a 2-D scene, not " + std::to_string(j.size()));
     }
     return Vector2(Number(j[0], Index(path, 0)), Number(j[1], Index(path, 1)));
+  }
+
+  // A point or vector of a `dim`-D scene (2 or 3): [x, y] or [x, y, z]; a 2-D
+  // one has z = 0.
+  Vector3 VecN(const json& j, const std::string& path, int dim) const {
+    if (dim == 2) return Embed(Vec2(j, path));
+    if (!j.is_array()) Fail(path, "must be an array of 3 numbers [x, y, z], not " + Article(j));
+    if (j.size() != 3) {
+      Fail(path, "must have 3 numbers [x, y, z] in a 3-D scene, not " + std::to_string(j.size()));
+    }
+    return Vector3(Number(j[0], Index(path, 0)), Number(j[1], Index(path, 1)),
+                   Number(j[2], Index(path, 2)));
   }
 
   // An array of strings (part names).

@@ -24,7 +24,7 @@ constexpr std::initializer_list<const char*> kStepKeys = {"remove",    "grip",  
 // (positive dt, known part names, path forms) are Plan::Create's to check.
 class PlanParser : private io_internal::JsonChecker {
  public:
-  explicit PlanParser(const std::string& file) : JsonChecker(file) {}
+  PlanParser(const std::string& file, int dimension) : JsonChecker(file), dim_(dimension) {}
 
   PlanDef Parse(const json& doc) const {
     if (!doc.is_object()) Fail("", "a plan must be a JSON object, not " + Article(doc));
@@ -75,7 +75,7 @@ class PlanParser : private io_internal::JsonChecker {
       const json& points = Array(j["path"], path_path);
       step.has_path = true;
       for (size_t k = 0; k < points.size(); ++k) {
-        step.path.push_back(Vec2(points[k], Index(path_path, k)));
+        step.path.push_back(VecN(points[k], Index(path_path, k), dim_));
       }
     }
     if (j.contains("direction") || j.contains("distance")) {
@@ -85,7 +85,7 @@ class PlanParser : private io_internal::JsonChecker {
         Fail(Child(path, missing),
              "required key is missing (a straight path needs both direction and distance)");
       }
-      step.direction = Vec2(j["direction"], Child(path, "direction"));
+      step.direction = VecN(j["direction"], Child(path, "direction"), dim_);
       step.distance = Number(j["distance"], Child(path, "distance"));
     }
 
@@ -101,16 +101,19 @@ class PlanParser : private io_internal::JsonChecker {
     }
     return step;
   }
+
+  int dim_;  // the scene's dimension: path points and directions have this many numbers
 };
 
 }  // namespace
 
-PlanDef ParsePlanJson(const nlohmann::json& doc, const std::string& file) {
-  return PlanParser(file).Parse(doc);
+PlanDef ParsePlanJson(const nlohmann::json& doc, const std::string& file, int dimension) {
+  return PlanParser(file, dimension).Parse(doc);
 }
 
 Plan ReadPlan(const std::string& path, const Assembly& assembly) {
-  return Plan::Create(ParsePlanJson(io_internal::ReadJsonFile(path), path), assembly, path);
+  return Plan::Create(ParsePlanJson(io_internal::ReadJsonFile(path), path, assembly.dimension()),
+                      assembly, path);
 }
 
 }  // namespace cairn

@@ -7,6 +7,10 @@
 #include <utility>
 #include <vector>
 
+#include <filesystem>
+
+#include "cairn/core/error.h"
+#include "cairn/io/mesh_reader.h"
 #include "io/json_checks.h"
 
 namespace cairn {
@@ -20,7 +24,9 @@ using nlohmann::json;
 
 // The keys of each level of format version 1.
 constexpr std::initializer_list<const char*> kSceneKeys = {
-    "cairn", "name", "gravity", "friction", "friction_pairs", "tolerance", "parts", "fixtures"};
+    "cairn",     "name",  "gravity",  "friction",           "friction_pairs",
+    "tolerance", "parts", "fixtures", "friction_directions"};
+constexpr std::initializer_list<const char*> kPolyhedronKeys = {"vertices", "faces"};
 constexpr std::initializer_list<const char*> kPartKeys = {
     "name", "fixed", "tool", "density", "mass", "polygon", "box", "polyhedron", "mesh"};
 constexpr std::initializer_list<const char*> kBoxKeys = {"min", "max"};
@@ -34,18 +40,30 @@ constexpr std::initializer_list<const char*> kShapeKeys = {"polygon", "box", "po
 // on the way; the first fault throws an InputError with its JSON path.
 class SceneParser : private io_internal::JsonChecker {
  public:
-  explicit SceneParser(const std::string& file) : JsonChecker(file) {}
+  explicit SceneParser(const std::string& file) : JsonChecker(file), file_(file) {}
 
-  AssemblyDef Parse(const json& doc) const {
+  AssemblyDef Parse(const json& doc) {
     if (!doc.is_object()) Fail("", "a scene must be a JSON object, not " + Article(doc));
     CheckVersion(doc, "cairn", "scene");
     CheckKeys(doc, "", kSceneKeys);
-    CheckDimension(doc);
+    dim_ = CheckDimension(doc);
 
     AssemblyDef def;
     if (doc.contains("name")) def.name = String(doc["name"], "name");
-    if (doc.contains("gravity")) def.gravity = Vec2(doc["gravity"], "gravity");
+    if (doc.contains("gravity")) def.gravity = VecN(doc["gravity"], "gravity", dim_);
     if (doc.contains("friction")) def.friction = Number(doc["friction"], "friction");
+    if (doc.contains("friction_directions")) {
+      const json& d = doc["friction_directions"];
+      if (!d.is_number_integer())
+        Fail("friction_directions", "must be a whole number, not " + Article(d));
+      if (dim_ != 3)
+        Fail("friction_directions",
+             "applies to 3-D scenes only (2-D friction has the two directions ±t)");
+      const auto D = d.get<long long>();
+      if (D < 3 || D > 64)
+        Fail("friction_directions", "must be from 3 to 64 (got " + std::to_string(D) + ")");
+      def.friction_directions = static_cast<int>(D);
+    }
     if (doc.contains("tolerance")) {
       def.tolerance = Number(doc["tolerance"], "tolerance");
       if (def.tolerance <= 0)
@@ -96,9 +114,9 @@ class SceneParser : private io_internal::JsonChecker {
     return count == 1 ? found : std::nullopt;
   }
 
-  // A scene is 2-D or 3-D as its shapes are; 3-D is for a later version.
-  void CheckDimension(const json& doc) const {
-    if (!doc.contains("parts") || !doc["parts"].is_array()) return;
+  // A scene is 2-D or 3-D as its shapes are (2 when none can be told yet).
+  int CheckDimension(const json& doc) const {
+    if (!doc.contains("parts") || !doc["parts"].is_array()) return 2;
     const json& parts = doc["parts"];
     std::optional<size_t> first;
     int dim = 0;
@@ -114,12 +132,7 @@ class SceneParser : private io_internal::JsonChecker {
                  Index("parts", *first) + " is " + std::to_string(dim) + "-D)");
       }
     }
-    if (first && dim == 3) {
-      const std::string key = ShapeDimension(parts[*first])->second;
-      Fail(Child(Index("parts", *first), key),
-           "3-D scenes are not supported by this version of Cairn yet (2-D polygons and boxes "
-           "only)");
-    }
+    return first ? dim : 2;
   }
 
   PartDef ParsePart(const json& j, const std::string& path) const {
@@ -137,12 +150,15 @@ class SceneParser : private io_internal::JsonChecker {
     for (const char* key : kShapeKeys) {
       if (j.contains(key)) shapes.push_back(key);
     }
-    if (shapes.empty()) Fail(path, "missing a shape: give one of polygon, box");
+    if (shapes.empty()) Fail(path, "missing a shape: give one of polygon, box, polyhedron, mesh");
     if (shapes.size() > 1) {
       Fail(Child(path, shapes[1]),
            "a part has exactly one shape, but this one also has " + shapes[0]);
     }
-    if (shapes[0] == "polygon") {
+    part.shape_key = shapes[0];
+    if (dim_ == 3) {
+      part.polyhedron = Parse3dShape(j, path, shapes[0]);
+    } else if (shapes[0] == "polygon") {
       const std::string poly_path = Child(path, "polygon");
       const json& poly = Array(j["polygon"], poly_path);
       for (size_t k = 0; k < poly.size(); ++k) {
@@ -184,10 +200,79 @@ class SceneParser : private io_internal::JsonChecker {
     CheckKeys(j, path, kFixtureKeys);
     FixtureDef fixture;
     fixture.part = String(Require(j, "part", path), Child(path, "part"));
-    fixture.point = Vec2(Require(j, "point", path), Child(path, "point"));
-    fixture.normal = Vec2(Require(j, "normal", path), Child(path, "normal"));
+    fixture.point = VecN(Require(j, "point", path), Child(path, "point"), dim_);
+    fixture.normal = VecN(Require(j, "normal", path), Child(path, "normal"), dim_);
     return fixture;
   }
+
+  // A 3-D part's shape as vertices and faces: a `box` with 3-D corners, a
+  // `polyhedron`, or a `mesh` file (relative to the scene file).
+  PolyhedronDef Parse3dShape(const json& j, const std::string& path, const std::string& key) const {
+    const std::string shape_path = Child(path, key);
+    PolyhedronDef def;
+    if (key == "box") {
+      const json& box = Object(j["box"], shape_path);
+      CheckKeys(box, shape_path, kBoxKeys);
+      const Vector3 lo = VecN(Require(box, "min", shape_path), Child(shape_path, "min"), 3);
+      const Vector3 hi = VecN(Require(box, "max", shape_path), Child(shape_path, "max"), 3);
+      if (!(lo.array() < hi.array()).all()) {
+        Fail(shape_path,
+             "min " + Point(lo) + " must be less than max " + Point(hi) + " in every coordinate");
+      }
+      for (int k = 0; k < 8; ++k)
+        def.vertices.emplace_back(k & 1 ? hi.x() : lo.x(), k & 2 ? hi.y() : lo.y(),
+                                  k & 4 ? hi.z() : lo.z());
+      // Outward (counter-clockwise seen from outside): -z, +z, -y, +y, -x, +x.
+      def.faces = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+      return def;
+    }
+    if (key == "polygon") {
+      Fail(shape_path, "a polygon is a 2-D shape; in a 3-D scene give box, polyhedron or mesh");
+    }
+    if (key == "polyhedron") {
+      const json& poly = Object(j["polyhedron"], shape_path);
+      CheckKeys(poly, shape_path, kPolyhedronKeys);
+      const std::string v_path = Child(shape_path, "vertices");
+      const json& vertices = Array(Require(poly, "vertices", shape_path), v_path);
+      for (size_t k = 0; k < vertices.size(); ++k)
+        def.vertices.push_back(VecN(vertices[k], Index(v_path, k), 3));
+      if (def.vertices.size() < 4)
+        Fail(v_path, "a polyhedron needs at least 4 vertices, not " +
+                         std::to_string(def.vertices.size()));
+      const std::string f_path = Child(shape_path, "faces");
+      const json& faces = Array(Require(poly, "faces", shape_path), f_path);
+      for (size_t f = 0; f < faces.size(); ++f) {
+        const std::string face_path = Index(f_path, f);
+        const json& face = Array(faces[f], face_path);
+        if (face.size() < 3)
+          Fail(face_path, "a face needs at least 3 vertices, not " + std::to_string(face.size()));
+        std::vector<int> ids;
+        for (size_t k = 0; k < face.size(); ++k) {
+          const json& id = face[k];
+          if (!id.is_number_integer() || id.get<long long>() < 0 ||
+              id.get<long long>() >= static_cast<long long>(def.vertices.size()))
+            Fail(Index(face_path, k), "must be a vertex index from 0 to " +
+                                          std::to_string(def.vertices.size() - 1) + ", not " +
+                                          id.dump());
+          ids.push_back(static_cast<int>(id.get<long long>()));
+        }
+        def.faces.push_back(std::move(ids));
+      }
+      return def;
+    }
+    // A mesh file, relative to the scene file's folder.
+    const std::string name = String(j["mesh"], shape_path);
+    const std::filesystem::path base = std::filesystem::path(file_).parent_path();
+    const std::string mesh_file = (base / name).lexically_normal().string();
+    try {
+      return ReadMesh(mesh_file);
+    } catch (const InputError& e) {
+      Fail(shape_path, "cannot read mesh '" + mesh_file + "': " + e.message());
+    }
+  }
+
+  const std::string& file_;
+  int dim_ = 2;
 };
 
 }  // namespace

@@ -1,5 +1,6 @@
 #include "cairn/mechanics/contact_model.h"
 
+#include <Eigen/Cholesky>
 #include <algorithm>
 #include <cmath>
 
@@ -11,92 +12,110 @@ const char* to_string(Formulation f) {
   return f == Formulation::kBaraff ? "baraff" : "stewart-trinkle";
 }
 
-double JacobianRow::Dot(const std::vector<Vector3>& nu) const {
+double JacobianRow::Dot(const std::vector<Vector6>& nu) const {
   double s = 0;
   for (int k = 0; k < 2; ++k)
     if (body[k] >= 0) s += g[k].dot(nu[body[k]]);
   return s;
 }
 
-Eigen::Matrix3d BodyDynamics::InverseMass() const {
-  Eigen::Matrix3d W = Eigen::Matrix3d::Zero();
-  switch (motion) {
-    case BodyMotion::kFree:
-      W.diagonal() << 1 / mass, 1 / mass, 1 / inertia;
-      break;
-    case BodyMotion::kGuided: {
-      // Free directions: the normal of the guide in the plane, and rotation.
-      const Vector2 perp(-guide.y(), guide.x());
-      W.topLeftCorner<2, 2>() = perp * perp.transpose() / mass;
-      W(2, 2) = 1 / inertia;
-      break;
-    }
-    case BodyMotion::kPrescribed:
-      break;
+namespace {
+
+// The free velocity directions of a body, as orthonormal columns of B
+// (6 x k): all six for a free 3-D body, (v_x, v_y, ω_z) for a planar one; a
+// guided body loses the direction of its guide; a prescribed body has none.
+Eigen::Matrix<double, 6, Eigen::Dynamic> FreeBasis(const BodyDynamics& b) {
+  Eigen::Matrix<double, 6, Eigen::Dynamic> B(6, 0);
+  if (b.motion == BodyMotion::kPrescribed) return B;
+  // Linear directions: the plane's or all three, less the guide.
+  std::vector<Vector3> linear;
+  if (b.planar) {
+    if (b.motion == BodyMotion::kGuided)
+      linear.emplace_back(-b.guide.y(), b.guide.x(), 0);
+    else
+      linear = {Vector3::UnitX(), Vector3::UnitY()};
+  } else if (b.motion == BodyMotion::kGuided) {
+    const Vector3 g = b.guide.normalized();
+    const Vector3 axis = std::abs(g.x()) < std::sqrt(0.5) ? Vector3::UnitX() : Vector3::UnitY();
+    const Vector3 u = (axis - g * g.dot(axis)).normalized();
+    linear = {u, g.cross(u)};
+  } else {
+    linear = {Vector3::UnitX(), Vector3::UnitY(), Vector3::UnitZ()};
   }
-  return W;
+  const int nl = static_cast<int>(linear.size());
+  const int na = b.planar ? 1 : 3;
+  B.setZero(6, nl + na);
+  for (int k = 0; k < nl; ++k) B.col(k).head<3>() = linear[k];
+  if (b.planar)
+    B(5, nl) = 1;
+  else
+    B.block<3, 3>(3, nl).setIdentity();
+  return B;
 }
 
-Eigen::Matrix3d BodyDynamics::FreeProjector() const {
-  Eigen::Matrix3d P = Eigen::Matrix3d::Zero();
-  switch (motion) {
-    case BodyMotion::kFree:
-      P.setIdentity();
-      break;
-    case BodyMotion::kGuided: {
-      const Vector2 perp(-guide.y(), guide.x());
-      P.topLeftCorner<2, 2>() = perp * perp.transpose();
-      P(2, 2) = 1;
-      break;
-    }
-    case BodyMotion::kPrescribed:
-      break;
+}  // namespace
+
+Matrix6 BodyDynamics::InverseMass() const {
+  const auto B = FreeBasis(*this);
+  if (B.cols() == 0) return Matrix6::Zero();
+  Matrix6 M = Matrix6::Zero();
+  M.topLeftCorner<3, 3>() = mass * Matrix3::Identity();
+  M.bottomRightCorner<3, 3>() = inertia;
+  const MatrixX reduced = B.transpose() * M * B;  // k x k, symmetric positive definite
+  // Diagonal (axis-aligned inertia, planar bodies): invert exactly.
+  if (reduced.isDiagonal(0.0)) {
+    const VectorX inv = reduced.diagonal().cwiseInverse();
+    return B * inv.asDiagonal() * B.transpose();
   }
-  return P;
+  return B * reduced.llt().solve(B.transpose());
+}
+
+Matrix6 BodyDynamics::FreeProjector() const {
+  const auto B = FreeBasis(*this);
+  return B.cols() ? Matrix6(B * B.transpose()) : Matrix6::Zero();
 }
 
 namespace {
 
 // The body's motion without contact forces.
-Vector3 FreeMotion(const BodyDynamics& b, Formulation formulation, double dt) {
-  if (formulation == Formulation::kBaraff) return b.InverseMass() * b.F_ext;
-  return b.nu_prescribed + b.FreeProjector() * b.nu_prev + b.InverseMass() * b.F_ext * dt;
+Vector6 FreeMotion(const BodyDynamics& b, const Matrix6& W, Formulation formulation, double dt) {
+  if (formulation == Formulation::kBaraff) return W * b.F_ext;
+  return b.nu_prescribed + b.FreeProjector() * b.nu_prev + W * b.F_ext * dt;
 }
 
-// The row of a contact along direction u (n or t): the relative velocity of
-// a's material point over b's at p, along u.
-JacobianRow MakeRow(const Contact& c, const Vector2& u, int body_a, int body_b,
+// The row of a contact along direction u (n, t or d_k): the relative velocity
+// of a's material point over b's at p, along u.
+JacobianRow MakeRow(const Contact& c, const Vector3& u, int body_a, int body_b,
                     const std::vector<BodyDynamics>& bodies) {
   JacobianRow row;
   row.body[0] = body_a;
   row.body[1] = body_b;
   if (body_a >= 0) {
-    const Vector2 r = c.p_WC - bodies[body_a].p_WBcm;
-    row.g[0] = Vector3(u.x(), u.y(), Cross2(r, u));
+    const Vector3 r = c.p_WC - bodies[body_a].p_WBcm;
+    row.g[0] << u, r.cross(u);
   }
   if (body_b >= 0) {
-    const Vector2 r = c.p_WC - bodies[body_b].p_WBcm;
-    row.g[1] = -Vector3(u.x(), u.y(), Cross2(r, u));
+    const Vector3 r = c.p_WC - bodies[body_b].p_WBcm;
+    row.g[1] << -u, -r.cross(u);
   }
   return row;
 }
 
 // A = G M⁻¹ Gᵀ for the rows `rows`, formed body by body.
-MatrixX Delassus(const std::vector<const JacobianRow*>& rows,
-                 const std::vector<BodyDynamics>& bodies) {
+MatrixX Delassus(const std::vector<const JacobianRow*>& rows, const std::vector<Matrix6>& W_of) {
   const int n = static_cast<int>(rows.size());
-  const int nb = static_cast<int>(bodies.size());
+  const int nb = static_cast<int>(W_of.size());
   // Rows touching each body, with their coefficient vectors.
-  std::vector<std::vector<std::pair<int, Vector3>>> at_body(nb);
+  std::vector<std::vector<std::pair<int, Vector6>>> at_body(nb);
   for (int r = 0; r < n; ++r)
     for (int k = 0; k < 2; ++k)
       if (rows[r]->body[k] >= 0) at_body[rows[r]->body[k]].emplace_back(r, rows[r]->g[k]);
   MatrixX A = MatrixX::Zero(n, n);
   for (int b = 0; b < nb; ++b) {
     const auto& list = at_body[b];
-    const Eigen::Matrix3d W = bodies[b].InverseMass();
+    const Matrix6& W = W_of[b];
     for (size_t i = 0; i < list.size(); ++i) {
-      const Vector3 mg = W * list[i].second;
+      const Vector6 mg = W * list[i].second;
       for (size_t j = 0; j < list.size(); ++j)
         A(list[i].first, list[j].first) += mg.dot(list[j].second);
     }
@@ -115,27 +134,41 @@ bool WantFactored(LcpStorage storage, int n) {
 
 // The factored form G W Gᵀ + K of an LCP with `rows` (the first rows of G;
 // the remaining n − rows.size() rows of G are zero) and K given as triplets.
+// The columns of G are the body freedoms that move: (v_x, v_y, ω_z) of a
+// planar body, all six of a 3-D one (so a 2-D LCP's factors are no larger
+// than a planar model's).
 FactoredLcpMatrix Factored(const std::vector<const JacobianRow*>& rows, int n,
-                           const std::vector<BodyDynamics>& bodies,
+                           const std::vector<BodyDynamics>& bodies, const std::vector<Matrix6>& W_of,
                            const std::vector<Eigen::Triplet<double>>& k_entries) {
   const int nb = static_cast<int>(bodies.size());
+  static constexpr int kPlanar[3] = {0, 1, 5};
+  static constexpr int kSpatial[6] = {0, 1, 2, 3, 4, 5};
+  std::vector<int> first(nb + 1, 0);
+  for (int b = 0; b < nb; ++b) first[b + 1] = first[b] + (bodies[b].planar ? 3 : 6);
+  const auto coords = [&](int b) -> std::pair<const int*, int> {
+    return bodies[b].planar ? std::make_pair(kPlanar, 3) : std::make_pair(kSpatial, 6);
+  };
   std::vector<Eigen::Triplet<double>> g;
-  g.reserve(rows.size() * 6);
+  g.reserve(rows.size() * 12);
   for (size_t r = 0; r < rows.size(); ++r)
-    for (int k = 0; k < 2; ++k)
-      if (rows[r]->body[k] >= 0)
-        for (int a = 0; a < 3; ++a)
-          if (rows[r]->g[k][a] != 0.0)
-            g.emplace_back(static_cast<int>(r), 3 * rows[r]->body[k] + a, rows[r]->g[k][a]);
+    for (int k = 0; k < 2; ++k) {
+      const int b = rows[r]->body[k];
+      if (b < 0) continue;
+      const auto [idx, m] = coords(b);
+      for (int a = 0; a < m; ++a)
+        if (rows[r]->g[k][idx[a]] != 0.0)
+          g.emplace_back(static_cast<int>(r), first[b] + a, rows[r]->g[k][idx[a]]);
+    }
   std::vector<Eigen::Triplet<double>> w;
-  w.reserve(9 * nb);
+  w.reserve(36 * nb);
   for (int b = 0; b < nb; ++b) {
-    const Eigen::Matrix3d Wb = bodies[b].InverseMass();
-    for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j)
-        if (Wb(i, j) != 0.0) w.emplace_back(3 * b + i, 3 * b + j, Wb(i, j));
+    const auto [idx, m] = coords(b);
+    for (int i = 0; i < m; ++i)
+      for (int j = 0; j < m; ++j)
+        if (W_of[b](idx[i], idx[j]) != 0.0)
+          w.emplace_back(first[b] + i, first[b] + j, W_of[b](idx[i], idx[j]));
   }
-  SparseMatrixX G(n, 3 * nb), W(3 * nb, 3 * nb), K(n, n);
+  SparseMatrixX G(n, first[nb]), W(first[nb], first[nb]), K(n, n);
   G.setFromTriplets(g.begin(), g.end());
   W.setFromTriplets(w.begin(), w.end());
   K.setFromTriplets(k_entries.begin(), k_entries.end());
@@ -145,15 +178,19 @@ FactoredLcpMatrix Factored(const std::vector<const JacobianRow*>& rows, int n,
 }  // namespace
 
 ContactLcp BuildContactLcp(std::vector<BodyDynamics> bodies, std::vector<Contact> contacts,
-                           Formulation formulation, double dt, bool use_gaps, LcpStorage storage) {
+                           Formulation formulation, double dt, bool use_gaps, LcpStorage storage,
+                           int dimension, int directions) {
   ContactLcp lcp;
   lcp.formulation = formulation;
   lcp.dt = dt;
   lcp.bodies = std::move(bodies);
   lcp.contacts = std::move(contacts);
+  lcp.num_directions = dimension == 2 ? 2 : directions;
+  CAIRN_CHECK(lcp.num_directions >= 2);
   const int nb = static_cast<int>(lcp.bodies.size());
   const int nc = static_cast<int>(lcp.contacts.size());
-  for (const auto& b : lcp.bodies) CAIRN_CHECK(b.mass > 0 && b.inertia > 0);
+  const int D = lcp.num_directions;
+  for (const auto& b : lcp.bodies) CAIRN_CHECK(b.mass > 0 && b.inertia.diagonal().minCoeff() > 0);
   // A prescribed velocity is a Stewart–Trinkle notion (the Baraff LCP is at
   // rest, where prescribed bodies are simply fixed).
 
@@ -166,7 +203,7 @@ ContactLcp BuildContactLcp(std::vector<BodyDynamics> bodies, std::vector<Contact
     return (it != part_to_body.end() && it->first == part) ? it->second : -1;
   };
 
-  // Normal and tangent rows of every contact.
+  // Normal, tangent and friction-direction rows of every contact.
   lcp.friction_of.assign(nc, -1);
   lcp.normal_offset = VectorX::Zero(nc);
   for (int c = 0; c < nc; ++c) {
@@ -175,62 +212,73 @@ ContactLcp BuildContactLcp(std::vector<BodyDynamics> bodies, std::vector<Contact
     const int bb = ct.part_b >= 0 ? local(ct.part_b) : -1;
     CAIRN_CHECK(ba >= 0 || bb >= 0);
     lcp.normal_rows.push_back(MakeRow(ct, ct.n_W, ba, bb, lcp.bodies));
-    lcp.tangent_rows.push_back(MakeRow(ct, ct.t_W(), ba, bb, lcp.bodies));
-    if (formulation == Formulation::kStewartTrinkle && ct.mu > 0)
+    if (dimension == 2) {
+      lcp.tangent_rows.push_back(MakeRow(ct, ct.t_W(), ba, bb, lcp.bodies));
+    } else {
+      const auto [t1, t2] = TangentBasis(ct.n_W);
+      lcp.tangent_rows.push_back(MakeRow(ct, t1, ba, bb, lcp.bodies));
+      lcp.tangent2_rows.push_back(MakeRow(ct, t2, ba, bb, lcp.bodies));
+    }
+    if (formulation == Formulation::kStewartTrinkle && ct.mu > 0) {
       lcp.friction_of[c] = lcp.num_friction++;
+      for (const Vector3& d : FrictionDirections(ct, dimension, D)) {
+        lcp.direction_rows.push_back(MakeRow(ct, d, ba, bb, lcp.bodies));
+        lcp.friction_directions.push_back(d);
+      }
+    }
   }
 
-  // The free motion W F (Baraff) or ν_p + P ν⁻ + W F Δt (Stewart–Trinkle).
-  std::vector<Vector3> free_motion(nb);
-  for (int k = 0; k < nb; ++k) free_motion[k] = FreeMotion(lcp.bodies[k], formulation, dt);
+  // Effective inverse masses, and the free motion W F (Baraff) or
+  // ν_p + P ν⁻ + W F Δt (Stewart–Trinkle).
+  std::vector<Matrix6> W_of(nb);
+  std::vector<Vector6> free_motion(nb);
+  for (int k = 0; k < nb; ++k) {
+    W_of[k] = lcp.bodies[k].InverseMass();
+    free_motion[k] = FreeMotion(lcp.bodies[k], W_of[k], formulation, dt);
+  }
 
   if (formulation == Formulation::kBaraff) {
     std::vector<const JacobianRow*> rows;
     for (const auto& r : lcp.normal_rows) rows.push_back(&r);
-    if (WantDense(storage, nc)) lcp.M = Delassus(rows, lcp.bodies);
-    if (WantFactored(storage, nc)) lcp.factored = Factored(rows, nc, lcp.bodies, {});
+    if (WantDense(storage, nc)) lcp.M = Delassus(rows, W_of);
+    if (WantFactored(storage, nc)) lcp.factored = Factored(rows, nc, lcp.bodies, W_of, {});
     lcp.q.resize(nc);
     for (int c = 0; c < nc; ++c) lcp.q(c) = lcp.normal_rows[c].Dot(free_motion);
     return lcp;
   }
 
-  // Stewart–Trinkle: rows are the normals, then ±t for each frictional contact.
+  // Stewart–Trinkle: rows are the normals, then D directions per frictional
+  // contact; then one λ per frictional contact.
   const int nf = lcp.num_friction;
-  std::vector<JacobianRow> friction_rows;
-  friction_rows.reserve(2 * nf);
   std::vector<double> mu_of(nf);
   std::vector<int> contact_of(nf);
   for (int c = 0; c < nc; ++c) {
     const int f = lcp.friction_of[c];
     if (f < 0) continue;
-    JacobianRow plus = lcp.tangent_rows[c], minus = lcp.tangent_rows[c];
-    for (int k = 0; k < 2; ++k) minus.g[k] = -minus.g[k];
-    friction_rows.push_back(plus);
-    friction_rows.push_back(minus);
     mu_of[f] = lcp.contacts[c].mu;
     contact_of[f] = c;
   }
   std::vector<const JacobianRow*> rows;
   for (const auto& r : lcp.normal_rows) rows.push_back(&r);
-  for (const auto& r : friction_rows) rows.push_back(&r);
-  const int nr = nc + 2 * nf;
+  for (const auto& r : lcp.direction_rows) rows.push_back(&r);
+  const int nr = nc + D * nf;
   const int n = nr + nf;
-  // K: λ enters both friction rows (E); μ p_n − Eᵀ p_f ≥ 0.
+  // K: λ enters every friction row of its contact (E); μ p_n − Eᵀ p_f ≥ 0.
   std::vector<Eigen::Triplet<double>> k_entries;
   for (int f = 0; f < nf; ++f) {
     const int lam = nr + f;
-    k_entries.emplace_back(nc + 2 * f, lam, 1.0);
-    k_entries.emplace_back(nc + 2 * f + 1, lam, 1.0);
+    for (int k = 0; k < D; ++k) {
+      k_entries.emplace_back(nc + D * f + k, lam, 1.0);
+      k_entries.emplace_back(lam, nc + D * f + k, -1.0);
+    }
     k_entries.emplace_back(lam, contact_of[f], mu_of[f]);
-    k_entries.emplace_back(lam, nc + 2 * f, -1.0);
-    k_entries.emplace_back(lam, nc + 2 * f + 1, -1.0);
   }
   if (WantDense(storage, n)) {
     lcp.M = MatrixX::Zero(n, n);
-    lcp.M.topLeftCorner(nr, nr) = Delassus(rows, lcp.bodies);
+    lcp.M.topLeftCorner(nr, nr) = Delassus(rows, W_of);
     for (const auto& t : k_entries) lcp.M(t.row(), t.col()) = t.value();
   }
-  if (WantFactored(storage, n)) lcp.factored = Factored(rows, n, lcp.bodies, k_entries);
+  if (WantFactored(storage, n)) lcp.factored = Factored(rows, n, lcp.bodies, W_of, k_entries);
   lcp.q = VectorX::Zero(n);
   for (int r = 0; r < nr; ++r) lcp.q(r) = rows[r]->Dot(free_motion);
   if (use_gaps)
@@ -261,16 +309,17 @@ ContactSolution RecoverSolution(const ContactLcp& lcp, const VectorX& z) {
   const int nb = static_cast<int>(lcp.bodies.size());
   const int nc = static_cast<int>(lcp.contacts.size());
   const int nf = lcp.num_friction;
+  const int D = lcp.num_directions;
   const bool st = lcp.formulation == Formulation::kStewartTrinkle;
   CAIRN_CHECK(z.size() == lcp.q.size());
   ContactSolution s;
   s.normal_force = VectorX::Zero(nc);
-  s.friction_force = VectorX::Zero(nc);
+  s.friction_force.assign(nc, Vector3::Zero());
   s.normal_motion = VectorX::Zero(nc);
-  s.tangent_motion = VectorX::Zero(nc);
+  s.tangent_motion.assign(nc, Vector3::Zero());
 
   // Generalised contact wrench (Baraff: forces) or impulse (S–T) on each body.
-  std::vector<Vector3> wrench(nb, Vector3::Zero());
+  std::vector<Vector6> wrench(nb, Vector6::Zero());
   const auto add = [&](const JacobianRow& row, double value) {
     for (int k = 0; k < 2; ++k)
       if (row.body[k] >= 0) wrench[row.body[k]] += row.g[k] * value;
@@ -280,10 +329,11 @@ ContactSolution RecoverSolution(const ContactLcp& lcp, const VectorX& z) {
     add(lcp.normal_rows[c], z(c));
     s.normal_force(c) = z(c) * to_force;
     const int f = lcp.friction_of[c];
-    if (f >= 0) {
-      const double net = z(nc + 2 * f) - z(nc + 2 * f + 1);
-      add(lcp.tangent_rows[c], net);
-      s.friction_force(c) = net * to_force;
+    if (f < 0) continue;
+    for (int k = 0; k < D; ++k) {
+      const double beta = z(nc + D * f + k);
+      add(lcp.direction_rows[D * f + k], beta);
+      s.friction_force[c] += lcp.friction_directions[D * f + k] * (beta * to_force);
     }
   }
 
@@ -291,22 +341,32 @@ ContactSolution RecoverSolution(const ContactLcp& lcp, const VectorX& z) {
   s.body_motion.resize(nb);
   for (int k = 0; k < nb; ++k) {
     const BodyDynamics& b = lcp.bodies[k];
-    s.body_motion[k] = FreeMotion(b, lcp.formulation, lcp.dt) + b.InverseMass() * wrench[k];
+    const Matrix6 W = b.InverseMass();
+    s.body_motion[k] = FreeMotion(b, W, lcp.formulation, lcp.dt) + W * wrench[k];
   }
 
   // Contact motions, and their agreement with the LCP's w: the normal rows
-  // are G ν (+ d/Δt), the friction rows ±J_t ν + λ.
+  // are G ν (+ d/Δt), the friction rows J_dk ν + λ.
   const VectorX w = lcp.Multiply(z) + lcp.q;
   double residual = 0;
   for (int c = 0; c < nc; ++c) {
+    const Contact& ct = lcp.contacts[c];
     s.normal_motion(c) = lcp.normal_rows[c].Dot(s.body_motion);
-    s.tangent_motion(c) = lcp.tangent_rows[c].Dot(s.body_motion);
+    if (lcp.tangent2_rows.empty()) {
+      s.tangent_motion[c] = ct.t_W() * lcp.tangent_rows[c].Dot(s.body_motion);
+    } else {
+      const auto [t1, t2] = TangentBasis(ct.n_W);
+      s.tangent_motion[c] = t1 * lcp.tangent_rows[c].Dot(s.body_motion) +
+                            t2 * lcp.tangent2_rows[c].Dot(s.body_motion);
+    }
     residual = std::max(residual, std::abs(s.normal_motion(c) + lcp.normal_offset(c) - w(c)));
     const int f = lcp.friction_of[c];
     if (f >= 0) {
-      const double lambda = z(nc + 2 * nf + f);
-      residual = std::max(residual, std::abs(s.tangent_motion(c) + lambda - w(nc + 2 * f)));
-      residual = std::max(residual, std::abs(-s.tangent_motion(c) + lambda - w(nc + 2 * f + 1)));
+      const double lambda = z(nc + D * nf + f);
+      for (int k = 0; k < D; ++k) {
+        const double row = lcp.direction_rows[D * f + k].Dot(s.body_motion);
+        residual = std::max(residual, std::abs(row + lambda - w(nc + D * f + k)));
+      }
     }
   }
   s.consistency_residual = residual;

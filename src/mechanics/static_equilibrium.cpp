@@ -25,20 +25,35 @@ StaticEquilibrium FindStaticEquilibrium(const ContactLcp& lcp) {
   StaticEquilibrium out;
   const int nb = static_cast<int>(lcp.bodies.size());
   const int nc = static_cast<int>(lcp.contacts.size());
+  const int D = lcp.num_directions;
   out.normal_force = VectorX::Zero(nc);
-  out.friction_force = VectorX::Zero(nc);
+  out.friction_force.assign(nc, Vector3::Zero());
 
-  // Columns (1-based in GLPK): f_n of each contact, then f_t+ and f_t− of
-  // each contact with μ > 0.
-  std::vector<int> col_n(nc), col_tp(nc, 0), col_tm(nc, 0);
+  // The LCP's friction directions of every frictional contact (the Baraff
+  // formulation has none: it is frictionless).
+  std::vector<std::vector<JacobianRow>> dir_rows(nc);
+  std::vector<std::vector<Vector3>> dirs(nc);
+  for (int c = 0; c < nc; ++c) {
+    const int f = lcp.friction_of[c];
+    if (f < 0) continue;
+    for (int k = 0; k < D; ++k) {
+      dir_rows[c].push_back(lcp.direction_rows[D * f + k]);
+      dirs[c].push_back(lcp.friction_directions[D * f + k]);
+    }
+  }
+
+  // Columns (1-based in GLPK): f_n of each contact, then the D friction
+  // components β_k ≥ 0 of each contact with directions.
+  std::vector<int> col_n(nc), col_d(nc, 0);
   int ncols = 0;
   for (int c = 0; c < nc; ++c) col_n[c] = ++ncols;
   for (int c = 0; c < nc; ++c)
-    if (lcp.contacts[c].mu > 0) col_tp[c] = ++ncols, col_tm[c] = ++ncols;
+    if (!dirs[c].empty()) col_d[c] = ncols + 1, ncols += static_cast<int>(dirs[c].size());
 
-  // Rows: 3 equilibrium equations per body (projected on its free directions),
-  // then one friction row per frictional contact.
-  std::vector<Eigen::Matrix3d> P(nb);
+  // Rows: 6 equilibrium equations per body (projected on its free directions;
+  // a planar body's other three are identically zero), then one friction row
+  // per frictional contact.
+  std::vector<Matrix6> P(nb);
   for (int b = 0; b < nb; ++b) P[b] = lcp.bodies[b].FreeProjector();
   // Sparse triplets (row, col, value), 1-based.
   std::vector<int> ia{0}, ja{0};
@@ -49,30 +64,26 @@ StaticEquilibrium FindStaticEquilibrium(const ContactLcp& lcp) {
     ja.push_back(col);
     ar.push_back(v);
   };
-  // Body b's equation k is row 3 b + k + 1: Σ (P g) f = −P F_ext.
+  // Body b's equation k is row 6 b + k + 1: Σ (P g) f = −P F_ext.
   for (int c = 0; c < nc; ++c) {
     const JacobianRow& rn = lcp.normal_rows[c];
-    const JacobianRow& rt = lcp.tangent_rows[c];
     for (int s = 0; s < 2; ++s) {
       const int b = rn.body[s];
       if (b < 0) continue;
-      const Vector3 gn = P[b] * rn.g[s], gt = P[b] * rt.g[s];
-      for (int k = 0; k < 3; ++k) {
-        add(3 * b + k + 1, col_n[c], gn[k]);
-        if (col_tp[c]) {
-          add(3 * b + k + 1, col_tp[c], gt[k]);
-          add(3 * b + k + 1, col_tm[c], -gt[k]);
-        }
+      const Vector6 gn = P[b] * rn.g[s];
+      for (int k = 0; k < 6; ++k) add(6 * b + k + 1, col_n[c], gn[k]);
+      for (size_t d = 0; d < dir_rows[c].size(); ++d) {
+        const Vector6 gd = P[b] * dir_rows[c][d].g[s];
+        for (int k = 0; k < 6; ++k) add(6 * b + k + 1, col_d[c] + static_cast<int>(d), gd[k]);
       }
     }
   }
-  int nrows = 3 * nb;
+  int nrows = 6 * nb;
   for (int c = 0; c < nc; ++c) {
-    if (!col_tp[c]) continue;
+    if (dirs[c].empty()) continue;
     ++nrows;
     add(nrows, col_n[c], lcp.contacts[c].mu);
-    add(nrows, col_tp[c], -1.0);
-    add(nrows, col_tm[c], -1.0);
+    for (size_t d = 0; d < dirs[c].size(); ++d) add(nrows, col_d[c] + static_cast<int>(d), -1.0);
   }
 
   GlpProblem lp;
@@ -80,10 +91,10 @@ StaticEquilibrium FindStaticEquilibrium(const ContactLcp& lcp) {
   if (nrows > 0) glp_add_rows(lp.p, nrows);
   if (ncols > 0) glp_add_cols(lp.p, ncols);
   for (int b = 0; b < nb; ++b) {
-    const Vector3 rhs = -(P[b] * lcp.bodies[b].F_ext);
-    for (int k = 0; k < 3; ++k) glp_set_row_bnds(lp.p, 3 * b + k + 1, GLP_FX, rhs[k], rhs[k]);
+    const Vector6 rhs = -(P[b] * lcp.bodies[b].F_ext);
+    for (int k = 0; k < 6; ++k) glp_set_row_bnds(lp.p, 6 * b + k + 1, GLP_FX, rhs[k], rhs[k]);
   }
-  for (int r = 3 * nb + 1; r <= nrows; ++r) glp_set_row_bnds(lp.p, r, GLP_LO, 0.0, 0.0);
+  for (int r = 6 * nb + 1; r <= nrows; ++r) glp_set_row_bnds(lp.p, r, GLP_LO, 0.0, 0.0);
   for (int j = 1; j <= ncols; ++j) glp_set_col_bnds(lp.p, j, GLP_LO, 0.0, 0.0);
   for (int c = 0; c < nc; ++c) glp_set_obj_coef(lp.p, col_n[c], 1.0);
   if (ia.size() > 1)
@@ -104,13 +115,16 @@ StaticEquilibrium FindStaticEquilibrium(const ContactLcp& lcp) {
         "GLPK simplex: error " + std::to_string(err) + ", status " + std::to_string(status);
     return out;
   }
+  std::vector<std::vector<double>> beta(nc);
   for (int c = 0; c < nc; ++c) {
     out.normal_force[c] = glp_get_col_prim(lp.p, col_n[c]);
-    if (col_tp[c])
-      out.friction_force[c] = glp_get_col_prim(lp.p, col_tp[c]) - glp_get_col_prim(lp.p, col_tm[c]);
+    for (size_t d = 0; d < dirs[c].size(); ++d) {
+      beta[c].push_back(glp_get_col_prim(lp.p, col_d[c] + static_cast<int>(d)));
+      out.friction_force[c] += dirs[c][d] * beta[c].back();
+    }
   }
   // Re-check the equilibrium from the forces, independently of GLPK.
-  std::vector<Vector3> net(nb);
+  std::vector<Vector6> net(nb);
   double scale = 0;
   for (int b = 0; b < nb; ++b) {
     net[b] = P[b] * lcp.bodies[b].F_ext;
@@ -120,8 +134,9 @@ StaticEquilibrium FindStaticEquilibrium(const ContactLcp& lcp) {
     for (int s = 0; s < 2; ++s) {
       const int b = lcp.normal_rows[c].body[s];
       if (b < 0) continue;
-      net[b] += P[b] * (lcp.normal_rows[c].g[s] * out.normal_force[c] +
-                        lcp.tangent_rows[c].g[s] * out.friction_force[c]);
+      Vector6 w = lcp.normal_rows[c].g[s] * out.normal_force[c];
+      for (size_t d = 0; d < dirs[c].size(); ++d) w += dir_rows[c][d].g[s] * beta[c][d];
+      net[b] += P[b] * w;
     }
   for (int b = 0; b < nb; ++b) out.residual = std::max(out.residual, net[b].cwiseAbs().maxCoeff());
   out.solved = true;

@@ -23,7 +23,9 @@ std::string Num(double x) {
   return os.str();
 }
 
-std::string Point(const Vector2& p) { return "(" + Num(p.x()) + ", " + Num(p.y()) + ")"; }
+std::string Point(const Vector3& p) {
+  return "(" + Num(p.x()) + ", " + Num(p.y()) + ", " + Num(p.z()) + ")";
+}
 
 // Throws the InputError of one fault of a plan; all validation goes through it.
 class PlanValidator {
@@ -38,7 +40,7 @@ class PlanValidator {
     if (!std::isfinite(x)) Fail(path, "must be a finite number (got " + Num(x) + ")");
     if (x <= 0) Fail(path, "must be positive (got " + Num(x) + ")");
   }
-  void FinitePoint(const Vector2& v, const std::string& path) const {
+  void FinitePoint(const Vector3& v, const std::string& path) const {
     if (!std::isfinite(v.x()) || !std::isfinite(v.y())) {
       Fail(path, "must have finite coordinates (got " + Point(v) + ")");
     }
@@ -58,7 +60,7 @@ class PlanValidator {
 
 // The step's path as given: the polyline, or the straight segment of
 // `direction` and `distance`.
-std::vector<Vector2> RawPath(const PlanStepDef& def, const std::string& path,
+std::vector<Vector3> RawPath(const PlanStepDef& def, const std::string& path,
                              const PlanValidator& check) {
   if (def.has_path && def.has_direction) {
     check.Fail(path, "has both path and direction with distance: give one of them");
@@ -78,7 +80,7 @@ std::vector<Vector2> RawPath(const PlanStepDef& def, const std::string& path,
   const double norm = std::hypot(def.direction.x(), def.direction.y());
   if (norm == 0) check.Fail(path + ".direction", "must not be zero");
   check.Positive(def.distance, path + ".distance");
-  return {Vector2(0, 0), (def.distance / norm) * def.direction};
+  return {Vector3(0, 0, 0), (def.distance / norm) * def.direction};
 }
 
 }  // namespace
@@ -109,14 +111,14 @@ double PlanStep::Length() const {
   return length;
 }
 
-Vector2 PlanStep::At(double s) const {
-  if (path.empty()) return Vector2(0, 0);
+Vector3 PlanStep::At(double s) const {
+  if (path.empty()) return Vector3(0, 0, 0);
   // Walk the segments until the one holding arc length s; before the start
   // (or NaN) is the start, past the end is the end.
   if (!(s > 0)) return path.front();
   double remaining = s;
   for (size_t k = 1; k < path.size(); ++k) {
-    const Vector2 segment = path[k] - path[k - 1];
+    const Vector3 segment = path[k] - path[k - 1];
     const double length = segment.norm();
     if (remaining <= length) return path[k - 1] + (remaining / length) * segment;
     remaining -= length;
@@ -186,9 +188,9 @@ Plan Plan::Create(const PlanDef& def, const Assembly& assembly, const std::strin
     }
 
     // The path: from (0, 0), without repeated points, of nonzero length.
-    const std::vector<Vector2> raw = RawPath(sd, path, check);
-    if (raw.front() != Vector2(0, 0)) step.path.push_back(Vector2(0, 0));
-    for (const Vector2& p : raw) {
+    const std::vector<Vector3> raw = RawPath(sd, path, check);
+    if (raw.front() != Vector3(0, 0, 0)) step.path.push_back(Vector3(0, 0, 0));
+    for (const Vector3& p : raw) {
       if (step.path.empty() || p != step.path.back()) step.path.push_back(p);
     }
     if (step.path.size() < 2) {

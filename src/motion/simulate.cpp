@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "cairn/geometry/polygon.h"
+#include "cairn/geometry/polyhedron.h"
 
 namespace cairn {
 
@@ -25,11 +26,14 @@ const char* to_string(MotionVerdict v) {
 
 namespace {
 
-std::string Pt(const Vector2& p) {
+// A point or direction for people: (x, y) in 2-D, (x, y, z) in 3-D.
+std::string Pt(const Vector3& p, int dim) {
   std::ostringstream os;
   os.precision(4);
-  os << "(" << (std::abs(p.x()) < 5e-13 ? 0.0 : p.x()) << ", "
-     << (std::abs(p.y()) < 5e-13 ? 0.0 : p.y()) << ")";
+  const auto clean = [](double x) { return std::abs(x) < 5e-13 ? 0.0 : x; };
+  os << "(" << clean(p.x()) << ", " << clean(p.y());
+  if (dim == 3) os << ", " << clean(p.z());
+  os << ")";
   return os.str();
 }
 
@@ -41,34 +45,48 @@ std::string Names(const Assembly& a, const std::vector<int>& parts) {
 
 // The unit direction from s towards larger s (forward) or smaller s
 // (backward) along the step's path; zero at that end of the path.
-Vector2 TravelDirection(const PlanStep& step, double s, bool forward) {
+Vector3 TravelDirection(const PlanStep& step, double s, bool forward) {
   const double L = step.Length();
   const double eps = 1e-9 * std::max(1.0, L);
-  if (forward ? s >= L - eps : s <= eps) return Vector2::Zero();
+  if (forward ? s >= L - eps : s <= eps) return Vector3::Zero();
   const double s2 = forward ? std::min(L, s + eps) : std::max(0.0, s - eps);
-  const Vector2 d = step.At(s2) - step.At(s);
-  return d.norm() > 0 ? Vector2(d.normalized()) : Vector2::Zero();
+  const Vector3 d = step.At(s2) - step.At(s);
+  return d.norm() > 0 ? Vector3(d.normalized()) : Vector3::Zero();
+}
+
+// The axis-aligned bounding box of a part in a configuration.
+std::pair<Vector3, Vector3> WorldBox(const Assembly& a, const Configuration& config, int i) {
+  const std::vector<Vector3> v = config.WorldVertices(a, i);
+  std::pair<Vector3, Vector3> box{v[0], v[0]};
+  for (const Vector3& p : v) box = {box.first.cwiseMin(p), box.second.cwiseMax(p)};
+  return box;
 }
 
 // The first part that a driven part penetrates beyond the tolerance.
 std::optional<int> FindCollision(const Assembly& a, const Configuration& config, int p,
                                  const std::vector<bool>& in_group, double tol) {
-  const Polygon poly = config.WorldPolygon(a, p);
-  const auto box = BoundingBox(poly);
+  const auto box = WorldBox(a, config, p);
   for (int j = 0; j < a.num_parts(); ++j) {
     if (j == p || !config.present[j] || in_group[j]) continue;
-    const Polygon other = config.WorldPolygon(a, j);
-    const auto ob = BoundingBox(other);
-    if (ob.first.x() > box.second.x() + tol || box.first.x() > ob.second.x() + tol ||
-        ob.first.y() > box.second.y() + tol || box.first.y() > ob.second.y() + tol)
+    const auto ob = WorldBox(a, config, j);
+    if (((ob.first.array() > box.second.array() + tol) ||
+         (box.first.array() > ob.second.array() + tol))
+            .any())
       continue;
-    if (FindOverlap(poly, other, tol)) return j;
+    if (a.is_3d()) {
+      if (FindPolyhedronOverlap(*a.part(p).polyhedron, config.WorldTransform(a, p),
+                                *a.part(j).polyhedron, config.WorldTransform(a, j), tol))
+        return j;
+    } else if (FindOverlap(config.WorldPolygon(a, p), config.WorldPolygon(a, j), tol)) {
+      return j;
+    }
   }
   return std::nullopt;
 }
 
 // Describes a failure for people.
 std::string Describe(const Assembly& a, const MotionFailure& f) {
+  const int dim = a.dimension();
   std::ostringstream os;
   os << "t = " << f.time << " s (step " << f.step << ", tick " << f.tick << "): ";
   switch (f.verdict) {
@@ -76,10 +94,14 @@ std::string Describe(const Assembly& a, const MotionFailure& f) {
       for (size_t i = 0; i < f.motions.size(); ++i) {
         const PartMotion& m = f.motions[i];
         os << (i ? "; " : "") << a.part(m.part).name << ' ' << to_string(m.kind);
-        if (m.kind == MotionKind::kTips && m.pivot)
-          os << " about " << Pt(*m.pivot) << (m.angular > 0 ? " counter-clockwise" : " clockwise");
+        if (m.kind == MotionKind::kTips && m.pivot && dim == 2)
+          os << " about " << Pt(*m.pivot, dim)
+             << (m.angular.z() > 0 ? " counter-clockwise" : " clockwise");
+        else if (m.kind == MotionKind::kTips && m.pivot)
+          os << " about the axis through " << Pt(*m.pivot, dim) << " along "
+             << Pt(m.angular.normalized(), dim);
         else if (m.linear.norm() > 0)
-          os << " along " << Pt(m.linear.normalized());
+          os << " along " << Pt(m.linear.normalized(), dim);
       }
       break;
     case MotionVerdict::kUnsupported:
@@ -100,7 +122,7 @@ std::string Describe(const Assembly& a, const MotionFailure& f) {
     if (!(c.breaking || c.sliding)) continue;
     os << "; contact " << a.part(c.contact.part_a).name << "-"
        << (c.contact.part_b >= 0 ? a.part(c.contact.part_b).name : std::string("fixture")) << " at "
-       << Pt(c.contact.p_WC) << (c.breaking ? " breaks" : " slides");
+       << Pt(c.contact.p_WC, dim) << (c.breaking ? " breaks" : " slides");
   }
   return os.str();
 }
@@ -125,7 +147,7 @@ SimulationResult SimulatePlan(const Assembly& assembly, const Plan& plan,
     for (const PlanStep& step : plan.steps)
       for (int p : step.remove) config.present[p] = false;
 
-  std::vector<Vector3> nu(n, Vector3::Zero());  // each part's velocity after the last tick
+  std::vector<Vector6> nu(n, Vector6::Zero());  // each part's velocity after the last tick
   std::vector<bool> held(n, false);             // held in place after a failure (continue mode)
   StabilityWorkspace workspace;
   double time = 0;
@@ -150,7 +172,7 @@ SimulationResult SimulatePlan(const Assembly& assembly, const Plan& plan,
     for (int p = 0; p < n; ++p) {
       if (!in_group[p]) continue;
       config.present[p] = true;
-      config.poses[p] = Pose2{step.At(s_start), 0.0};
+      config.poses[p] = Pose::Translation(step.At(s_start));
       nu[p].setZero();
     }
 
@@ -166,15 +188,15 @@ SimulationResult SimulatePlan(const Assembly& assembly, const Plan& plan,
       // coming interval, with the gripper's velocity for that interval (zero
       // at the last tick: the gripper has stopped, and a part set into its
       // seat does not keep pushing); the carried parts are moved with it.
-      const Vector2 v_g = tick < moves ? Vector2(plan.speed * TravelDirection(step, s, !assemble))
-                                       : Vector2::Zero();
+      const Vector3 v_g = tick < moves ? Vector3(plan.speed * TravelDirection(step, s, !assemble))
+                                       : Vector3::Zero();
       // The path direction the gripper holds a guided part along: the coming
       // one, or at the end of the path the one it came along.
-      const Vector2 guide =
-          v_g.norm() > 0 ? Vector2(v_g.normalized()) : Vector2(-TravelDirection(step, s, assemble));
+      const Vector3 guide =
+          v_g.norm() > 0 ? Vector3(v_g.normalized()) : Vector3(-TravelDirection(step, s, assemble));
       const double t_now = time + travelled / plan.speed;
       for (int p = 0; p < n; ++p)
-        if (gripped[p]) config.poses[p] = Pose2{step.At(s), 0.0};
+        if (gripped[p]) config.poses[p] = Pose::Translation(step.At(s));
 
       // The drive: who moves how. `at_rest` describes the node before the
       // step: the gripper has not moved yet, so its parts still rest on the
@@ -183,7 +205,7 @@ SimulationResult SimulatePlan(const Assembly& assembly, const Plan& plan,
       const auto make_drive = [&](bool at_rest) {
         DriveInputs d;
         d.role.assign(n, PartRole::kJudged);
-        d.velocity.assign(n, Vector2::Zero());
+        d.velocity.assign(n, Vector3::Zero());
         d.guide.assign(n, guide);
         d.nu_prev = nu;
         for (int p = 0; p < n; ++p) {
@@ -193,7 +215,7 @@ SimulationResult SimulatePlan(const Assembly& assembly, const Plan& plan,
           } else if (gripped[p]) {
             const bool rigid = support == SupportMode::kFull || assembly.part(p).tool;
             d.role[p] = rigid ? PartRole::kPrescribed : PartRole::kGuided;
-            d.velocity[p] = at_rest ? Vector2::Zero() : v_g;
+            d.velocity[p] = at_rest ? Vector3::Zero() : v_g;
           } else if (carried[p]) {
             d.role[p] = PartRole::kCarried;
           } else if (held[p]) {
@@ -284,13 +306,13 @@ SimulationResult SimulatePlan(const Assembly& assembly, const Plan& plan,
         motion = &moved;
       }
       for (const PartMotion& m : motion->parts) {
-        nu[m.part] = Vector3(m.linear.x(), m.linear.y(), m.angular);
-        if (gripped[m.part]) nu[m.part].head<2>() -= v_g;
+        nu[m.part] << m.linear, m.angular;
+        if (gripped[m.part]) nu[m.part].head<3>() -= v_g;
       }
       for (int p = 0; p < n; ++p) {
         if (!carried[p]) continue;
-        config.poses[p].translation += nu[p].head<2>() * dt;
-        config.poses[p].rotation += nu[p].z() * dt;
+        config.poses[p].translation += nu[p].head<3>() * dt;
+        config.poses[p].Rotate(nu[p].tail<3>() * dt);
       }
       if (f.verdict != MotionVerdict::kStable) {
         if (!options.continue_after_failure) break;
@@ -312,7 +334,7 @@ SimulationResult SimulatePlan(const Assembly& assembly, const Plan& plan,
     for (int p = 0; p < n; ++p) {
       if (!in_group[p]) continue;
       config.present[p] = assemble && !assembly.part(p).tool;
-      config.poses[p] = Pose2{};
+      config.poses[p] = Pose{};
       nu[p].setZero();
     }
     if (step_failed && !options.continue_after_failure) break;

@@ -1,16 +1,15 @@
 #include <cmath>
 
 #include "cairn/report/report.h"
+#include "report/report_common.h"
 
 namespace cairn {
 
 namespace {
-// Rounds away floating-point dust so that reports are stable across
-// platforms: values below 1e-12 of the scale print as 0.
-double Clean(double x, double scale = 1.0) { return std::abs(x) < 1e-12 * scale ? 0.0 : x; }
-nlohmann::json Vec(const Vector2& v, double scale = 1.0) {
-  return nlohmann::json::array({Clean(v.x(), scale), Clean(v.y(), scale)});
-}
+using report_internal::Angular;
+using report_internal::Clean;
+using report_internal::Tangential;
+using report_internal::Vec;
 std::string PartName(const Assembly& a, int i) { return i >= 0 ? a.part(i).name : "world"; }
 }  // namespace
 
@@ -26,13 +25,16 @@ nlohmann::json StabilityToJson(const Assembly& assembly, const Configuration& co
   const bool st = result.formulation == Formulation::kStewartTrinkle;
   const auto [force_scale, force_unit] = ForceScale(assembly, options);
   const double g = assembly.gravity().norm() > 0 ? assembly.gravity().norm() : 1.0;
+  const int dim = assembly.dimension();
 
   json doc;
   doc["scene"] = assembly.name();
   if (!options.scene_file.empty()) doc["scene_file"] = options.scene_file;
   doc["verdict"] = to_string(result.verdict);
   doc["stable"] = result.stable();
+  doc["dimension"] = dim;
   doc["formulation"] = to_string(result.formulation);
+  if (dim == 3 && st) doc["friction_directions"] = assembly.friction_directions();
   if (st) doc["dt"] = result.dt;
   json without = json::array();
   for (int i : options.without) without.push_back(assembly.part(i).name);
@@ -56,15 +58,16 @@ nlohmann::json StabilityToJson(const Assembly& assembly, const Configuration& co
     jp["name"] = p.name;
     jp["fixed"] = p.fixed;
     jp["mass"] = p.mass;
-    jp["centroid"] = Vec(config.WorldCentroid(assembly, i));
+    jp["centroid"] = Vec(config.WorldCentroid(assembly, i), dim);
     if (const PartMotion* m = motion_of[i]) {
       jp["moving"] = m->moving;
       jp["motion"] = to_string(m->kind);
       json mo;
-      mo["linear"] = Vec(m->linear, g);
-      mo["angular"] = Clean(m->angular, g);
+      mo["linear"] = Vec(m->linear, dim, g);
+      mo["angular"] = Angular(m->angular, dim, g);
       jp[st ? "velocity" : "acceleration"] = mo;
-      if (m->pivot) jp["pivot"] = Vec(*m->pivot);
+      if (m->pivot) jp["pivot"] = Vec(*m->pivot, dim);
+      if (m->pivot && dim == 3) jp["axis"] = Vec(m->angular.normalized(), dim);
     }
     parts.push_back(jp);
   }
@@ -75,14 +78,16 @@ nlohmann::json StabilityToJson(const Assembly& assembly, const Configuration& co
     const Contact& c = cr.contact;
     json jc;
     jc["parts"] = {PartName(assembly, c.part_a), PartName(assembly, c.part_b)};
-    jc["point"] = Vec(c.p_WC);
-    jc["normal"] = Vec(c.n_W);
+    jc["point"] = Vec(c.p_WC, dim);
+    jc["normal"] = Vec(c.n_W, dim);
     jc["feature"] = to_string(c.feature);
+    if (dim == 3) jc["patch"] = c.patch;
     jc["mu"] = c.mu;
     jc["normal_force"] = Clean(cr.normal_force / force_scale, 1.0);
-    jc["friction_force"] = Clean(cr.friction_force / force_scale, 1.0);
+    jc["friction_force"] = Tangential(cr.friction_force / force_scale, c, dim);
     jc[st ? "normal_velocity" : "normal_acceleration"] = Clean(cr.normal_motion, g);
-    jc[st ? "sliding_velocity" : "tangential_acceleration"] = Clean(cr.tangent_motion, g);
+    jc[st ? "sliding_velocity" : "tangential_acceleration"] =
+        Tangential(cr.tangent_motion, c, dim, g);
     jc["breaks"] = cr.breaking;
     jc["slides"] = cr.sliding;
     jc["component"] = cr.component;

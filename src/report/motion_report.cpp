@@ -3,12 +3,15 @@
 #include <sstream>
 
 #include "cairn/report/report.h"
+#include "report/report_common.h"
 
 namespace cairn {
 
 namespace {
-double Clean(double x) { return std::abs(x) < 1e-12 ? 0.0 : x; }
-nlohmann::json Vec(const Vector2& v) { return nlohmann::json::array({Clean(v.x()), Clean(v.y())}); }
+using report_internal::Angular;
+using report_internal::Clean;
+using report_internal::Tangential;
+using report_internal::Vec;
 std::string PartName(const Assembly& a, int i) { return i >= 0 ? a.part(i).name : "world"; }
 nlohmann::json Names(const Assembly& a, const std::vector<int>& parts) {
   nlohmann::json out = nlohmann::json::array();
@@ -26,6 +29,7 @@ nlohmann::json SimulationToJson(const Assembly& assembly, const Plan& plan,
                                 const SimulationResult& result, const ReportOptions& options) {
   using nlohmann::json;
   const auto [force_scale, force_unit] = ForceScale(assembly, options);
+  const int dim = assembly.dimension();
   json doc;
   doc["verdict"] = to_string(result.verdict);
   doc["stable"] = result.stable();
@@ -46,23 +50,26 @@ nlohmann::json SimulationToJson(const Assembly& assembly, const Plan& plan,
       json jm;
       jm["part"] = assembly.part(m.part).name;
       jm["motion"] = to_string(m.kind);
-      jm["velocity"] = {{"linear", Vec(m.linear)}, {"angular", Clean(m.angular)}};
-      if (m.pivot) jm["pivot"] = Vec(*m.pivot);
+      jm["velocity"] = {{"linear", Vec(m.linear, dim)}, {"angular", Angular(m.angular, dim)}};
+      if (m.pivot) jm["pivot"] = Vec(*m.pivot, dim);
+      if (m.pivot && dim == 3) jm["axis"] = Vec(m.angular.normalized(), dim);
       motions.push_back(jm);
     }
     jf["motions"] = motions;
     json contacts = json::array();
     for (const ContactReport& c : f.contacts) {
-      contacts.push_back(
-          {{"parts", {PartName(assembly, c.contact.part_a), PartName(assembly, c.contact.part_b)}},
-           {"point", Vec(c.contact.p_WC)},
-           {"normal", Vec(c.contact.n_W)},
-           {"normal_force", Clean(c.normal_force / force_scale)},
-           {"friction_force", Clean(c.friction_force / force_scale)},
-           {"normal_velocity", Clean(c.normal_motion)},
-           {"sliding_velocity", Clean(c.tangent_motion)},
-           {"breaks", c.breaking},
-           {"slides", c.sliding}});
+      json jc = {
+          {"parts", {PartName(assembly, c.contact.part_a), PartName(assembly, c.contact.part_b)}},
+          {"point", Vec(c.contact.p_WC, dim)},
+          {"normal", Vec(c.contact.n_W, dim)},
+          {"normal_force", Clean(c.normal_force / force_scale)},
+          {"friction_force", Tangential(c.friction_force / force_scale, c.contact, dim)},
+          {"normal_velocity", Clean(c.normal_motion)},
+          {"sliding_velocity", Tangential(c.tangent_motion, c.contact, dim)},
+          {"breaks", c.breaking},
+          {"slides", c.sliding}};
+      if (dim == 3) jc["patch"] = c.contact.patch;
+      contacts.push_back(jc);
     }
     jf["contacts"] = contacts;
     jf["description"] = f.description;
@@ -125,6 +132,26 @@ std::string TimelineToCsv(const Assembly& assembly, const SimulationResult& resu
                           const ReportOptions& options) {
   const double force_scale = ForceScale(assembly, options).first;
   std::ostringstream os;
+  if (assembly.is_3d()) {
+    // 3-D: points, normals and the tangential vectors have three components,
+    // and each row names its contact polygon (patch).
+    os << "time,step,tick,part_a,part_b,patch,x,y,z,normal_x,normal_y,normal_z,normal_force,"
+          "friction_x,friction_y,friction_z,normal_velocity,sliding_x,sliding_y,sliding_z,"
+          "breaks,slides\n";
+    const auto xyz = [](const Vector3& v) {
+      return Num(v.x()) + ',' + Num(v.y()) + ',' + Num(v.z());
+    };
+    for (const TimelineRow& row : result.timeline) {
+      const ContactReport& c = row.contact;
+      os << Num(row.time) << ',' << row.step << ',' << row.tick << ','
+         << PartName(assembly, c.contact.part_a) << ',' << PartName(assembly, c.contact.part_b)
+         << ',' << c.contact.patch << ',' << xyz(c.contact.p_WC) << ',' << xyz(c.contact.n_W)
+         << ',' << Num(c.normal_force / force_scale) << ',' << xyz(c.friction_force / force_scale)
+         << ',' << Num(c.normal_motion) << ',' << xyz(c.tangent_motion) << ','
+         << (c.breaking ? 1 : 0) << ',' << (c.sliding ? 1 : 0) << '\n';
+    }
+    return os.str();
+  }
   os << "time,step,tick,part_a,part_b,x,y,normal_x,normal_y,normal_force,friction_force,"
         "normal_velocity,sliding_velocity,breaks,slides\n";
   for (const TimelineRow& row : result.timeline) {
@@ -133,8 +160,8 @@ std::string TimelineToCsv(const Assembly& assembly, const SimulationResult& resu
        << PartName(assembly, c.contact.part_a) << ',' << PartName(assembly, c.contact.part_b) << ','
        << Num(c.contact.p_WC.x()) << ',' << Num(c.contact.p_WC.y()) << ',' << Num(c.contact.n_W.x())
        << ',' << Num(c.contact.n_W.y()) << ',' << Num(c.normal_force / force_scale) << ','
-       << Num(c.friction_force / force_scale) << ',' << Num(c.normal_motion) << ','
-       << Num(c.tangent_motion) << ',' << (c.breaking ? 1 : 0) << ',' << (c.sliding ? 1 : 0)
+       << Num(c.friction_force.dot(c.contact.t_W()) / force_scale) << ',' << Num(c.normal_motion)
+       << ',' << Num(c.tangent_motion.dot(c.contact.t_W())) << ',' << (c.breaking ? 1 : 0) << ',' << (c.sliding ? 1 : 0)
        << '\n';
   }
   return os.str();

@@ -12,8 +12,9 @@ std::string Fmt(const char* format, double x) {
   std::snprintf(buf, sizeof buf, format, std::abs(x) < 5e-13 ? 0.0 : x);
   return buf;
 }
-std::string Pt(const Vector2& v) {
-  return "(" + Fmt("%.4g", v.x()) + ", " + Fmt("%.4g", v.y()) + ")";
+std::string Pt(const Vector3& v, int dim) {
+  return "(" + Fmt("%.4g", v.x()) + ", " + Fmt("%.4g", v.y()) +
+         (dim == 3 ? ", " + Fmt("%.4g", v.z()) : std::string()) + ")";
 }
 std::string PartName(const Assembly& a, int i) { return i >= 0 ? a.part(i).name : "fixture"; }
 }  // namespace
@@ -22,6 +23,7 @@ std::string StabilityToText(const Assembly& assembly, const Configuration& confi
                             const StabilityResult& result, const ReportOptions& options) {
   const bool st = result.formulation == Formulation::kStewartTrinkle;
   const auto [force_scale, force_unit] = ForceScale(assembly, options);
+  const int dim = assembly.dimension();
   std::ostringstream os;
 
   // Headline.
@@ -62,12 +64,16 @@ std::string StabilityToText(const Assembly& assembly, const Configuration& confi
     const Part& p = assembly.part(m.part);
     const char* what = st ? "velocity" : "acceleration";
     os << "  " << p.name << ' ' << to_string(m.kind);
-    if (m.kind == MotionKind::kTips && m.pivot)
-      os << " about " << Pt(*m.pivot) << (m.angular > 0 ? " counter-clockwise" : " clockwise");
+    if (m.kind == MotionKind::kTips && m.pivot && dim == 2)
+      os << " about " << Pt(*m.pivot, dim)
+         << (m.angular.z() > 0 ? " counter-clockwise" : " clockwise");
+    else if (m.kind == MotionKind::kTips && m.pivot)
+      os << " about the axis through " << Pt(*m.pivot, dim) << " along "
+         << Pt(m.angular.normalized(), dim);
     else if (m.linear.norm() > 0)
-      os << " along " << Pt(m.linear.normalized());
-    os << ": centroid " << what << ' ' << Pt(m.linear) << ", angular " << Fmt("%.4g", m.angular)
-       << '\n';
+      os << " along " << Pt(m.linear.normalized(), dim);
+    os << ": centroid " << what << ' ' << Pt(m.linear, dim) << ", angular "
+       << (dim == 2 ? Fmt("%.4g", m.angular.z()) : Pt(m.angular, dim)) << '\n';
   }
 
   // Contact forces.
@@ -76,9 +82,12 @@ std::string StabilityToText(const Assembly& assembly, const Configuration& confi
     const Contact& c = cr.contact;
     // The force on a from b acts along n: "b pushes a".
     os << "    " << PartName(assembly, c.part_b) << " pushes " << PartName(assembly, c.part_a)
-       << " at " << Pt(c.p_WC) << " n=" << Pt(c.n_W) << "  normal "
+       << " at " << Pt(c.p_WC, dim) << " n=" << Pt(c.n_W, dim) << "  normal "
        << Fmt("%.6g", cr.normal_force / force_scale);
-    if (c.mu > 0) os << "  friction " << Fmt("%.6g", cr.friction_force / force_scale);
+    if (c.mu > 0 && dim == 2)
+      os << "  friction " << Fmt("%.6g", cr.friction_force.dot(c.t_W()) / force_scale);
+    else if (c.mu > 0)
+      os << "  friction " << Pt(cr.friction_force / force_scale, dim);
     if (cr.breaking) os << "  BREAKS";
     if (cr.sliding) os << "  SLIDES";
     os << '\n';

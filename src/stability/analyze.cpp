@@ -117,18 +117,19 @@ ContactLcp BuildComponent(const Assembly& assembly, const Configuration& config,
     BodyDynamics b;
     b.part = p;
     b.mass = part.mass;
-    b.inertia = part.inertia;
+    b.inertia = config.WorldInertia(assembly, p);
     b.p_WBcm = config.WorldCentroid(assembly, p);
-    b.F_ext = Vector3(part.mass * assembly.gravity().x(), part.mass * assembly.gravity().y(), 0);
+    b.planar = !assembly.is_3d();
+    b.F_ext.head<3>() = part.mass * assembly.gravity();
     if (drive && !drive->nu_prev.empty()) b.nu_prev = drive->nu_prev[p];
     const PartRole role = RoleOf(drive, p);
     if (role == PartRole::kPrescribed || role == PartRole::kGuided) {
-      const Vector2 v = drive->velocity[p];
-      b.nu_prescribed = Vector3(v.x(), v.y(), 0);
+      const Vector3 v = drive->velocity[p];
+      b.nu_prescribed.head<3>() = v;
       b.motion = role == PartRole::kPrescribed ? BodyMotion::kPrescribed : BodyMotion::kGuided;
       // The gripper holds a guided part along the path, even when it stands
       // still (at the end of the path); with no direction at all, it is free.
-      const Vector2 g = drive->guide.empty() ? Vector2::Zero() : drive->guide[p];
+      const Vector3 g = drive->guide.empty() ? Vector3::Zero() : drive->guide[p];
       if (role == PartRole::kGuided) {
         if (g.norm() > 0)
           b.guide = g.normalized();
@@ -143,7 +144,8 @@ ContactLcp BuildComponent(const Assembly& assembly, const Configuration& config,
   std::vector<Contact> comp_contacts;
   for (int c : comp.contacts) comp_contacts.push_back(contacts[c]);
   return BuildContactLcp(std::move(bodies), std::move(comp_contacts), formulation, dt,
-                         /*use_gaps=*/false, storage);
+                         /*use_gaps=*/false, storage, assembly.dimension(),
+                         assembly.friction_directions());
 }
 
 // The structure of a component for warm starts (StabilityWorkspace::Entry::key):
@@ -159,8 +161,8 @@ void ForEachKeyInt(const ContactLcp& lcp, Visit&& visit) {
     visit(c.part_a);
     visit(c.part_b);
     visit(static_cast<int>(c.feature));
-    visit(c.vertex);
-    visit(c.edge);
+    visit(c.index_a);
+    visit(c.index_b);
   }
 }
 
@@ -221,11 +223,13 @@ void ClassifyMotion(PartMotion& m, bool keeps_contact, double size, double scene
     m.kind = MotionKind::kFalls;
     return;
   }
-  // The point of zero motion: lin + ang ẑ × r = 0 ⇒ r = (−lin_y, lin_x) / ang.
-  // A part tips when that point lies within the scene (about its own size of
-  // a contact); a far-away pivot is a translation with a little spin.
-  if (m.angular != 0) {
-    const Vector2 r(-m.linear.y() / m.angular, m.linear.x() / m.angular);
+  // The instantaneous axis (Chasles): its point nearest the centroid is
+  // r = ω × v / |ω|² (in 2-D the point of zero motion, (−v_y, v_x) / ω). A
+  // part tips when that point lies within the scene (about its own size of a
+  // contact); a far-away axis is a translation with a little spin.
+  const double w2 = m.angular.squaredNorm();
+  if (w2 > 0) {
+    const Vector3 r = m.angular.cross(m.linear) / w2;
     if (r.norm() <= std::max(2 * size, 0.5 * scene_size)) {
       m.kind = MotionKind::kTips;
       m.pivot = r;  // relative to the centroid; made absolute by the caller
@@ -372,11 +376,11 @@ StabilityResult AnalyzeConfiguration(const Assembly& assembly, const Configurati
       ContactReport& cr = result.contacts[comp.contacts[k]];
       cr.component = ci;
       cr.normal_force = phys.normal_force(k);
-      cr.friction_force = phys.friction_force(k);
+      cr.friction_force = phys.friction_force[k];
       cr.normal_motion = phys.normal_motion(k);
-      cr.tangent_motion = phys.tangent_motion(k);
+      cr.tangent_motion = phys.tangent_motion[k];
       cr.breaking = cr.normal_motion > motion_tol;
-      cr.sliding = !cr.breaking && std::abs(cr.tangent_motion) > motion_tol;
+      cr.sliding = !cr.breaking && cr.tangent_motion.norm() > motion_tol;
       if (!cr.breaking) {
         for (size_t b = 0; b < comp.parts.size(); ++b)
           if (comp.parts[b] == cr.contact.part_a || comp.parts[b] == cr.contact.part_b)
@@ -388,14 +392,14 @@ StabilityResult AnalyzeConfiguration(const Assembly& assembly, const Configurati
       PartMotion m;
       m.part = p;
       m.component = ci;
-      m.linear = phys.body_motion[b].head<2>();
-      m.angular = phys.body_motion[b].z();
-      // The fastest point of the part: |lin + ang ẑ × r| over its vertices.
-      const Vector2 c = lcp.bodies[b].p_WBcm;
+      m.linear = phys.body_motion[b].head<3>();
+      m.angular = phys.body_motion[b].tail<3>();
+      // The fastest point of the part: |lin + ang × r| over its vertices.
+      const Vector3 c = lcp.bodies[b].p_WBcm;
       double radius = 0;
-      const Polygon polygon = config.WorldPolygon(assembly, p);
-      for (const Vector2& v : polygon) {
-        m.point_motion = std::max(m.point_motion, (m.linear + CrossZ(m.angular, v - c)).norm());
+      const std::vector<Vector3> vertices = config.WorldVertices(assembly, p);
+      for (const Vector3& v : vertices) {
+        m.point_motion = std::max(m.point_motion, (m.linear + m.angular.cross(v - c)).norm());
         radius = std::max(radius, (v - c).norm());
       }
       m.role = RoleOf(drive, p);
@@ -408,10 +412,10 @@ StabilityResult AnalyzeConfiguration(const Assembly& assembly, const Configurati
           break;
         case PartRole::kGuided: {
           // Off-path motion: everything but the gripper's own velocity.
-          const Vector2 v_g = drive->velocity[p];
+          const Vector3 v_g = drive->velocity[p];
           double off = 0;
-          for (const Vector2& v : polygon)
-            off = std::max(off, (m.linear - v_g + CrossZ(m.angular, v - c)).norm());
+          for (const Vector3& v : vertices)
+            off = std::max(off, (m.linear - v_g + m.angular.cross(v - c)).norm());
           if (off > motion_tol) result.unsupported.push_back(p);
           break;
         }

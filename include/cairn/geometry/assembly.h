@@ -6,6 +6,8 @@
 /// contacts, matrices, solver workspaces) lives elsewhere (Configuration and
 /// the later stages), so one Assembly can be analysed by many threads.
 
+#include <Eigen/Geometry>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -13,25 +15,33 @@
 #include "cairn/core/tolerances.h"
 #include "cairn/core/types.h"
 #include "cairn/geometry/polygon.h"
+#include "cairn/geometry/polyhedron.h"
 
 namespace cairn {
 
-/// A part as the user describes it (scene file `parts[i]`).
+/// A part as the user describes it (scene file `parts[i]`). A 2-D part has a
+/// `polygon`; a 3-D part a `polyhedron` (a scene's `polyhedron`, `box` with 3-D
+/// corners, or `mesh`, as the reader turned it into vertices and faces).
 struct PartDef {
   std::string name;
   bool fixed = false;  ///< Cannot move (a table, a wall).
   bool tool = false;   ///< A gripper's pad, not part of the assembly: present only while gripped.
-  std::optional<double> density;  ///< mass per unit area; default 1.
+  std::optional<double> density;  ///< mass per unit area (2-D) or volume (3-D); default 1.
   std::optional<double> mass;     ///< overrides density.
-  Polygon polygon;                ///< World coordinates of the assembled pose, either orientation.
+  Polygon polygon;  ///< 2-D: world coordinates of the assembled pose, either orientation.
+  std::optional<PolyhedronDef> polyhedron;  ///< 3-D: world coordinates of the assembled pose.
+  /// Where the shape's JSON path points in error messages ("polygon", "box",
+  /// "polyhedron", "mesh"); empty: "polygon" or "polyhedron".
+  std::string shape_key;
 };
 
 /// A fixel: a frictionless unilateral point contact with the fixed world
-/// (scene file `fixtures[i]`). It pushes on the part along `normal`.
+/// (scene file `fixtures[i]`). It pushes on the part along `normal`. 2-D
+/// scenes leave z = 0.
 struct FixtureDef {
   std::string part;
-  Vector2 point{0, 0};
-  Vector2 normal{0, 0};
+  Vector3 point{0, 0, 0};
+  Vector3 normal{0, 0, 0};
 };
 
 /// The friction coefficient between two named parts (`friction_pairs[i]`).
@@ -46,32 +56,45 @@ struct FrictionPairDef {
 /// the JSON path.
 struct AssemblyDef {
   std::string name;
-  Vector2 gravity{0, -9.81};  ///< length/s²
-  double friction = 0;        ///< default Coulomb coefficient (dimensionless)
+  /// length/s²; default (0, −9.81) in 2-D, (0, 0, −9.81) in 3-D. A 2-D scene
+  /// must leave z = 0.
+  std::optional<Vector3> gravity;
+  double friction = 0;  ///< default Coulomb coefficient (dimensionless)
+  /// 3-D: D, the number of edges of the linearised friction cone (Stewart and
+  /// Trinkle's pyramid inscribed in the cone), ≥ 3; 0: the default 4. 2-D
+  /// scenes always use the two directions ±t.
+  int friction_directions = 0;
   std::vector<FrictionPairDef> friction_pairs;
   double tolerance = 0;  ///< contact distance tolerance (length); ≤ 0: scaled to the scene
   std::vector<PartDef> parts;
   std::vector<FixtureDef> fixtures;
 };
 
-/// A validated part. Its polygon is counter-clockwise, in world coordinates of
-/// the assembled pose.
+/// A validated part, in world coordinates of the assembled pose.
 struct Part {
   std::string name;
   bool fixed = false;
-  bool tool = false;       ///< a gripper's pad: absent until a plan step grips it; never judged
-  Polygon polygon;         ///< counter-clockwise, world frame (assembled pose)
-  double area = 0;         ///< length²
-  double mass = 0;         ///< mass units, > 0 (density × area unless the scene gives `mass`)
-  Vector2 centroid{0, 0};  ///< p_WBcm: centre of mass in the world frame (assembled pose)
-  double inertia = 0;      ///< moment of inertia about the centroid (mass·length²)
+  bool tool = false;  ///< a gripper's pad: absent until a plan step grips it; never judged
+  Polygon polygon;    ///< 2-D: counter-clockwise, world frame (assembled pose); 3-D: empty
+  /// 3-D: the validated, outward-oriented solid (shared: an Assembly is cheap
+  /// to copy); 2-D: null.
+  std::shared_ptr<const Polyhedron> polyhedron;
+  std::vector<Vector3> vertices;  ///< every vertex, world frame (2-D: z = 0)
+  double area = 0;                ///< 2-D: area (length²); 3-D: volume (length³)
+  double mass = 0;  ///< mass units, > 0 (density × area or volume unless the scene gives `mass`)
+  Vector3 centroid{0, 0, 0};  ///< p_WBcm: centre of mass in the world frame (assembled pose)
+  /// Inertia tensor about the centroid, world axes of the assembled pose
+  /// (mass·length²). 2-D: diag(I, I, I) with I the polar moment (only I_zz
+  /// matters to planar motion).
+  Matrix3 inertia = Matrix3::Zero();
+  double polar_inertia() const { return inertia(2, 2); }  ///< 2-D: I about the centroid
 };
 
 /// A validated fixture.
 struct Fixture {
-  int part = -1;         ///< index into Assembly::parts()
-  Vector2 point{0, 0};   ///< p_WF, on the part's boundary (assembled pose)
-  Vector2 normal{0, 0};  ///< n_W, unit: the direction the fixel pushes the part
+  int part = -1;            ///< index into Assembly::parts()
+  Vector3 point{0, 0, 0};   ///< p_WF, on the part's boundary (assembled pose)
+  Vector3 normal{0, 0, 0};  ///< n_W, unit: the direction the fixel pushes the part
 };
 
 /// The immutable, validated model.
@@ -95,7 +118,14 @@ class Assembly {
   /// Index of the part with this name, or -1.
   int FindPart(const std::string& name) const;
   const std::vector<Fixture>& fixtures() const { return fixtures_; }
-  const Vector2& gravity() const { return gravity_; }
+  /// 2 (polygons, planar motion) or 3 (polyhedra, six freedoms per part).
+  int dimension() const { return dimension_; }
+  bool is_3d() const { return dimension_ == 3; }
+  /// length/s², world frame (z = 0 in 2-D).
+  const Vector3& gravity() const { return gravity_; }
+  /// D, the friction directions per contact: 2 in 2-D (±t), the scene's
+  /// `friction_directions` (default 4) in 3-D.
+  int friction_directions() const { return friction_directions_; }
   /// Coulomb coefficient between parts i and j (a friction pair if the scene
   /// names one, else the scene default). j = -1 means the fixed world
   /// (fixtures), which is always frictionless.
@@ -113,7 +143,9 @@ class Assembly {
   std::string name_;
   std::vector<Part> parts_;
   std::vector<Fixture> fixtures_;
-  Vector2 gravity_{0, -9.81};
+  int dimension_ = 2;
+  Vector3 gravity_{0, -9.81, 0};
+  int friction_directions_ = 2;
   double default_friction_ = 0;
   std::vector<std::pair<std::pair<int, int>, double>> pair_mu_;  // (min, max) index → μ
   double scene_size_ = 0;
@@ -123,28 +155,45 @@ class Assembly {
 };
 
 /// Where the parts are in one configuration, and which are present. A pose is
-/// the rigid displacement of a part from its assembled pose: a rotation by
-/// `rotation` (rad, counter-clockwise) about the part's assembled centroid,
-/// then a translation by `translation` (length).
-struct Pose2 {
-  Vector2 translation{0, 0};
-  double rotation = 0;
+/// the rigid displacement of a part from its assembled pose: a rotation
+/// `rotation` (R, world axes) about the part's assembled centroid, then a
+/// translation by `translation` (length). In 2-D, R is a rotation about +z
+/// and translation.z() = 0.
+struct Pose {
+  Vector3 translation{0, 0, 0};
+  Matrix3 rotation = Matrix3::Identity();
+  /// A planar pose: translation (x, y), rotation by `angle` (rad,
+  /// counter-clockwise) about +z.
+  static Pose Planar(const Vector2& translation, double angle = 0);
+  /// The translation only.
+  static Pose Translation(const Vector3& translation);
   /// The world position of a point given at the assembled pose.
-  Vector2 Apply(const Vector2& p_assembled, const Vector2& centroid_assembled) const;
+  Vector3 Apply(const Vector3& p_assembled, const Vector3& centroid_assembled) const;
+  /// The planar rotation angle (rad) about +z (2-D poses).
+  double angle() const;
+  /// Turns the pose by the rotation vector ω·dt (rad, world axes) about the
+  /// part's centroid (the exponential map; exact for a constant ω).
+  void Rotate(const Vector3& rotation_vector);
 };
 
 /// The mutable state of one configuration of an Assembly.
 struct Configuration {
   std::vector<bool> present;  ///< (num_parts) false: the part has been taken away
-  std::vector<Pose2> poses;   ///< (num_parts)
+  std::vector<Pose> poses;    ///< (num_parts)
 
   /// Every part of the assembly present, at its assembled pose; tools
   /// (Part::tool) absent, also at their assembled (start) poses.
   static Configuration Assembled(const Assembly& assembly);
-  /// Part i's polygon in this configuration (world frame, counter-clockwise).
+  /// 2-D: part i's polygon in this configuration (world frame, counter-clockwise).
   Polygon WorldPolygon(const Assembly& assembly, int i) const;
+  /// Part i's vertices in this configuration (world frame).
+  std::vector<Vector3> WorldVertices(const Assembly& assembly, int i) const;
+  /// 3-D: X_WB, the map from part i's assembled-pose coordinates to the world.
+  Eigen::Isometry3d WorldTransform(const Assembly& assembly, int i) const;
   /// Part i's centroid in this configuration (world frame).
-  Vector2 WorldCentroid(const Assembly& assembly, int i) const;
+  Vector3 WorldCentroid(const Assembly& assembly, int i) const;
+  /// Part i's inertia tensor about its centroid in this configuration (world axes).
+  Matrix3 WorldInertia(const Assembly& assembly, int i) const;
 };
 
 }  // namespace cairn

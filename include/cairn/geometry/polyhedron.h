@@ -9,6 +9,7 @@
 /// Orientation is Cairn's job, not the user's: faces are oriented
 /// consistently across shared edges and then outward (positive volume).
 
+#include <Eigen/Geometry>
 #include <array>
 #include <optional>
 #include <string>
@@ -71,6 +72,24 @@ class Polyhedron {
   std::vector<std::vector<std::array<int, 3>>> triangles_;
   PolyhedronMass mass_;
 };
+
+/// The signed distance (length) from the world point `p_W` to the surface of
+/// `poly` placed by X_WB: negative inside. Inside is decided by the winding
+/// number of the surface about the point (robust for non-convex solids).
+double SignedDistance(const Polyhedron& poly, const Eigen::Isometry3d& X_WB, const Vector3& p_W);
+
+/// A point where the interiors of `a` (placed by X_WA) and `b` (by X_WB)
+/// overlap by more than `tol` (length), or nothing when they only touch or
+/// are apart. Tested: every vertex, edge midpoint, face-triangle centroid and
+/// the centroid of each solid against the other (deeper than tol inside), and
+/// every edge of each crossing a face of the other with both ends more than
+/// tol off the face's plane and the crossing more than tol inside the face.
+/// Exact for the overlaps of assembly planning (parts pushed into each other,
+/// coincident parts); a sliver overlap that reaches none of those points is
+/// missed (it is thinner than the parts' features).
+std::optional<Vector3> FindPolyhedronOverlap(const Polyhedron& a, const Eigen::Isometry3d& X_WA,
+                                             const Polyhedron& b, const Eigen::Isometry3d& X_WB,
+                                             double tol);
 
 /// Exact mass properties of a closed, outward-oriented triangle mesh
 /// (divergence theorem over the triangles; exact for any polyhedron).

@@ -14,8 +14,9 @@ namespace cairn {
 /// Checks a parsed plan document (types, required fields, unknown keys,
 /// finite numbers, an empty `grip`) and converts it to a PlanDef. Vector
 /// indices equal JSON indices. The checks against a scene are Plan::Create's.
+/// Path points and directions have `dimension` numbers (the scene's: 2 or 3).
 /// @throws InputError naming `file` and the JSON path of the first fault.
-PlanDef ParsePlanJson(const nlohmann::json& doc, const std::string& file);
+PlanDef ParsePlanJson(const nlohmann::json& doc, const std::string& file, int dimension = 2);
 
 /// Reads and parses a plan file, then validates it against `assembly` with
 /// Plan::Create. @throws InputError (unreadable file, JSON syntax error with

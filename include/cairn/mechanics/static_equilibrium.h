@@ -3,9 +3,10 @@
 /// Does a static equilibrium exist? A linear program over the contact forces
 /// of one component, independent of the LCP:
 ///
-///     find f_n ≥ 0, f_t± ≥ 0 (per contact)
-///     with  Σ_c J_cᵀ (f_n n + (f_t+ − f_t−) t) + F_ext = 0  on every free body
-///           f_t+ + f_t− ≤ μ f_n                             (Coulomb, exact in 2-D)
+///     find f_n ≥ 0, β_k ≥ 0 (per contact, k = 1..D)
+///     with  Σ_c J_cᵀ (f_n n + Σ_k β_k d_k) + F_ext = 0  on every free body
+///           Σ_k β_k ≤ μ f_n       (Coulomb: exact in 2-D, where d = ±t; the
+///                                  LCP's inscribed D-pyramid in 3-D)
 ///     minimising Σ f_n (a canonical answer among the many of a statically
 ///     indeterminate assembly).
 ///
@@ -35,7 +36,7 @@ struct StaticEquilibrium {
   bool solved = false;  ///< the LP solver reached a verdict (false: numerical trouble, see message)
   bool exists = false;  ///< an equilibrium exists
   VectorX normal_force;    ///< (nc) force units, when it exists
-  VectorX friction_force;  ///< (nc) signed along t_W, when it exists
+  std::vector<Vector3> friction_force;  ///< (nc) on a, world frame, when it exists
   double residual = 0;     ///< max over body equations of |Σ J f + F_ext| (force units)
   std::string message;     ///< diagnostics when !solved
 };

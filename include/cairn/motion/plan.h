@@ -34,9 +34,9 @@ const char* to_string(PlanMode mode);
 struct PlanStepDef {
   std::vector<std::string> remove;  ///< parts leaving the assembly in this step
   std::vector<std::string> grip;    ///< parts the gripper holds; empty: all of `remove`
-  std::vector<Vector2> path;        ///< displacements from the start pose; `path` form
-  bool has_path = false;            ///< the step used `path`
-  Vector2 direction{0, 0};          ///< `direction` + `distance` form
+  std::vector<Vector3> path;  ///< displacements from the start pose; `path` form (2-D: z = 0)
+  bool has_path = false;      ///< the step used `path`
+  Vector3 direction{0, 0, 0};  ///< `direction` + `distance` form
   double distance = 0;
   bool has_direction = false;  ///< the step used `direction` and `distance`
   SupportMode support = SupportMode::kFull;
@@ -54,11 +54,11 @@ struct PlanDef {
 struct PlanStep {
   std::vector<int> remove;    ///< part indices, in the order given
   std::vector<int> grip;      ///< part indices (tools included); never empty
-  std::vector<Vector2> path;  ///< piecewise-linear displacements, path[0] = (0, 0), ≥ 2 points
+  std::vector<Vector3> path;  ///< piecewise-linear displacements, path[0] = 0, ≥ 2 points
   SupportMode support = SupportMode::kFull;
   double Length() const;  ///< total path length
   /// The displacement after travelling arc length s along the path (clamped).
-  Vector2 At(double s) const;
+  Vector3 At(double s) const;
 };
 
 /// A validated plan, tied to the Assembly it was checked against.

@@ -59,11 +59,15 @@ struct PartMotion {
   int component = -1;  ///< index into StabilityResult::components
   bool moving = false;
   MotionKind kind = MotionKind::kAtRest;
-  Vector2 linear{
-      0, 0};  ///< centroid acceleration (length/s², Baraff) or velocity after Δt (length/s, S–T)
-  double angular = 0;  ///< angular acceleration (rad/s²) or velocity (rad/s), counter-clockwise
-  std::optional<Vector2>
-      pivot;                ///< for kTips: the point of zero acceleration/velocity (world frame)
+  /// Centroid acceleration (length/s², Baraff) or velocity after Δt
+  /// (length/s, S–T), world frame (z = 0 in 2-D).
+  Vector3 linear{0, 0, 0};
+  /// Angular acceleration (rad/s²) or velocity (rad/s), world axes; 2-D:
+  /// (0, 0, ω), counter-clockwise positive.
+  Vector3 angular{0, 0, 0};
+  /// For kTips: the point of the instantaneous axis nearest the centroid (2-D:
+  /// the point of zero acceleration/velocity), world frame.
+  std::optional<Vector3> pivot;
   double point_motion = 0;  ///< largest |acceleration| or |velocity| over the part's vertices
 };
 
@@ -71,13 +75,15 @@ struct PartMotion {
 struct ContactReport {
   Contact contact;
   int component = -1;
-  double normal_force = 0;    ///< force units, ≥ 0, on a along n_W
-  double friction_force = 0;  ///< force units, on a along t_W
+  double normal_force = 0;  ///< force units, ≥ 0, on a along n_W
+  /// Force units, on a, world frame, in the tangent plane (2-D: along ±t_W).
+  Vector3 friction_force{0, 0, 0};
   double normal_motion =
       0;  ///< relative normal acceleration (Baraff) or velocity (S–T); > 0 separates
-  double tangent_motion = 0;  ///< relative tangential acceleration or velocity along t_W
-  bool breaking = false;      ///< normal_motion above the tolerance: the contact opens
-  bool sliding = false;       ///< |tangent_motion| above the tolerance while closed
+  /// Relative tangential acceleration or velocity of a over b, world frame.
+  Vector3 tangent_motion{0, 0, 0};
+  bool breaking = false;  ///< normal_motion above the tolerance: the contact opens
+  bool sliding = false;   ///< |tangent_motion| above the tolerance while closed
 };
 
 /// One contact-graph component and its solve.
@@ -141,12 +147,12 @@ struct StabilityResult {
 /// vector is indexed by part, and empty means "nothing driven, all at rest".
 struct DriveInputs {
   std::vector<PartRole> role;  ///< (num_parts) default kJudged
-  /// (num_parts) gripper velocity of kGuided/kPrescribed parts (length/s)
-  std::vector<Vector2> velocity;
+  /// (num_parts) gripper velocity of kGuided/kPrescribed parts (length/s, world)
+  std::vector<Vector3> velocity;
   /// (num_parts) kGuided: unit direction of the path the gripper holds the
   /// part along (its speed, |velocity|, may be 0 at the end of the path)
-  std::vector<Vector2> guide;
-  std::vector<Vector3> nu_prev;  ///< (num_parts) each part's (v_x, v_y, ω) before this step
+  std::vector<Vector3> guide;
+  std::vector<Vector6> nu_prev;  ///< (num_parts) each part's (v, ω) before this step
 };
 
 /// Warm starts kept between calls, e.g. along a motion path: the last basis of
@@ -157,7 +163,7 @@ struct StabilityWorkspace {
   /// One component structure and its last basis.
   struct Entry {
     /// The structure: LCP size, the bodies' part indices, then each contact's
-    /// part_a, part_b, feature, vertex, edge (compared exactly).
+    /// part_a, part_b, feature, index_a, index_b (compared exactly).
     std::vector<int> key;
     LcpBasis basis;
   };

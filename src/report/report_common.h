@@ -1,0 +1,36 @@
+#pragma once
+// Helpers shared by the report writers: vectors written as [x, y] in 2-D and
+// [x, y, z] in 3-D, with floating-point dust cleaned away.
+#include <cmath>
+#include <nlohmann/json.hpp>
+
+#include "cairn/contact/contact.h"
+#include "cairn/core/types.h"
+
+namespace cairn::report_internal {
+
+// Rounds away floating-point dust so that reports are stable across
+// platforms: values below 1e-12 of the scale print as 0.
+inline double Clean(double x, double scale = 1.0) {
+  return std::abs(x) < 1e-12 * scale ? 0.0 : x;
+}
+
+// A point or vector: 2 numbers in a 2-D scene, 3 in a 3-D one.
+inline nlohmann::json Vec(const Vector3& v, int dim, double scale = 1.0) {
+  nlohmann::json out = nlohmann::json::array({Clean(v.x(), scale), Clean(v.y(), scale)});
+  if (dim == 3) out.push_back(Clean(v.z(), scale));
+  return out;
+}
+
+// An angular rate: the scalar ω_z (counter-clockwise) in 2-D, a vector in 3-D.
+inline nlohmann::json Angular(const Vector3& w, int dim, double scale = 1.0) {
+  return dim == 2 ? nlohmann::json(Clean(w.z(), scale)) : Vec(w, 3, scale);
+}
+
+// A tangential quantity of a contact: signed along t_W in 2-D, a vector in 3-D.
+inline nlohmann::json Tangential(const Vector3& v, const Contact& c, int dim,
+                                 double scale = 1.0) {
+  return dim == 2 ? nlohmann::json(Clean(v.dot(c.t_W()), scale)) : Vec(v, 3, scale);
+}
+
+}  // namespace cairn::report_internal
