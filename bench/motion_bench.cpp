@@ -92,7 +92,7 @@ Assembly MakeTStand() {
   AssemblyDef def;
   def.name = "tstand";
   def.friction = 0.6;
-  def.gravity = Vector2(0, -1);
+  def.gravity = Vector3(0, -1, 0);
   def.parts.push_back(Box("table", -4, -1, 4, 0, true));
   def.parts.push_back(Box("P", -0.5, 0, 0.5, 1));
   def.parts.push_back(Box("B", -3, 1, 3, 1.2));
@@ -107,7 +107,7 @@ cairn::Plan OneStepPlan(const Assembly& a, const std::string& part, Vector2 dire
   def.speed = 1.0;
   cairn::PlanStepDef step;
   step.remove = {part};
-  step.direction = direction;
+  step.direction = Embed(direction);
   step.distance = distance;
   step.has_direction = true;
   step.support = support;

@@ -23,8 +23,9 @@ std::string Num(double x) {
   return os.str();
 }
 
-std::string Point(const Vector3& p) {
-  return "(" + Num(p.x()) + ", " + Num(p.y()) + ", " + Num(p.z()) + ")";
+// A point as the user wrote it: (x, y) in 2-D, (x, y, z) in 3-D.
+std::string Point(const Vector3& p, int dimension) {
+  return "(" + Num(p.x()) + ", " + Num(p.y()) + (dimension == 3 ? ", " + Num(p.z()) : "") + ")";
 }
 
 // Throws the InputError of one fault of a plan; all validation goes through it.
@@ -41,8 +42,8 @@ class PlanValidator {
     if (x <= 0) Fail(path, "must be positive (got " + Num(x) + ")");
   }
   void FinitePoint(const Vector3& v, const std::string& path) const {
-    if (!std::isfinite(v.x()) || !std::isfinite(v.y())) {
-      Fail(path, "must have finite coordinates (got " + Point(v) + ")");
+    if (!v.allFinite()) {
+      Fail(path, "must have finite coordinates (got " + Point(v, assembly_.dimension()) + ")");
     }
   }
   // The index of the part `name`, which must exist and not be fixed.
@@ -77,7 +78,7 @@ std::vector<Vector3> RawPath(const PlanStepDef& def, const std::string& path,
     return def.path;
   }
   check.FinitePoint(def.direction, path + ".direction");
-  const double norm = std::hypot(def.direction.x(), def.direction.y());
+  const double norm = def.direction.norm();
   if (norm == 0) check.Fail(path + ".direction", "must not be zero");
   check.Positive(def.distance, path + ".distance");
   return {Vector3(0, 0, 0), (def.distance / norm) * def.direction};
@@ -187,14 +188,15 @@ Plan Plan::Create(const PlanDef& def, const Assembly& assembly, const std::strin
       }
     }
 
-    // The path: from (0, 0), without repeated points, of nonzero length.
+    // The path: from the origin, without repeated points, of nonzero length.
     const std::vector<Vector3> raw = RawPath(sd, path, check);
     if (raw.front() != Vector3(0, 0, 0)) step.path.push_back(Vector3(0, 0, 0));
     for (const Vector3& p : raw) {
       if (step.path.empty() || p != step.path.back()) step.path.push_back(p);
     }
     if (step.path.size() < 2) {
-      check.Fail(path + ".path", "has zero length: every point is the start (0, 0)");
+      check.Fail(path + ".path", assembly.is_3d() ? "has zero length: every point is the start (0, 0, 0)"
+                                           : "has zero length: every point is the start (0, 0)");
     }
     step.support = sd.support;
     plan.steps.push_back(std::move(step));

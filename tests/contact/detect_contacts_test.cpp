@@ -36,7 +36,7 @@ TEST(EdgeEdge, StackedBlocksTouchAtTheTwoEndsOfTheirOverlap) {
   EXPECT_THAT(Xs(cs), ::testing::ElementsAre(1.0, 2.0));
   for (const Contact& c : cs) {
     EXPECT_DOUBLE_EQ(c.p_WC.y(), 1.0);
-    EXPECT_EQ(c.n_W, Vector2(0, 1)) << "the normal points from b into a";
+    EXPECT_EQ(c.n_W, Vector3(0, 1, 0)) << "the normal points from b into a";
     EXPECT_EQ(c.mu, 0.4);
     EXPECT_EQ(c.part_a, 0);
     EXPECT_EQ(c.part_b, 1);
@@ -52,7 +52,7 @@ TEST(EdgeEdge, EqualWidthBlocksGiveTwoContactsNotFour) {
 TEST(EdgeEdge, SideBySideBlocksPushHorizontally) {
   const auto cs = Touch(Rect(1, 0, 2, 1), Rect(0, 0, 1, 1));
   ASSERT_EQ(cs.size(), 2u);
-  for (const Contact& c : cs) EXPECT_EQ(c.n_W, Vector2(1, 0));
+  for (const Contact& c : cs) EXPECT_EQ(c.n_W, Vector3(1, 0, 0));
 }
 
 TEST(Tolerance, AGapWithinToleranceTouchesAndLargerDoesNot) {
@@ -66,8 +66,8 @@ TEST(VertexEdge, ATriangleStandingOnItsTipTouchesOnce) {
   const Polygon tri = {{1, 0}, {2, 1}, {0, 1}};  // tip down at (1, 0)
   const auto cs = Touch(tri, Rect(-1, -1, 3, 0));
   ASSERT_EQ(cs.size(), 1u);
-  EXPECT_EQ(cs[0].p_WC, Vector2(1, 0));
-  EXPECT_EQ(cs[0].n_W, Vector2(0, 1));
+  EXPECT_EQ(cs[0].p_WC, Vector3(1, 0, 0));
+  EXPECT_EQ(cs[0].n_W, Vector3(0, 1, 0));
   EXPECT_EQ(cs[0].feature, ContactFeature::kVertexOfAOnEdgeOfB);
 }
 
@@ -76,7 +76,7 @@ TEST(VertexEdge, ATiltedBlockOnItsCornerTouchesOnceWithTheTableNormal) {
   Polygon blk = {{0, 0}, {c, s}, {c - s, s + c}, {-s, c}};
   const auto cs = Touch(blk, Rect(-3, -1, 3, 0));
   ASSERT_EQ(cs.size(), 1u);
-  EXPECT_EQ(cs[0].n_W, Vector2(0, 1));
+  EXPECT_EQ(cs[0].n_W, Vector3(0, 1, 0));
 }
 
 TEST(VertexEdge, TheTableCornerUnderABlockIsAContactWithTheBlocksNormal) {
@@ -85,7 +85,7 @@ TEST(VertexEdge, TheTableCornerUnderABlockIsAContactWithTheBlocksNormal) {
   const auto cs = Touch(Rect(-1, 0, 1, 1), Rect(-5, -1, 0, 0));
   ASSERT_EQ(cs.size(), 2u);
   EXPECT_THAT(Xs(cs), ::testing::ElementsAre(-1.0, 0.0));
-  for (const Contact& c : cs) EXPECT_EQ(c.n_W, Vector2(0, 1));
+  for (const Contact& c : cs) EXPECT_EQ(c.n_W, Vector3(0, 1, 0));
 }
 
 TEST(NonConvex, ABlockInTheInnerCornerOfAnLTouchesFloorAndWall) {
@@ -94,8 +94,8 @@ TEST(NonConvex, ABlockInTheInnerCornerOfAnLTouchesFloorAndWall) {
   const auto cs = Touch(Rect(1, 1, 2, 2), ell);
   int up = 0, right = 0;
   for (const Contact& c : cs) {
-    if (c.n_W == Vector2(0, 1)) ++up;
-    if (c.n_W == Vector2(1, 0)) ++right;
+    if (c.n_W == Vector3(0, 1, 0)) ++up;
+    if (c.n_W == Vector3(1, 0, 0)) ++right;
   }
   EXPECT_EQ(up, 2);     // (1,1) and (2,1) on the floor
   EXPECT_EQ(right, 2);  // (1,1) and (1,2) on the wall
@@ -107,7 +107,7 @@ TEST(NonConvex, AReflexVertexNeverRestsOnALine) {
   // edge placed above it, but the L's material around it spans more than a
   // half-plane: it cannot be a contact, while the flat top of the L can.
   const Polygon ell = {{0, 0}, {4, 0}, {4, 1}, {1, 1}, {1, 4}, {0, 4}};
-  for (const Contact& c : Touch(ell, Rect(1.5, 1, 3, 2))) EXPECT_NE(c.p_WC, Vector2(1, 1));
+  for (const Contact& c : Touch(ell, Rect(1.5, 1, 3, 2))) EXPECT_NE(c.p_WC, Vector3(1, 1, 0));
 }
 
 TEST(CornerCorner, DiagonalCornersKeepBothNormals) {
@@ -115,7 +115,7 @@ TEST(CornerCorner, DiagonalCornersKeepBothNormals) {
   // horizontal and the vertical normal are kept (documented, conservative).
   const auto cs = Touch(Rect(1, 1, 2, 2), Rect(0, 0, 1, 1));
   ASSERT_FALSE(cs.empty());
-  for (const Contact& c : cs) EXPECT_EQ(c.p_WC, Vector2(1, 1));
+  for (const Contact& c : cs) EXPECT_EQ(c.p_WC, Vector3(1, 1, 0));
 }
 
 TEST(Separated, FarApartPolygonsDoNotTouch) {

@@ -50,11 +50,13 @@ TEST(Assembly, MassesInertiaAndOrientation) {
   EXPECT_GT(SignedArea(pa.polygon), 0);
   EXPECT_DOUBLE_EQ(pa.area, 2.0);
   EXPECT_DOUBLE_EQ(pa.mass, 4.0);  // density 2 × area 2
-  EXPECT_NEAR(pa.inertia, 4.0 * (4 + 1) / 12.0, 1e-12);
-  EXPECT_TRUE(pa.centroid.isApprox(Vector2(1, 0.5)));
+  EXPECT_NEAR(pa.polar_inertia(), 4.0 * (4 + 1) / 12.0, 1e-12);
+  EXPECT_TRUE(pa.centroid.isApprox(Vector3(1, 0.5, 0)));
+  EXPECT_EQ(a.dimension(), 2);
+  EXPECT_TRUE(a.gravity().isApprox(Vector3(0, -9.81, 0)));
   const Part& pb = a.part(2);
   EXPECT_DOUBLE_EQ(pb.mass, 1.5);  // mass given
-  EXPECT_NEAR(pb.inertia, 1.5 * 2 / 12.0, 1e-12);
+  EXPECT_NEAR(pb.polar_inertia(), 1.5 * 2 / 12.0, 1e-12);
   EXPECT_DOUBLE_EQ(a.part(0).mass, 10.0);  // default density 1
   EXPECT_TRUE(a.part(0).fixed);
   EXPECT_EQ(a.FindPart("B"), 2);
@@ -104,18 +106,18 @@ TEST(Assembly, FrictionPairsAreSymmetricAndTheWorldIsFrictionless) {
 
 TEST(Assembly, FixtureNormalIsNormalised) {
   AssemblyDef def = TwoBlocks();
-  def.fixtures = {{"B", {1, 1.5}, {-3, 0}}};
+  def.fixtures = {{"B", {1, 1.5, 0}, {-3, 0, 0}}};
   const Assembly a = Assembly::Create(def);
   ASSERT_EQ(a.fixtures().size(), 1u);
   EXPECT_EQ(a.fixtures()[0].part, 2);
-  EXPECT_TRUE(a.fixtures()[0].normal.isApprox(Vector2(-1, 0)));
+  EXPECT_TRUE(a.fixtures()[0].normal.isApprox(Vector3(-1, 0, 0)));
 }
 
 TEST(Assembly, FixtureNormalsAtVertices) {
   // Square B = [0, 1] × [1, 2]; its top-right corner (1, 2) is convex.
   const auto with_fixture = [](Vector2 point, Vector2 normal) {
     AssemblyDef def = TwoBlocks();
-    def.fixtures = {{"B", point, normal}};
+    def.fixtures = {{"B", Embed(point), Embed(normal)}};
     return def;
   };
   // Into the corner's wedge, or along one face pushing on the other: fine.
@@ -135,11 +137,11 @@ TEST(Assembly, FixtureNormalsAtVertices) {
   part.name = "L";
   part.polygon = {{0, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 2}, {0, 2}};
   l.parts = {part};
-  l.fixtures = {{"L", {1, 1}, {1, -1}}};
+  l.fixtures = {{"L", {1, 1, 0}, {1, -1, 0}}};
   EXPECT_NO_THROW(Assembly::Create(l));
-  l.fixtures = {{"L", {1, 1}, {-1, -1}}};
+  l.fixtures = {{"L", {1, 1, 0}, {-1, -1, 0}}};
   EXPECT_NO_THROW(Assembly::Create(l));
-  l.fixtures = {{"L", {1, 1}, {1, 1}}};
+  l.fixtures = {{"L", {1, 1, 0}, {1, 1, 0}}};
   ExpectError(l, "fixtures[0].normal", "points out of part 'L'");
 }
 
@@ -147,7 +149,7 @@ TEST(Assembly, NonFiniteNumbersAreRejected) {
   const double inf = std::numeric_limits<double>::infinity();
   const double nan = std::numeric_limits<double>::quiet_NaN();
   AssemblyDef def = TwoBlocks();
-  def.gravity = {0, nan};
+  def.gravity = Vector3(0, nan, 0);
   ExpectError(def, "gravity", "finite");
   def = TwoBlocks();
   def.friction = inf;
@@ -168,9 +170,9 @@ TEST(Assembly, NonFiniteNumbersAreRejected) {
   def.friction_pairs = {{"A", "B", nan}};
   ExpectError(def, "friction_pairs[0].mu", "finite");
   def = TwoBlocks();
-  def.fixtures = {{"B", {1, nan}, {-1, 0}}};
+  def.fixtures = {{"B", {1, nan, 0}, {-1, 0, 0}}};
   ExpectError(def, "fixtures[0].point", "finite");
-  def.fixtures = {{"B", {1, 1.5}, {-inf, 0}}};
+  def.fixtures = {{"B", {1, 1.5, 0}, {-inf, 0, 0}}};
   ExpectError(def, "fixtures[0].normal", "finite");
 }
 
@@ -263,13 +265,22 @@ TEST(Assembly, ManyTouchingPartsAreFast) {
   EXPECT_LT(seconds, 5.0);  // generous: sanitizers are on in the test build
 }
 
-TEST(Pose2, RotatesAboutTheCentroidThenTranslates) {
-  Pose2 pose;
-  pose.rotation = std::numbers::pi / 2;
-  pose.translation = {10, 0};
-  const Vector2 c(1, 1);
-  EXPECT_TRUE(pose.Apply({2, 1}, c).isApprox(Vector2(11, 2)));
-  EXPECT_TRUE(pose.Apply(c, c).isApprox(Vector2(11, 1)));
+TEST(Pose, RotatesAboutTheCentroidThenTranslates) {
+  const Pose pose = Pose::Planar({10, 0}, std::numbers::pi / 2);
+  const Vector3 c(1, 1, 0);
+  EXPECT_TRUE(pose.Apply({2, 1, 0}, c).isApprox(Vector3(11, 2, 0)));
+  EXPECT_TRUE(pose.Apply(c, c).isApprox(Vector3(11, 1, 0)));
+  EXPECT_NEAR(pose.angle(), std::numbers::pi / 2, 1e-15);
+}
+
+TEST(Pose, RotateIsTheExponentialMap) {
+  // A quarter turn about +x, given as a rotation vector, then another: a half turn.
+  Pose pose;
+  pose.Rotate({std::numbers::pi / 2, 0, 0});
+  EXPECT_TRUE((pose.rotation * Vector3(0, 1, 0)).isApprox(Vector3(0, 0, 1), 1e-12));
+  pose.Rotate({std::numbers::pi / 2, 0, 0});
+  EXPECT_TRUE((pose.rotation * Vector3(0, 1, 0)).isApprox(Vector3(0, -1, 0), 1e-12));
+  EXPECT_NEAR(pose.rotation.determinant(), 1.0, 1e-12);
 }
 
 TEST(Configuration, RotatingASquareByNinetyDegrees) {
@@ -281,8 +292,7 @@ TEST(Configuration, RotatingASquareByNinetyDegrees) {
   EXPECT_TRUE(config.present[0]);
   // Assembled: the part's own polygon.
   EXPECT_EQ(config.WorldPolygon(a, 0), a.part(0).polygon);
-  config.poses[0].rotation = std::numbers::pi / 2;
-  config.poses[0].translation = {3, 0};
+  config.poses[0] = Pose::Planar({3, 0}, std::numbers::pi / 2);
   const Polygon p = config.WorldPolygon(a, 0);
   // About the centroid (1, 1) each vertex moves to the next one's place.
   const Polygon expected = {{2 + 3, 0}, {2 + 3, 2}, {0 + 3, 2}, {0 + 3, 0}};
@@ -292,7 +302,7 @@ TEST(Configuration, RotatingASquareByNinetyDegrees) {
     EXPECT_NEAR(p[k].y(), expected[k].y(), 1e-12) << k;
   }
   EXPECT_GT(SignedArea(p), 0);
-  EXPECT_TRUE(config.WorldCentroid(a, 0).isApprox(Vector2(4, 1)));
+  EXPECT_TRUE(config.WorldCentroid(a, 0).isApprox(Vector3(4, 1, 0)));
 }
 
 }  // namespace

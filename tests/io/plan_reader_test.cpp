@@ -80,14 +80,14 @@ TEST(ReadPlan, DocumentedExampleOnPaperFig1) {
   EXPECT_EQ(plan.steps[0].remove, std::vector<int>{c});
   EXPECT_EQ(plan.steps[0].grip, std::vector<int>{c});
   EXPECT_EQ(plan.steps[0].support, SupportMode::kNone);
-  const std::vector<Vector2> p0 = {{0, 0}, {-4, 0}, {-4, 6}};
+  const std::vector<Vector3> p0 = {{0, 0, 0}, {-4, 0, 0}, {-4, 6, 0}};
   EXPECT_EQ(plan.steps[0].path, p0);
 
   EXPECT_EQ(plan.steps[1].remove, (std::vector<int>{a, b}));
   EXPECT_EQ(plan.steps[1].grip, std::vector<int>{a});  // B is pushed, not held
   EXPECT_EQ(plan.steps[1].support, SupportMode::kFull);
 
-  const std::vector<Vector2> p2 = {{0, 0}, {0, 3}};
+  const std::vector<Vector3> p2 = {{0, 0, 0}, {0, 3, 0}};
   EXPECT_EQ(plan.steps[2].remove, std::vector<int>{d});
   EXPECT_EQ(plan.steps[2].path, p2);
   EXPECT_DOUBLE_EQ(plan.steps[2].Length(), 3.0);
@@ -136,7 +136,7 @@ TEST(ParsePlanJson, DefaultsAndIndices) {
   EXPECT_EQ(s1.remove, std::vector<std::string>{"D"});
   EXPECT_FALSE(s1.has_path);
   EXPECT_TRUE(s1.has_direction);
-  EXPECT_EQ(s1.direction, Vector2(0, 1));
+  EXPECT_EQ(s1.direction, Vector3(0, 1, 0));
   EXPECT_EQ(s1.distance, 3.0);
 }
 
@@ -156,12 +156,12 @@ TEST(ReadPlan, AllKeysRoundTrip) {
   EXPECT_EQ(plan.steps[0].grip, (std::vector<int>{3, 5}));
   EXPECT_EQ(plan.steps[0].support, SupportMode::kNone);
   // The leading (0, 0) is implied and the repeated point dropped.
-  const std::vector<Vector2> p0 = {{0, 0}, {-4, 0}, {-4, 6}};
+  const std::vector<Vector3> p0 = {{0, 0, 0}, {-4, 0, 0}, {-4, 6, 0}};
   EXPECT_EQ(plan.steps[0].path, p0);
   EXPECT_DOUBLE_EQ(plan.steps[0].Length(), 10.0);
-  EXPECT_EQ(plan.steps[0].At(7), Vector2(-4, 3));
+  EXPECT_EQ(plan.steps[0].At(7), Vector3(-4, 3, 0));
   // direction (2, 0) is normalised: distance 1.5 along +x.
-  const std::vector<Vector2> p1 = {{0, 0}, {1.5, 0}};
+  const std::vector<Vector3> p1 = {{0, 0, 0}, {1.5, 0, 0}};
   EXPECT_EQ(plan.steps[1].path, p1);
   EXPECT_EQ(plan.steps[1].support, SupportMode::kFull);
 }

@@ -62,21 +62,21 @@ TEST(ReadScene, DocumentedExampleRoundTrips) {
   // The box became the counter-clockwise square [0, 1] × [1, 2].
   const Polygon box = {{0, 1}, {1, 1}, {1, 2}, {0, 2}};
   EXPECT_EQ(a.part(2).polygon, box);
-  EXPECT_TRUE(a.gravity().isApprox(Vector2(0, -9.81)));
+  EXPECT_TRUE(a.gravity().isApprox(Vector3(0, -9.81, 0)));
   EXPECT_DOUBLE_EQ(a.Friction(1, 0), 0.05);
   EXPECT_DOUBLE_EQ(a.Friction(0, 1), 0.05);
   EXPECT_DOUBLE_EQ(a.Friction(1, 2), 0.3);
   EXPECT_DOUBLE_EQ(a.length_tolerance(), 1e-6);
   ASSERT_EQ(a.fixtures().size(), 1u);
   EXPECT_EQ(a.fixtures()[0].part, 2);
-  EXPECT_TRUE(a.fixtures()[0].point.isApprox(Vector2(1, 1.5)));
-  EXPECT_TRUE(a.fixtures()[0].normal.isApprox(Vector2(-1, 0)));
+  EXPECT_TRUE(a.fixtures()[0].point.isApprox(Vector3(1, 1.5, 0)));
+  EXPECT_TRUE(a.fixtures()[0].normal.isApprox(Vector3(-1, 0, 0)));
 }
 
 TEST(ParseSceneJson, DefaultsAndIndices) {
   const AssemblyDef def = ParseSceneJson(json::parse(kBase), "base.json");
   EXPECT_EQ(def.name, "");
-  EXPECT_TRUE(def.gravity.isApprox(Vector2(0, -9.81)));
+  EXPECT_FALSE(def.gravity.has_value());  // Assembly::Create defaults it by dimension
   EXPECT_EQ(def.friction, 0.0);
   EXPECT_EQ(def.tolerance, 0.0);  // scaled to the scene by Assembly::Create
   ASSERT_EQ(def.parts.size(), 3u);
@@ -259,10 +259,29 @@ const BadCase kBadCases[] = {
    "parts[1].box", "mixes 2-D and 3-D shapes"},
   {"mixed_polyhedron", nullptr, R"({"parts": [{"name": "A", "polygon": [[0, 0], [1, 0], [0, 1]]}, {"name": "B", "polyhedron": {}}]})",
    "parts[1].polyhedron", "mixes 2-D and 3-D shapes"},
-  {"pure_3d_boxes", nullptr, R"({"parts": [{"name": "A", "box": {"min": [0, 0, 0], "max": [1, 1, 1]}}]})",
-   "parts[0].box", "3-D scenes are not supported by this version"},
-  {"pure_3d_mesh", nullptr, R"({"parts": [{"name": "A", "mesh": "a.obj"}, {"name": "B", "polyhedron": []}]})",
-   "parts[0].mesh", "3-D scenes are not supported"},
+  // 3-D scenes (the base's 2-D gravity and fixtures taken away).
+  {"box_3d_inverted", nullptr, R"({"parts": [{"name": "A", "box": {"min": [0, 0, 0], "max": [1, 1, -1]}}]})",
+   "parts[0].box", "min (0, 0, 0) must be less than max (1, 1, -1) in every coordinate"},
+  {"gravity_2d_in_3d", nullptr, R"({"gravity": [0, -9.81], "parts": [{"name": "A", "box": {"min": [0, 0, 0], "max": [1, 1, 1]}}]})",
+   "gravity", "must have 3 numbers [x, y, z] in a 3-D scene, not 2"},
+  {"fixture_2d_in_3d", nullptr, R"({"fixtures": [{"part": "B", "point": [1, 1.5], "normal": [-1, 0]}], "parts": [{"name": "B", "box": {"min": [0, 0, 0], "max": [1, 1, 1]}}]})",
+   "fixtures[0].point", "must have 3 numbers [x, y, z] in a 3-D scene, not 2"},
+  {"polyhedron_few_vertices", nullptr, R"({"parts": [{"name": "A", "polyhedron": {"vertices": [[0, 0, 0], [1, 0, 0], [0, 1, 0]], "faces": [[0, 1, 2]]}}]})",
+   "parts[0].polyhedron.vertices", "at least 4 vertices, not 3"},
+  {"polyhedron_face_index", nullptr, R"({"parts": [{"name": "A", "polyhedron": {"vertices": [[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]], "faces": [[0, 2, 1], [0, 1, 3], [1, 2, 3], [0, 3, 4]]}}]})",
+   "parts[0].polyhedron.faces[3][2]", "must be a vertex index from 0 to 3, not 4"},
+  {"polyhedron_three_faces", nullptr, R"({"parts": [{"name": "A", "polyhedron": {"vertices": [[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]], "faces": [[0, 2, 1], [0, 1, 3], [1, 2, 3]]}}]})",
+   "parts[0].polyhedron", "a polyhedron needs at least 4 faces (got 3)"},
+  {"polyhedron_open", nullptr, R"({"parts": [{"name": "A", "polyhedron": {"vertices": [[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0], [0, 0, 1], [1, 0, 1], [1, 1, 1], [0, 1, 1]], "faces": [[0, 3, 2, 1], [4, 5, 6, 7], [0, 1, 5, 4], [1, 2, 6, 5], [2, 3, 7, 6]]}}]})",
+   "parts[0].polyhedron", "the surface is open: edge"},
+  {"mesh_missing", nullptr, R"({"parts": [{"name": "A", "mesh": "no_such_part.obj"}]})",
+   "parts[0].mesh", "cannot read mesh"},
+  {"polygon_in_3d", nullptr, R"({"parts": [{"name": "A", "box": {"min": [0, 0, 0], "max": [1, 1, 1]}}, {"name": "B", "polygon": [[0, 0], [1, 0], [0, 1]]}]})",
+   "parts[1].polygon", "mixes 2-D and 3-D shapes"},
+  {"friction_directions_2d", nullptr, R"({"friction_directions": 8})",
+   "friction_directions", "applies to 3-D scenes only"},
+  {"friction_directions_few", nullptr, R"({"friction_directions": 2, "parts": [{"name": "A", "box": {"min": [0, 0, 0], "max": [1, 1, 1]}}]})",
+   "friction_directions", "must be from 3 to 64 (got 2)"},
 };
 // clang-format on
 

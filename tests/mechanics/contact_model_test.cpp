@@ -16,9 +16,10 @@ struct BoxOnTable {
     BodyDynamics b;
     b.part = 0;
     b.mass = m;
-    b.inertia = m * (w * w + h * h) / 12;
-    b.p_WBcm = {0, h / 2};
-    b.F_ext = {0, -m * g, 0};
+    b.inertia = Matrix3::Identity() * (m * (w * w + h * h) / 12);
+    b.p_WBcm = {0, h / 2, 0};
+    b.planar = true;
+    b.F_ext << 0, -m * g, 0, 0, 0, 0;
     return {b};
   }
   std::vector<Contact> Contacts() const {
@@ -26,8 +27,8 @@ struct BoxOnTable {
     for (int i = 0; i < 2; ++i) {
       cs[i].part_a = 0;
       cs[i].part_b = 1;  // a fixed part (not among the bodies)
-      cs[i].p_WC = {i == 0 ? -w / 2 : w / 2, 0};
-      cs[i].n_W = {0, 1};
+      cs[i].p_WC = {i == 0 ? -w / 2 : w / 2, 0, 0};
+      cs[i].n_W = {0, 1, 0};
       cs[i].mu = mu;
     }
     return cs;

@@ -91,7 +91,7 @@ class PaperFig6 : public ::testing::Test {
     const PartMotion* e = MotionOf(*r.failure, E_);
     ASSERT_NE(e, nullptr);
     EXPECT_EQ(e->kind, MotionKind::kTips);
-    EXPECT_GT(e->angular, 0.0) << "E tips counter-clockwise, to the left";
+    EXPECT_GT(e->angular.z(), 0.0) << "E tips counter-clockwise, to the left";
     ASSERT_TRUE(e->pivot);
     EXPECT_NEAR(e->pivot->x(), -0.5, 1e-6) << "about its left base vertex (17)";
     // Vertex 18, E's right base vertex, lifts off the table.
@@ -208,7 +208,7 @@ TEST_F(PaperFig6, DThroughExitVIsTheMirrorImage) {
   PlanStepDef step;
   step.remove = {"D"};
   step.has_path = true;
-  step.path = {Vector2(0, 0), Vector2(6, 0), Vector2(6, 4)};
+  step.path = {Vector3(0, 0, 0), Vector3(6, 0, 0), Vector3(6, 4, 0)};
   step.support = SupportMode::kNone;
   def.steps = {step};
   const SimulationResult r = SimulatePlan(a_, Plan::Create(def, a_));
@@ -217,7 +217,7 @@ TEST_F(PaperFig6, DThroughExitVIsTheMirrorImage) {
   const PartMotion* e = MotionOf(*r.failure, E_);
   ASSERT_NE(e, nullptr);
   EXPECT_EQ(e->kind, MotionKind::kTips);
-  EXPECT_LT(e->angular, 0.0);
+  EXPECT_LT(e->angular.z(), 0.0);
   ASSERT_TRUE(e->pivot);
   EXPECT_NEAR(e->pivot->x(), 0.5, 1e-6);
 }
@@ -244,7 +244,7 @@ TEST(PaperFig14, PullingPOutIsUnstableOnEveryFeasiblePath) {
     const PartMotion* s2 = MotionOf(*r.failure, a.FindPart("S2"));
     ASSERT_NE(s2, nullptr);
     EXPECT_EQ(s2->kind, MotionKind::kTips);
-    EXPECT_LT(s2->angular, 0.0) << "clockwise, over S1's right edge";
+    EXPECT_LT(s2->angular.z(), 0.0) << "clockwise, over S1's right edge";
   }
 }
 
@@ -284,7 +284,7 @@ TEST(PaperFig16, NarrowBaseTipsAtTheBoundOfEquationEight) {
   EXPECT_EQ(r.failure->parts, std::vector<int>{Q});
   ASSERT_FALSE(r.failure->motions.empty());
   EXPECT_EQ(r.failure->motions[0].kind, MotionKind::kTips);
-  EXPECT_LT(r.failure->motions[0].angular, 0.0) << "Q tips clockwise";
+  EXPECT_LT(r.failure->motions[0].angular.z(), 0.0) << "Q tips clockwise";
   ASSERT_TRUE(r.failure->motions[0].pivot);
   EXPECT_NEAR(r.failure->motions[0].pivot->x(), d, 1e-6);
 }
@@ -329,7 +329,7 @@ TEST(PaperFig17, RemovingAnySinglePartIsUnstable) {
     EXPECT_EQ(r.failure->parts, std::vector<int>{a.FindPart(c.tipping)}) << Why(r);
     ASSERT_FALSE(r.failure->motions.empty());
     EXPECT_EQ(r.failure->motions[0].kind, MotionKind::kTips);
-    EXPECT_EQ(r.failure->motions[0].angular < 0, c.clockwise);
+    EXPECT_EQ(r.failure->motions[0].angular.z() < 0, c.clockwise);
   }
 }
 

@@ -33,10 +33,16 @@ Assembly Fig1WithPad() {
   return Assembly::Create(def, "fig1.json");
 }
 
-PlanStepDef Step(std::vector<std::string> remove, std::vector<Vector2> path) {
+std::vector<Vector3> EmbedAll(const std::vector<Vector2>& path) {
+  std::vector<Vector3> out;
+  for (const Vector2& p : path) out.push_back(Embed(p));
+  return out;
+}
+
+PlanStepDef Step(std::vector<std::string> remove, const std::vector<Vector2>& path) {
   PlanStepDef s;
   s.remove = std::move(remove);
-  s.path = std::move(path);
+  s.path = EmbedAll(path);
   s.has_path = true;
   return s;
 }
@@ -44,7 +50,7 @@ PlanStepDef Step(std::vector<std::string> remove, std::vector<Vector2> path) {
 PlanStepDef Straight(const std::string& part, const Vector2& direction, double distance) {
   PlanStepDef s;
   s.remove = {part};
-  s.direction = direction;
+  s.direction = Embed(direction);
   s.distance = distance;
   s.has_direction = true;
   return s;
@@ -67,30 +73,30 @@ TEST(PlanToString, Names) {
 // Segments of lengths 3, 4 and 5: (0, 0) → (3, 0) → (3, 4) → (6, 8).
 PlanStep ThreeSegments() {
   PlanStep step;
-  step.path = {{0, 0}, {3, 0}, {3, 4}, {6, 8}};
+  step.path = EmbedAll({{0, 0}, {3, 0}, {3, 4}, {6, 8}});
   return step;
 }
 
 TEST(PlanStep, LengthSumsTheSegments) {
   EXPECT_DOUBLE_EQ(ThreeSegments().Length(), 12.0);
   PlanStep straight;
-  straight.path = {{0, 0}, {-1, 1}};
+  straight.path = EmbedAll({{0, 0}, {-1, 1}});
   EXPECT_DOUBLE_EQ(straight.Length(), std::sqrt(2.0));
 }
 
 TEST(PlanStep, AtVerticesIsExact) {
   const PlanStep step = ThreeSegments();
-  EXPECT_EQ(step.At(0), Vector2(0, 0));
-  EXPECT_EQ(step.At(3), Vector2(3, 0));
-  EXPECT_EQ(step.At(7), Vector2(3, 4));
-  EXPECT_EQ(step.At(12), Vector2(6, 8));
+  EXPECT_EQ(step.At(0), Vector3(0, 0, 0));
+  EXPECT_EQ(step.At(3), Vector3(3, 0, 0));
+  EXPECT_EQ(step.At(7), Vector3(3, 4, 0));
+  EXPECT_EQ(step.At(12), Vector3(6, 8, 0));
 }
 
 TEST(PlanStep, AtMidSegments) {
   const PlanStep step = ThreeSegments();
-  EXPECT_TRUE(step.At(1.5).isApprox(Vector2(1.5, 0)));
-  EXPECT_TRUE(step.At(5).isApprox(Vector2(3, 2)));
-  EXPECT_TRUE(step.At(9.5).isApprox(Vector2(4.5, 6)));
+  EXPECT_TRUE(step.At(1.5).isApprox(Vector3(1.5, 0, 0)));
+  EXPECT_TRUE(step.At(5).isApprox(Vector3(3, 2, 0)));
+  EXPECT_TRUE(step.At(9.5).isApprox(Vector3(4.5, 6, 0)));
   // Just past a vertex, on the next segment.
   EXPECT_NEAR(step.At(3.25).y(), 0.25, 1e-15);
   EXPECT_DOUBLE_EQ(step.At(3.25).x(), 3.0);
@@ -98,10 +104,10 @@ TEST(PlanStep, AtMidSegments) {
 
 TEST(PlanStep, AtClampsToThePath) {
   const PlanStep step = ThreeSegments();
-  EXPECT_EQ(step.At(-1), Vector2(0, 0));
-  EXPECT_EQ(step.At(12.5), Vector2(6, 8));
-  EXPECT_EQ(step.At(std::numeric_limits<double>::infinity()), Vector2(6, 8));
-  EXPECT_EQ(step.At(std::nan("")), Vector2(0, 0));
+  EXPECT_EQ(step.At(-1), Vector3(0, 0, 0));
+  EXPECT_EQ(step.At(12.5), Vector3(6, 8, 0));
+  EXPECT_EQ(step.At(std::numeric_limits<double>::infinity()), Vector3(6, 8, 0));
+  EXPECT_EQ(step.At(std::nan("")), Vector3(0, 0, 0));
 }
 
 TEST(PlanCreate, DefaultsAndNormalisedPaths) {
@@ -128,19 +134,19 @@ TEST(PlanCreate, DefaultsAndNormalisedPaths) {
   EXPECT_EQ(s0.grip, std::vector<int>{3});  // default: all of remove
   EXPECT_EQ(s0.support, SupportMode::kNone);
   const std::vector<Vector2> p0 = {{0, 0}, {-4, 0}, {-4, 6}};
-  EXPECT_EQ(s0.path, p0);
+  EXPECT_EQ(s0.path, EmbedAll(p0));
   EXPECT_DOUBLE_EQ(s0.Length(), 10.0);
 
   const PlanStep& s1 = plan.steps[1];
   EXPECT_EQ(s1.support, SupportMode::kFull);
   const std::vector<Vector2> p1 = {{0, 0}, {0, 3}};  // distance along the unit direction
-  EXPECT_EQ(s1.path, p1);
+  EXPECT_EQ(s1.path, EmbedAll(p1));
 
   const PlanStep& s2 = plan.steps[2];
   EXPECT_EQ(s2.remove, (std::vector<int>{1, 2}));
   EXPECT_EQ(s2.grip, (std::vector<int>{2, 5}));  // B and the tool G; A is pushed
   const std::vector<Vector2> p2 = {{0, 0}, {-5, 0}};
-  EXPECT_EQ(s2.path, p2);
+  EXPECT_EQ(s2.path, EmbedAll(p2));
 }
 
 TEST(PlanCreate, ObliqueDirectionIsNormalised) {
@@ -148,7 +154,7 @@ TEST(PlanCreate, ObliqueDirectionIsNormalised) {
   def.steps[1] = Straight("D", {3, 4}, 10);
   const Plan plan = Plan::Create(def, Fig1WithPad());
   ASSERT_EQ(plan.steps[1].path.size(), 2u);
-  EXPECT_TRUE(plan.steps[1].path[1].isApprox(Vector2(6, 8)));
+  EXPECT_TRUE(plan.steps[1].path[1].isApprox(Vector3(6, 8, 0)));
   EXPECT_DOUBLE_EQ(plan.steps[1].Length(), 10.0);
 }
 
@@ -198,7 +204,7 @@ const BadDef kBadDefs[] = {
   {"empty_path", [](PlanDef& d) { d.steps[1].path.clear(); }, "steps[1].path", "must have at least one point"},
   {"path_nan", [](PlanDef& d) { d.steps[0].path[1].y() = kNan; }, "steps[0].path[1]",
    "must have finite coordinates (got (0, nan))"},
-  {"zero_length", [](PlanDef& d) { d.steps[1].path = {{0, 0}, {0, 0}}; }, "steps[1].path", "has zero length"},
+  {"zero_length", [](PlanDef& d) { d.steps[1].path = EmbedAll({{0, 0}, {0, 0}}); }, "steps[1].path", "has zero length"},
   {"zero_direction", [](PlanDef& d) { d.steps[1] = Straight("D", {0, 0}, 1); },
    "steps[1].direction", "must not be zero"},
   {"direction_inf", [](PlanDef& d) { d.steps[1] = Straight("D", {kInf, 0}, 1); },

@@ -34,7 +34,7 @@ PlanStepDef FeasibleRemoval(const Assembly& a, const std::vector<bool>& present,
   PlanStepDef s;
   s.remove = {a.part(p).name};
   s.has_direction = true;
-  s.direction = SomethingAbove(a, present, p) ? Vector2(1, 0) : Vector2(0, 1);
+  s.direction = SomethingAbove(a, present, p) ? Vector3(1, 0, 0) : Vector3(0, 1, 0);
   s.distance = 8;
   return s;
 }
@@ -78,7 +78,7 @@ TEST(Proposition4, StableAtBothEndsMeansStableAllAlong) {
   int checked = 0;
   for (int trial = 0; trial < 40; ++trial) {
     AssemblyDef def;
-    def.gravity = {0, -1};
+    def.gravity = Vector3(0, -1, 0);
     const double w0 = 2 + u(rng), w1 = 2 + u(rng), w2 = 1.5 + 0.5 * u(rng);
     const double x0 = -w0 / 2, x1 = x0 + 0.8 * u(rng) * w0 / 2, x2 = x1 + 0.8 * u(rng) * w1 / 2;
     def.parts = {Box("table", -20, -1, 20, 0, true), Box("P", x0, 0, x0 + w0, 1),
@@ -95,7 +95,7 @@ TEST(Proposition4, StableAtBothEndsMeansStableAllAlong) {
     s.remove = {"R"};
     s.has_path = true;
     const double slide = 1.5 * u(rng);
-    s.path = {{0, 0}, {slide, 0}, {slide, 3 + u(rng)}, {4 * u(rng), 4 + u(rng)}, {8 * u(rng), 6}};
+    s.path = {{0, 0, 0}, {slide, 0, 0}, {slide, 3 + u(rng), 0}, {4 * u(rng), 4 + u(rng), 0}, {8 * u(rng), 6, 0}};
     plan.steps = {s};
     const SimulationResult r = SimulatePlan(a, Plan::Create(plan, a));
     EXPECT_TRUE(r.stable()) << "trial " << trial << ": "

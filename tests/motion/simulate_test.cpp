@@ -18,7 +18,7 @@ PlanStepDef Straight(const std::string& part, Vector2 direction, double distance
   PlanStepDef s;
   s.remove = {part};
   s.has_direction = true;
-  s.direction = direction;
+  s.direction = Embed(direction);
   s.distance = distance;
   s.support = support;
   return s;
@@ -39,7 +39,7 @@ Plan MakePlan(const Assembly& a, std::vector<PlanStepDef> steps, double dt = 1.0
 // > 0.5, i.e. x_C > 0.5 (m_B + m_C) / m_C = 1.1.
 Assembly TStand() {
   AssemblyDef def;
-  def.gravity = {0, -1};
+  def.gravity = Vector3(0, -1, 0);
   def.parts = {Box("table", -5, -1, 5, 0, true), Box("P", -0.5, 0, 0.5, 1), Box("B", -3, 1, 3, 1.2),
                Box("C", -0.5, 1.2, 0.5, 2.2)};
   return Assembly::Create(def);
@@ -56,7 +56,7 @@ TEST(Simulate, SlidingAPartOnANarrowBaseTipsItWhereEquationEightSays) {
   EXPECT_EQ(r.failure->parts, std::vector<int>{a.FindPart("B")});
   ASSERT_FALSE(r.failure->motions.empty());
   EXPECT_EQ(r.failure->motions[0].kind, MotionKind::kTips);
-  EXPECT_LT(r.failure->motions[0].angular, 0.0) << "B tips clockwise";
+  EXPECT_LT(r.failure->motions[0].angular.z(), 0.0) << "B tips clockwise";
 }
 
 TEST(Simulate, WithTheWeightCarriedEveryPathIsStable) {
@@ -123,7 +123,7 @@ TEST(Simulate, DrivingAPartIntoAWallIsInfeasible) {
 // B against the wall (stable): assembly and disassembly are not inverses.
 Assembly Fig19() {
   AssemblyDef def;
-  def.gravity = {0, -1};
+  def.gravity = Vector3(0, -1, 0);
   def.friction_pairs = {{"A", "B", 0.2}, {"B", "floor", 0.05}};
   def.parts = {Box("floor", -2, -1, 10, 0, true), Box("wall", -2, 0, 0, 3, true),
                Box("B", 0, 0, 2, 1), Box("A", 0, 1, 2, 2)};
@@ -151,7 +151,7 @@ TEST(Simulate, AGrippedToolPushesACarriedPartAndIsNeverJudged) {
   // A pusher pad T (a tool: not part of the assembly) touches block X's left
   // face; gripping T and moving it right pushes X (removed, not gripped) along.
   AssemblyDef def;
-  def.gravity = {0, -1};
+  def.gravity = Vector3(0, -1, 0);
   PartDef pad = Box("T", -0.5, 0.2, 0, 0.8);
   pad.tool = true;
   def.parts = {Box("floor", -5, -1, 10, 0, true), Box("X", 0, 0, 1, 1), pad, Box("Y", 6, 0, 7, 1)};

@@ -23,7 +23,7 @@ Plan PullRight(const Assembly& a, const std::string& part, SupportMode support) 
   PlanStepDef s;
   s.remove = {part};
   s.has_direction = true;
-  s.direction = {1, 0};
+  s.direction = Vector3(1, 0, 0);
   s.distance = 2;
   s.support = support;
   def.steps = {s};
