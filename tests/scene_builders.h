@@ -9,6 +9,22 @@
 
 namespace cairn::testing {
 
+/// A 3-D box [lo, hi], placed by X (applied to its corners as given).
+inline PartDef Box3(const std::string& name, const Vector3& lo, const Vector3& hi,
+                    bool fixed = false,
+                    const Eigen::Isometry3d& X = Eigen::Isometry3d::Identity()) {
+  PartDef p;
+  p.name = name;
+  p.fixed = fixed;
+  PolyhedronDef poly;
+  for (int k = 0; k < 8; ++k)
+    poly.vertices.push_back(
+        X * Vector3(k & 1 ? hi.x() : lo.x(), k & 2 ? hi.y() : lo.y(), k & 4 ? hi.z() : lo.z()));
+  poly.faces = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+  p.polyhedron = poly;
+  return p;
+}
+
 inline PartDef Box(const std::string& name, double x0, double y0, double x1, double y1,
                    bool fixed = false) {
   PartDef p;

@@ -64,6 +64,11 @@ StaticEquilibrium FindStaticEquilibrium(const ContactLcp& lcp) {
     ja.push_back(col);
     ar.push_back(v);
   };
+  // Rounding leaves coefficients of ~1e-17 where the geometry says 0 (a
+  // rotated face's normal, a moment arm along an axis). Kept, they make the
+  // simplex's bases near-singular (GLPK then fails with GLP_EFAIL); they are
+  // dropped below kDropRelative times the largest coefficient.
+  constexpr double kDropRelative = 1e-13;
   // Body b's equation k is row 6 b + k + 1: Σ (P g) f = −P F_ext.
   for (int c = 0; c < nc; ++c) {
     const JacobianRow& rn = lcp.normal_rows[c];
@@ -97,14 +102,35 @@ StaticEquilibrium FindStaticEquilibrium(const ContactLcp& lcp) {
   for (int r = 6 * nb + 1; r <= nrows; ++r) glp_set_row_bnds(lp.p, r, GLP_LO, 0.0, 0.0);
   for (int j = 1; j <= ncols; ++j) glp_set_col_bnds(lp.p, j, GLP_LO, 0.0, 0.0);
   for (int c = 0; c < nc; ++c) glp_set_obj_coef(lp.p, col_n[c], 1.0);
+  {
+    double largest = 0;
+    for (size_t k = 1; k < ar.size(); ++k) largest = std::max(largest, std::abs(ar[k]));
+    size_t kept = 1;
+    for (size_t k = 1; k < ar.size(); ++k) {
+      if (std::abs(ar[k]) <= kDropRelative * largest) continue;
+      ia[kept] = ia[k], ja[kept] = ja[k], ar[kept] = ar[k];
+      ++kept;
+    }
+    ia.resize(kept), ja.resize(kept), ar.resize(kept);
+  }
   if (ia.size() > 1)
     glp_load_matrix(lp.p, static_cast<int>(ia.size()) - 1, ia.data(), ja.data(), ar.data());
+  glp_scale_prob(lp.p, GLP_SF_AUTO);
 
   glp_smcp params;
   glp_init_smcp(&params);
   params.msg_lev = GLP_MSG_OFF;
   params.presolve = GLP_ON;
-  const int err = glp_simplex(lp.p, &params);
+  int err = glp_simplex(lp.p, &params);
+  if (err == GLP_EFAIL) {
+    // A near-singular basis on the way: start again from the standard basis
+    // without presolve, and if that fails too, in exact rational arithmetic
+    // (slow, but only ever reached on such ill-conditioned components).
+    params.presolve = GLP_OFF;
+    glp_std_basis(lp.p);
+    err = glp_simplex(lp.p, &params);
+    if (err == GLP_EFAIL) err = glp_exact(lp.p, &params);
+  }
   const int status = glp_get_status(lp.p);
   if (err == GLP_ENOPFS || err == GLP_ENODFS || status == GLP_NOFEAS) {
     out.solved = true;  // presolve or simplex proved infeasibility
