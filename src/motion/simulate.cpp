@@ -30,7 +30,10 @@ namespace {
 std::string Pt(const Vector3& p, int dim) {
   std::ostringstream os;
   os.precision(4);
-  const auto clean = [](double x) { return std::abs(x) < 5e-13 ? 0.0 : x; };
+  // Round-off dust (1e-12 of a unit axis) printed at 4 digits would read as a
+  // real component: below 1e-9 of the largest coordinate (or of 1) it is 0.
+  const double dust = 1e-9 * std::max(1.0, p.cwiseAbs().maxCoeff());
+  const auto clean = [dust](double x) { return std::abs(x) < dust ? 0.0 : x; };
   os << "(" << clean(p.x()) << ", " << clean(p.y());
   if (dim == 3) os << ", " << clean(p.z());
   os << ")";

@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <sstream>
@@ -13,8 +14,10 @@ std::string Fmt(const char* format, double x) {
   return buf;
 }
 std::string Pt(const Vector3& v, int dim) {
-  return "(" + Fmt("%.4g", v.x()) + ", " + Fmt("%.4g", v.y()) +
-         (dim == 3 ? ", " + Fmt("%.4g", v.z()) : std::string()) + ")";
+  // Round-off dust below 1e-9 of the largest coordinate (or of 1) prints as 0.
+  const double dust = 1e-9 * std::max(1.0, v.cwiseAbs().maxCoeff());
+  const auto c = [dust](double x) { return Fmt("%.4g", std::abs(x) < dust ? 0.0 : x); };
+  return "(" + c(v.x()) + ", " + c(v.y()) + (dim == 3 ? ", " + c(v.z()) : std::string()) + ")";
 }
 std::string PartName(const Assembly& a, int i) { return i >= 0 ? a.part(i).name : "fixture"; }
 }  // namespace
