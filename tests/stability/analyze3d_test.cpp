@@ -319,5 +319,34 @@ TEST(HarmonicStack, FiveBoxesStandUpToTheHarmonicOverhang) {
   }
 }
 
+// ---------------------------------------------------------------------------
+// Jamming (Pang and Trinkle's weak stability): a unit cube that exactly fits
+// between two fixed walls, nothing under it, μ = 0.6. Forces exist that hold
+// it (squeeze it with N ≥ m g / (2 μ) on each side), but nothing produces the
+// squeeze from rest: the LCP lets it fall, the equilibrium LP finds the
+// forces, and the configuration is flagged weakly stable. With a floor under
+// it, it is simply stable.
+TEST(Jamming3d, ACubeWedgedBetweenWallsIsWeaklyStable) {
+  AssemblyDef def;
+  def.friction = 0.6;
+  def.parts = {Box3("left", {-1, -1, -2}, {0, 2, 2}, true), Box3("right", {1, -1, -2}, {2, 2, 2}, true),
+               Box3("cube", {0, 0, 0}, {1, 1, 1})};
+  const Assembly jammed = Assembly::Create(def);
+  const StabilityResult r = Check(jammed);
+  EXPECT_FALSE(r.stable());
+  const PartMotion* m = MotionOf(jammed, r, "cube");
+  ASSERT_NE(m, nullptr);
+  EXPECT_EQ(m->kind, MotionKind::kSlides) << "it slides down between the walls";
+  EXPECT_LT(m->linear.z(), 0.0);
+  ASSERT_TRUE(r.static_equilibrium.has_value()) << r.diagnostics;
+  EXPECT_TRUE(*r.static_equilibrium);
+  EXPECT_TRUE(r.weakly_stable);
+
+  def.parts.push_back(Box3("floor", {0, -1, -1}, {1, 2, 0}, true));
+  const StabilityResult floor = Check(Assembly::Create(def));
+  EXPECT_TRUE(floor.stable());
+  EXPECT_FALSE(floor.weakly_stable);
+}
+
 }  // namespace
 }  // namespace cairn
