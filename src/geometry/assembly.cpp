@@ -203,9 +203,9 @@ Assembly Assembly::Create(const AssemblyDef& def, const std::string& source_file
     const int dim = def.parts[i].polyhedron ? 3 : 2;
     if (i == 0) out.dimension_ = dim;
     if (dim != out.dimension_) {
-      check.Fail(ShapePath(def.parts[i], i),
-                 "mixes 2-D and 3-D shapes (this part is " + std::to_string(dim) +
-                     "-D, parts[0] is " + std::to_string(out.dimension_) + "-D)");
+      check.Fail(ShapePath(def.parts[i], i), "mixes 2-D and 3-D shapes (this part is " +
+                                                 std::to_string(dim) + "-D, parts[0] is " +
+                                                 std::to_string(out.dimension_) + "-D)");
     }
   }
   const bool is3 = out.dimension_ == 3;
@@ -322,8 +322,7 @@ Assembly Assembly::Create(const AssemblyDef& def, const std::string& source_file
           worst = key;
           witness = *w;
         }
-      } else if (const auto w =
-                     FindOverlap(out.parts_[i].polygon, out.parts_[j].polygon, tol)) {
+      } else if (const auto w = FindOverlap(out.parts_[i].polygon, out.parts_[j].polygon, tol)) {
         worst = key;
         witness = Embed(*w);
       }
@@ -372,7 +371,9 @@ Assembly Assembly::Create(const AssemblyDef& def, const std::string& source_file
     const double len = fd.normal.norm();
     if (len == 0) check.Fail(path + ".normal", "must not be zero");
     const Vector3 n = fd.normal / len;
-    const auto show = [&](const Vector3& v) { return is3 ? Point(v) : Point(Vector2(v.head<2>())); };
+    const auto show = [&](const Vector3& v) {
+      return is3 ? Point(v) : Point(Vector2(v.head<2>()));
+    };
     double dist = 0;
     bool into = false;
     if (is3) {

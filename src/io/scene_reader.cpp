@@ -1,13 +1,12 @@
 #include "cairn/io/scene_reader.h"
 
+#include <filesystem>
 #include <initializer_list>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <utility>
 #include <vector>
-
-#include <filesystem>
 
 #include "cairn/core/error.h"
 #include "cairn/io/mesh_reader.h"
@@ -223,7 +222,8 @@ class SceneParser : private io_internal::JsonChecker {
         def.vertices.emplace_back(k & 1 ? hi.x() : lo.x(), k & 2 ? hi.y() : lo.y(),
                                   k & 4 ? hi.z() : lo.z());
       // Outward (counter-clockwise seen from outside): -z, +z, -y, +y, -x, +x.
-      def.faces = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+      def.faces = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4},
+                   {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
       return def;
     }
     if (key == "polygon") {
@@ -237,8 +237,8 @@ class SceneParser : private io_internal::JsonChecker {
       for (size_t k = 0; k < vertices.size(); ++k)
         def.vertices.push_back(VecN(vertices[k], Index(v_path, k), 3));
       if (def.vertices.size() < 4)
-        Fail(v_path, "a polyhedron needs at least 4 vertices, not " +
-                         std::to_string(def.vertices.size()));
+        Fail(v_path,
+             "a polyhedron needs at least 4 vertices, not " + std::to_string(def.vertices.size()));
       const std::string f_path = Child(shape_path, "faces");
       const json& faces = Array(Require(poly, "faces", shape_path), f_path);
       for (size_t f = 0; f < faces.size(); ++f) {

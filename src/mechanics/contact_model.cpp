@@ -138,7 +138,8 @@ bool WantFactored(LcpStorage storage, int n) {
 // planar body, all six of a 3-D one (so a 2-D LCP's factors are no larger
 // than a planar model's).
 FactoredLcpMatrix Factored(const std::vector<const JacobianRow*>& rows, int n,
-                           const std::vector<BodyDynamics>& bodies, const std::vector<Matrix6>& W_of,
+                           const std::vector<BodyDynamics>& bodies,
+                           const std::vector<Matrix6>& W_of,
                            const std::vector<Eigen::Triplet<double>>& k_entries) {
   const int nb = static_cast<int>(bodies.size());
   static constexpr int kPlanar[3] = {0, 1, 5};

@@ -195,8 +195,9 @@ Plan Plan::Create(const PlanDef& def, const Assembly& assembly, const std::strin
       if (step.path.empty() || p != step.path.back()) step.path.push_back(p);
     }
     if (step.path.size() < 2) {
-      check.Fail(path + ".path", assembly.is_3d() ? "has zero length: every point is the start (0, 0, 0)"
-                                           : "has zero length: every point is the start (0, 0)");
+      check.Fail(path + ".path", assembly.is_3d()
+                                     ? "has zero length: every point is the start (0, 0, 0)"
+                                     : "has zero length: every point is the start (0, 0)");
     }
     step.support = sd.support;
     plan.steps.push_back(std::move(step));

@@ -145,10 +145,10 @@ std::string TimelineToCsv(const Assembly& assembly, const SimulationResult& resu
       const ContactReport& c = row.contact;
       os << Num(row.time) << ',' << row.step << ',' << row.tick << ','
          << PartName(assembly, c.contact.part_a) << ',' << PartName(assembly, c.contact.part_b)
-         << ',' << c.contact.patch << ',' << xyz(c.contact.p_WC) << ',' << xyz(c.contact.n_W)
-         << ',' << Num(c.normal_force / force_scale) << ',' << xyz(c.friction_force / force_scale)
-         << ',' << Num(c.normal_motion) << ',' << xyz(c.tangent_motion) << ','
-         << (c.breaking ? 1 : 0) << ',' << (c.sliding ? 1 : 0) << '\n';
+         << ',' << c.contact.patch << ',' << xyz(c.contact.p_WC) << ',' << xyz(c.contact.n_W) << ','
+         << Num(c.normal_force / force_scale) << ',' << xyz(c.friction_force / force_scale) << ','
+         << Num(c.normal_motion) << ',' << xyz(c.tangent_motion) << ',' << (c.breaking ? 1 : 0)
+         << ',' << (c.sliding ? 1 : 0) << '\n';
     }
     return os.str();
   }
@@ -161,8 +161,8 @@ std::string TimelineToCsv(const Assembly& assembly, const SimulationResult& resu
        << Num(c.contact.p_WC.x()) << ',' << Num(c.contact.p_WC.y()) << ',' << Num(c.contact.n_W.x())
        << ',' << Num(c.contact.n_W.y()) << ',' << Num(c.normal_force / force_scale) << ','
        << Num(c.friction_force.dot(c.contact.t_W()) / force_scale) << ',' << Num(c.normal_motion)
-       << ',' << Num(c.tangent_motion.dot(c.contact.t_W())) << ',' << (c.breaking ? 1 : 0) << ',' << (c.sliding ? 1 : 0)
-       << '\n';
+       << ',' << Num(c.tangent_motion.dot(c.contact.t_W())) << ',' << (c.breaking ? 1 : 0) << ','
+       << (c.sliding ? 1 : 0) << '\n';
   }
   return os.str();
 }

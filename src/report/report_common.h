@@ -11,9 +11,7 @@ namespace cairn::report_internal {
 
 // Rounds away floating-point dust so that reports are stable across
 // platforms: values below 1e-12 of the scale print as 0.
-inline double Clean(double x, double scale = 1.0) {
-  return std::abs(x) < 1e-12 * scale ? 0.0 : x;
-}
+inline double Clean(double x, double scale = 1.0) { return std::abs(x) < 1e-12 * scale ? 0.0 : x; }
 
 // A point or vector: 2 numbers in a 2-D scene, 3 in a 3-D one.
 inline nlohmann::json Vec(const Vector3& v, int dim, double scale = 1.0) {
@@ -28,8 +26,7 @@ inline nlohmann::json Angular(const Vector3& w, int dim, double scale = 1.0) {
 }
 
 // A tangential quantity of a contact: signed along t_W in 2-D, a vector in 3-D.
-inline nlohmann::json Tangential(const Vector3& v, const Contact& c, int dim,
-                                 double scale = 1.0) {
+inline nlohmann::json Tangential(const Vector3& v, const Contact& c, int dim, double scale = 1.0) {
   return dim == 2 ? nlohmann::json(Clean(v.dot(c.t_W()), scale)) : Vec(v, 3, scale);
 }
 

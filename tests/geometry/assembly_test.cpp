@@ -14,8 +14,8 @@
 namespace cairn {
 namespace {
 
-using ::testing::HasSubstr;
 using testing::Box;
+using ::testing::HasSubstr;
 
 // A table and two blocks on it.
 AssemblyDef TwoBlocks() {

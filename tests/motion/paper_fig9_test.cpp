@@ -66,8 +66,8 @@ TEST_F(PaperFig9, TheMushroomBHasExactMassPropertiesAndTheAssemblyStands) {
   EXPECT_TRUE(b.centroid.isApprox(Vector3(0, 0, (2 * 1 + 6 * 2.25) / 8), 1e-12));
   // Iyy of pillar + slab about the common centroid (parallel axes).
   const double zc = b.centroid.z();
-  const double iyy = 0.5 * (2 * (1 + 4) / 12.0 + 2 * std::pow(1 - zc, 2) +
-                            6 * (16 + 0.25) / 12.0 + 6 * std::pow(2.25 - zc, 2));
+  const double iyy = 0.5 * (2 * (1 + 4) / 12.0 + 2 * std::pow(1 - zc, 2) + 6 * (16 + 0.25) / 12.0 +
+                            6 * std::pow(2.25 - zc, 2));
   EXPECT_NEAR(b.inertia(1, 1), iyy, 1e-9);
 
   const StabilityResult r = AnalyzeConfiguration(a_, Configuration::Assembled(a_));
@@ -151,7 +151,8 @@ TEST_F(PaperFig9, SlidingCAlongMinusYTipsTheAssemblyWhereEquationEightSays) {
   const int last = r.failure->tick - 1;
   EXPECT_GT(front.at(last), front.at(0) + 1e-3);
   EXPECT_LT(back.at(last), back.at(0) - 1e-3);
-  EXPECT_NEAR(back.at(last), 0.0, 0.1 * back.at(0)) << "just before the tip, 11 and 12 are nearly bare";
+  EXPECT_NEAR(back.at(last), 0.0, 0.1 * back.at(0))
+      << "just before the tip, 11 and 12 are nearly bare";
 }
 
 TEST_F(PaperFig9, SlidingCAlongPlusXOnTheGrippersPadIsStableToTheEnd) {

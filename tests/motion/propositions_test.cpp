@@ -95,7 +95,11 @@ TEST(Proposition4, StableAtBothEndsMeansStableAllAlong) {
     s.remove = {"R"};
     s.has_path = true;
     const double slide = 1.5 * u(rng);
-    s.path = {{0, 0, 0}, {slide, 0, 0}, {slide, 3 + u(rng), 0}, {4 * u(rng), 4 + u(rng), 0}, {8 * u(rng), 6, 0}};
+    s.path = {{0, 0, 0},
+              {slide, 0, 0},
+              {slide, 3 + u(rng), 0},
+              {4 * u(rng), 4 + u(rng), 0},
+              {8 * u(rng), 6, 0}};
     plan.steps = {s};
     const SimulationResult r = SimulatePlan(a, Plan::Create(plan, a));
     EXPECT_TRUE(r.stable()) << "trial " << trial << ": "

@@ -283,7 +283,8 @@ AssemblyDef HarmonicStack(double s, double mu) {
     double right = 0;
     for (int j = k; j <= 5; ++j) right += s / (2.0 * j);
     const double z = 0.5 * (5 - k);
-    def.parts.push_back(Box3("box" + std::to_string(6 - k), {right - 1, -0.5, z}, {right, 0.5, z + 0.5}));
+    def.parts.push_back(
+        Box3("box" + std::to_string(6 - k), {right - 1, -0.5, z}, {right, 0.5, z + 0.5}));
   }
   return def;
 }
@@ -329,8 +330,8 @@ TEST(HarmonicStack, FiveBoxesStandUpToTheHarmonicOverhang) {
 TEST(Jamming3d, ACubeWedgedBetweenWallsIsWeaklyStable) {
   AssemblyDef def;
   def.friction = 0.6;
-  def.parts = {Box3("left", {-1, -1, -2}, {0, 2, 2}, true), Box3("right", {1, -1, -2}, {2, 2, 2}, true),
-               Box3("cube", {0, 0, 0}, {1, 1, 1})};
+  def.parts = {Box3("left", {-1, -1, -2}, {0, 2, 2}, true),
+               Box3("right", {1, -1, -2}, {2, 2, 2}, true), Box3("cube", {0, 0, 0}, {1, 1, 1})};
   const Assembly jammed = Assembly::Create(def);
   const StabilityResult r = Check(jammed);
   EXPECT_FALSE(r.stable());

@@ -70,11 +70,11 @@ struct BodyDynamics {
   double mass = 0;                    ///< mass units
   Matrix3 inertia = Matrix3::Zero();  ///< about the centroid, world axes, mass·length²
   Vector3 p_WBcm{0, 0, 0};            ///< centroid, world frame
-  bool planar = false;  ///< 2-D: only v_x, v_y, ω_z are freedoms of the body
+  bool planar = false;                ///< 2-D: only v_x, v_y, ω_z are freedoms of the body
   Vector6 F_ext = Vector6::Zero();    ///< (f, τ) external wrench at the centroid
   Vector6 nu_prev = Vector6::Zero();  ///< (v, ω) before the step (Stewart–Trinkle only)
   BodyMotion motion = BodyMotion::kFree;
-  Vector3 guide{1, 0, 0};  ///< kGuided: unit direction of the prescribed velocity
+  Vector3 guide{1, 0, 0};                   ///< kGuided: unit direction of the prescribed velocity
   Vector6 nu_prescribed = Vector6::Zero();  ///< kGuided/kPrescribed: the prescribed part of ν
 
   /// The effective inverse mass W = B (Bᵀ M B)⁻¹ Bᵀ, where the columns of B
@@ -100,7 +100,7 @@ inline constexpr int kMaxDenseLcp = 96;
 
 /// A row of G: a linear form on the generalised velocities of at most two bodies.
 struct JacobianRow {
-  int body[2] = {-1, -1};                          ///< local body indices, -1 when fixed/world
+  int body[2] = {-1, -1};                             ///< local body indices, -1 when fixed/world
   Vector6 g[2] = {Vector6::Zero(), Vector6::Zero()};  ///< coefficients on (v, ω) of each body
   double Dot(const std::vector<Vector6>& nu) const;
 };
@@ -108,12 +108,12 @@ struct JacobianRow {
 /// The LCP of one component, and what is needed to read its solution.
 struct ContactLcp {
   Formulation formulation = Formulation::kBaraff;
-  double dt = 1.0;                        ///< s (Stewart–Trinkle only)
-  std::vector<BodyDynamics> bodies;       ///< (nb)
-  std::vector<Contact> contacts;          ///< (nc)
-  std::vector<int> friction_of;  ///< (nc) index among frictional contacts, or -1
-  int num_friction = 0;          ///< nf: contacts with μ > 0 (Stewart–Trinkle)
-  int num_directions = 2;        ///< D: friction directions per contact (2 in 2-D)
+  double dt = 1.0;                       ///< s (Stewart–Trinkle only)
+  std::vector<BodyDynamics> bodies;      ///< (nb)
+  std::vector<Contact> contacts;         ///< (nc)
+  std::vector<int> friction_of;          ///< (nc) index among frictional contacts, or -1
+  int num_friction = 0;                  ///< nf: contacts with μ > 0 (Stewart–Trinkle)
+  int num_directions = 2;                ///< D: friction directions per contact (2 in 2-D)
   std::vector<JacobianRow> normal_rows;  ///< (nc) J_n
   /// (nc) tangent rows for reporting: J_t1 (2-D: along t_W) and J_t2 (3-D
   /// only; empty in 2-D), for TangentBasis(n).

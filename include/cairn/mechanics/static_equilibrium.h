@@ -35,10 +35,10 @@ namespace cairn {
 struct StaticEquilibrium {
   bool solved = false;  ///< the LP solver reached a verdict (false: numerical trouble, see message)
   bool exists = false;  ///< an equilibrium exists
-  VectorX normal_force;    ///< (nc) force units, when it exists
+  VectorX normal_force;                 ///< (nc) force units, when it exists
   std::vector<Vector3> friction_force;  ///< (nc) on a, world frame, when it exists
-  double residual = 0;     ///< max over body equations of |Σ J f + F_ext| (force units)
-  std::string message;     ///< diagnostics when !solved
+  double residual = 0;  ///< max over body equations of |Σ J f + F_ext| (force units)
+  std::string message;  ///< diagnostics when !solved
 };
 
 /// Solves the equilibrium LP of one component (see the file comment). Uses the

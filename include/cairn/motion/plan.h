@@ -34,9 +34,9 @@ const char* to_string(PlanMode mode);
 struct PlanStepDef {
   std::vector<std::string> remove;  ///< parts leaving the assembly in this step
   std::vector<std::string> grip;    ///< parts the gripper holds; empty: all of `remove`
-  std::vector<Vector3> path;  ///< displacements from the start pose; `path` form (2-D: z = 0)
-  bool has_path = false;      ///< the step used `path`
-  Vector3 direction{0, 0, 0};  ///< `direction` + `distance` form
+  std::vector<Vector3> path;        ///< displacements from the start pose; `path` form (2-D: z = 0)
+  bool has_path = false;            ///< the step used `path`
+  Vector3 direction{0, 0, 0};       ///< `direction` + `distance` form
   double distance = 0;
   bool has_direction = false;  ///< the step used `direction` and `distance`
   SupportMode support = SupportMode::kFull;
