@@ -191,6 +191,34 @@ TEST_F(PaperFig9, SlidingCAlongPlusXWithoutThePadTipsTheAssembly) {
   EXPECT_TRUE(Contains(r.failure->parts, B_)) << Why(r);
 }
 
+TEST_F(PaperFig9, AssemblingInTheReverseOrdersGivesTheSameVerdicts) {
+  // Frictionless, assembly is disassembly run backwards. B, C, A (the reverse
+  // of A-C-B) fails once C rests on B without A: C is held until it is in
+  // place and let go when the gripper moves on to A, at which tick B topples.
+  // B, A, C, each lowered from above, is stable throughout.
+  Plan acb = ReadPlan(ExamplePath("plans/paper_fig9_acb.plan.json"), a_);
+  acb.mode = PlanMode::kAssemble;
+  const SimulationResult bad = SimulatePlan(a_, acb);
+  ASSERT_EQ(bad.verdict, MotionVerdict::kUnstable) << Why(bad);
+  EXPECT_EQ(bad.failure->step, 0) << "A's step (file order), the third placed";
+  EXPECT_EQ(bad.failure->tick, 0) << "as soon as C is let go";
+  EXPECT_TRUE(Contains(bad.failure->parts, B_)) << Why(bad);
+
+  PlanDef def;
+  def.mode = PlanMode::kAssemble;
+  for (const char* name : {"C", "A", "B"}) {
+    PlanStepDef step;
+    step.remove = {name};
+    step.has_direction = true;
+    step.direction = Vector3::UnitZ();
+    step.distance = 2;
+    def.steps.push_back(step);
+  }
+  const SimulationResult good = SimulatePlan(a_, Plan::Create(def, a_));
+  EXPECT_EQ(good.verdict, MotionVerdict::kStable) << Why(good);
+  EXPECT_EQ(good.steps.size(), 3u);
+}
+
 TEST_F(PaperFig9, FullSupportMakesEveryPathGiveTheSameVerdict) {
   // Proposition 2: a part whose weight the gripper carries acts on the rest
   // only through what it runs into. Each removal's verdict is the static
