@@ -115,6 +115,9 @@ StaticEquilibrium FindStaticEquilibrium(const ContactLcp& lcp) {
   }
   if (ia.size() > 1)
     glp_load_matrix(lp.p, static_cast<int>(ia.size()) - 1, ia.data(), ja.data(), ar.data());
+  // glp_scale_prob reports to the terminal whatever msg_lev says: silence it
+  // (the CLI's stdout is a JSON document).
+  const int terminal = glp_term_out(GLP_OFF);
   glp_scale_prob(lp.p, GLP_SF_AUTO);
 
   glp_smcp params;
@@ -131,6 +134,7 @@ StaticEquilibrium FindStaticEquilibrium(const ContactLcp& lcp) {
     err = glp_simplex(lp.p, &params);
     if (err == GLP_EFAIL) err = glp_exact(lp.p, &params);
   }
+  glp_term_out(terminal);
   const int status = glp_get_status(lp.p);
   if (err == GLP_ENOPFS || err == GLP_ENODFS || status == GLP_NOFEAS) {
     out.solved = true;  // presolve or simplex proved infeasibility
