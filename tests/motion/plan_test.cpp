@@ -197,7 +197,7 @@ const BadDef kBadDefs[] = {
    "names part 'C' twice (also steps[0].grip[0])"},
   {"grip_not_removed", [](PlanDef& d) { d.steps[0].grip = {"C", "B"}; }, "steps[0].grip[1]",
    "part 'B' is neither in this step's remove nor a tool"},
-  {"both_forms", [](PlanDef& d) { d.steps[0].has_direction = true; d.steps[0].direction = {0, 1};
+  {"both_forms", [](PlanDef& d) { d.steps[0].has_direction = true; d.steps[0].direction = Vector3(0, 1, 0);
                                   d.steps[0].distance = 1; }, "steps[0]", "has both path and direction"},
   {"neither_form", [](PlanDef& d) { d.steps[1].has_path = false; d.steps[1].path.clear(); }, "steps[1]",
    "has no path"},
