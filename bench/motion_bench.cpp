@@ -107,7 +107,7 @@ cairn::Plan OneStepPlan(const Assembly& a, const std::string& part, Vector2 dire
   def.speed = 1.0;
   cairn::PlanStepDef step;
   step.remove = {part};
-  step.direction = Embed(direction);
+  step.direction = cairn::Embed(direction);
   step.distance = distance;
   step.has_direction = true;
   step.support = support;

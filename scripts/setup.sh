@@ -9,7 +9,8 @@ packages=(
   libeigen3-dev          # dense and sparse linear algebra
   nlohmann-json3-dev     # scene and report JSON
   libcli11-dev           # command-line parsing
-  libglpk-dev            # the static-equilibrium linear program
+  libglpk-dev            # the rest-hypothesis linear program (motion in 3-D)
+  coinor-libclp-dev      # the static-equilibrium linear program
   libassimp-dev          # mesh parts (OBJ, STL)
   libboost-dev           # Boost.Geometry: clipping coplanar faces of 3-D contacts
   libgtest-dev libgmock-dev  # tests

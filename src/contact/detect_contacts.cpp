@@ -27,6 +27,8 @@ const char* to_string(ContactFeature feature) {
       return "face-edge";
     case ContactFeature::kEdgeEdge:
       return "edge-edge";
+    case ContactFeature::kInterface:
+      return "interface";
   }
   return "unknown";
 }
@@ -106,7 +108,6 @@ void VertexEdgeContacts(const Polygon& vp, const Polygon& ep, int a, int b, doub
   }
 }
 
-
 }  // namespace
 
 void DetectPairContacts(const Polygon& poly_i, const Polygon& poly_j, int i, int j, double mu,
@@ -155,7 +156,8 @@ ContactFeature FeatureOf(ContactKind3 kind) {
 using Box3 = std::pair<Vector3, Vector3>;
 
 bool BoxesTouch3(const Box3& x, const Box3& y, double tol) {
-  return ((x.first.array() <= y.second.array() + tol) && (y.first.array() <= x.second.array() + tol))
+  return ((x.first.array() <= y.second.array() + tol) &&
+          (y.first.array() <= x.second.array() + tol))
       .all();
 }
 
@@ -182,15 +184,46 @@ std::vector<Contact> DetectContacts(const Assembly& assembly, const Configuratio
   ContactStats local;
   std::vector<Contact> contacts;
   int patches = 0;
+  // Given interfaces (Assembly::interfaces()) are the contacts of the
+  // assembled configuration: each point of each one between two present
+  // parts, not both fixed. They do not move with the parts: a configuration
+  // that moves a part is refused by the motion stage (SimulatePlan).
+  if (assembly.has_interfaces()) {
+    const auto& interfaces = assembly.interfaces();
+    for (int k = 0; k < static_cast<int>(interfaces.size()); ++k) {
+      const Interface& in = interfaces[k];
+      if (!config.present[in.part_a] || !config.present[in.part_b]) continue;
+      if (assembly.part(in.part_a).fixed && assembly.part(in.part_b).fixed) continue;
+      ++local.pairs_tested;
+      ++local.pairs_touching;
+      // The movable part is a, as for found contacts.
+      const bool swap = assembly.part(in.part_a).fixed;
+      for (int v = 0; v < static_cast<int>(in.points.size()); ++v) {
+        Contact c;
+        c.part_a = swap ? in.part_b : in.part_a;
+        c.part_b = swap ? in.part_a : in.part_b;
+        c.p_WC = in.points[v];
+        c.n_W = swap ? Vector3(-in.normal) : in.normal;
+        c.mu = assembly.Friction(in.part_a, in.part_b);
+        c.feature = ContactFeature::kInterface;
+        c.index_a = k;
+        c.index_b = v;
+        c.patch = patches;
+        contacts.push_back(c);
+      }
+      ++patches;
+    }
+  }
   // Part pairs, pruned by a sweep over the boxes sorted by their low x. The
   // movable part of a movable–fixed pair is made part a, so that "the force
   // on a" is the force on the part that might move. Pairs are visited in
   // (i, j) order whatever the sweep: deterministic.
   std::vector<int> order;
   for (int i = 0; i < n; ++i)
-    if (config.present[i]) order.push_back(i);
+    if (config.present[i] && !assembly.has_interfaces()) order.push_back(i);  // found ones
   std::sort(order.begin(), order.end(), [&](int x, int y) {
-    return boxes[x].first.x() < boxes[y].first.x() || (boxes[x].first.x() == boxes[y].first.x() && x < y);
+    return boxes[x].first.x() < boxes[y].first.x() ||
+           (boxes[x].first.x() == boxes[y].first.x() && x < y);
   });
   std::vector<std::pair<int, int>> pairs;
   for (size_t oi = 0; oi < order.size(); ++oi) {

@@ -302,10 +302,13 @@ Assembly Assembly::Create(const AssemblyDef& def, const std::string& source_file
   std::sort(order.begin(), order.end(),
             [&](int a, int b) { return boxes[a].first.x() < boxes[b].first.x(); });
   std::optional<std::pair<int, int>> worst;  // (later, earlier) index
+  // Given interfaces say how the parts touch; their shapes may interpenetrate
+  // (InterfaceDef): no overlap test then.
+  const int overlap_parts = def.interfaces.empty() ? num_parts : 0;
   Vector3 witness(0, 0, 0);
-  for (int oi = 0; oi < num_parts; ++oi) {
+  for (int oi = 0; oi < overlap_parts; ++oi) {
     const int i = order[oi];
-    for (int oj = oi + 1; oj < num_parts; ++oj) {
+    for (int oj = oi + 1; oj < overlap_parts; ++oj) {
       const int j = order[oj];
       if (boxes[j].first.x() >= boxes[i].second.x() - tol) break;
       bool apart = false;
@@ -395,6 +398,43 @@ Assembly Assembly::Create(const AssemblyDef& def, const std::string& source_file
                                        "' (a fixel pushes: its normal must point into the part)");
     }
     out.fixtures_.push_back(Fixture{part, fd.point, n});
+  }
+
+  // Interfaces: 3-D, between two named parts, a planar polygon.
+  for (int k = 0; k < static_cast<int>(def.interfaces.size()); ++k) {
+    const InterfaceDef& id = def.interfaces[k];
+    const std::string path = Indexed("interfaces", k);
+    if (!is3) {
+      check.Fail(path, "interfaces are given in 3-D scenes only (a 2-D scene finds its contacts)");
+      continue;
+    }
+    Interface in;
+    in.part_a = find(id.part_a);
+    in.part_b = find(id.part_b);
+    if (in.part_a < 0) check.Fail(path + ".parts[0]", "no part named '" + id.part_a + "'");
+    if (in.part_b < 0) check.Fail(path + ".parts[1]", "no part named '" + id.part_b + "'");
+    if (in.part_a == in.part_b)
+      check.Fail(path + ".parts[1]", "names part '" + id.part_a + "' twice");
+    if (id.points.size() < 3)
+      check.Fail(path + ".points",
+                 "needs at least 3 points (got " + std::to_string(id.points.size()) + ")");
+    for (size_t i = 0; i < id.points.size(); ++i)
+      check.FinitePoint(id.points[i], path + Indexed(".points", static_cast<int>(i)));
+    check.FinitePoint(id.normal, path + ".normal");
+    const double len = id.normal.norm();
+    if (len == 0) check.Fail(path + ".normal", "must not be zero");
+    in.normal = id.normal / len;
+    // Planar: every point within the tolerance of the plane through the
+    // first with that normal.
+    for (size_t i = 1; i < id.points.size(); ++i) {
+      const double off = std::abs(in.normal.dot(id.points[i] - id.points[0]));
+      if (off > tol)
+        check.Fail(path + Indexed(".points", static_cast<int>(i)),
+                   Point(id.points[i]) + " is " + Num(off) +
+                       " off the interface's plane (more than the tolerance " + Num(tol) + ")");
+    }
+    in.points = id.points;
+    out.interfaces_.push_back(std::move(in));
   }
 
   // Tolerances scaled to the scene and its heaviest movable part.

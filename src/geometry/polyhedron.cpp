@@ -568,7 +568,11 @@ std::optional<Vector3> SampleInside(const Polyhedron& a, const Eigen::Isometry3d
                                     double tol) {
   const auto& x = a.vertices();
   std::vector<Vector3> samples;
-  samples.push_back(a.mass().centroid);
+  // The centroid catches a solid wholly inside the other, but only if it is
+  // inside its own solid: a non-convex one's (a U, an arch) may lie in the
+  // gap, where another part may rightly be.
+  if (SignedDistance(a, Eigen::Isometry3d::Identity(), a.mass().centroid) < -tol)
+    samples.push_back(a.mass().centroid);
   for (const Vector3& v : x) samples.push_back(v);
   for (const auto& face : a.face_triangles())
     for (const auto& t : face) {

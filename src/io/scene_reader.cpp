@@ -23,14 +23,17 @@ using nlohmann::json;
 
 // The keys of each level of format version 1.
 constexpr std::initializer_list<const char*> kSceneKeys = {
-    "cairn",     "name",  "gravity",  "friction",           "friction_pairs",
-    "tolerance", "parts", "fixtures", "friction_directions"};
+    "cairn",     "name",           "gravity",
+    "friction",  "friction_pairs", "tolerance",
+    "parts",     "fixtures",       "friction_directions",
+    "interfaces"};
 constexpr std::initializer_list<const char*> kPolyhedronKeys = {"vertices", "faces"};
 constexpr std::initializer_list<const char*> kPartKeys = {
     "name", "fixed", "tool", "density", "mass", "polygon", "box", "polyhedron", "mesh"};
 constexpr std::initializer_list<const char*> kBoxKeys = {"min", "max"};
 constexpr std::initializer_list<const char*> kPairKeys = {"parts", "mu"};
 constexpr std::initializer_list<const char*> kFixtureKeys = {"part", "point", "normal"};
+constexpr std::initializer_list<const char*> kInterfaceKeys = {"parts", "normal", "points"};
 
 // The shape keys of a part, and the dimension each makes.
 constexpr std::initializer_list<const char*> kShapeKeys = {"polygon", "box", "polyhedron", "mesh"};
@@ -83,6 +86,13 @@ class SceneParser : private io_internal::JsonChecker {
       const json& fixtures = Array(doc["fixtures"], "fixtures");
       for (size_t i = 0; i < fixtures.size(); ++i) {
         def.fixtures.push_back(ParseFixture(fixtures[i], Index("fixtures", i)));
+      }
+    }
+    if (doc.contains("interfaces")) {
+      if (dim_ != 3) Fail("interfaces", "interfaces are given in 3-D scenes only");
+      const json& interfaces = Array(doc["interfaces"], "interfaces");
+      for (size_t i = 0; i < interfaces.size(); ++i) {
+        def.interfaces.push_back(ParseInterface(interfaces[i], Index("interfaces", i)));
       }
     }
     return def;
@@ -192,6 +202,25 @@ class SceneParser : private io_internal::JsonChecker {
     pair.part_b = String(names[1], Index(parts_path, 1));
     pair.mu = Number(Require(j, "mu", path), Child(path, "mu"));
     return pair;
+  }
+
+  InterfaceDef ParseInterface(const json& j, const std::string& path) const {
+    Object(j, path);
+    CheckKeys(j, path, kInterfaceKeys);
+    const std::string parts_path = Child(path, "parts");
+    const json& names = Array(Require(j, "parts", path), parts_path);
+    if (names.size() != 2) {
+      Fail(parts_path, "must name exactly 2 parts, not " + std::to_string(names.size()));
+    }
+    InterfaceDef in;
+    in.part_a = String(names[0], Index(parts_path, 0));
+    in.part_b = String(names[1], Index(parts_path, 1));
+    in.normal = VecN(Require(j, "normal", path), Child(path, "normal"), 3);
+    const std::string points_path = Child(path, "points");
+    const json& points = Array(Require(j, "points", path), points_path);
+    for (size_t i = 0; i < points.size(); ++i)
+      in.points.push_back(VecN(points[i], Index(points_path, i), 3));
+    return in;
   }
 
   FixtureDef ParseFixture(const json& j, const std::string& path) const {

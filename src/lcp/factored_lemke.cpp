@@ -64,13 +64,19 @@ FactoredLcpMatrix::FactoredLcpMatrix(const SparseMatrixX& G, const SparseMatrixX
   K_.makeCompressed();
   Y_ = (W * G.transpose()).pruned();
   Kt_ = K.transpose();
-  // M_ii = G_i W G_iᵀ + K_ii bounds |(G W Gᵀ)_ij| (W PSD).
+  // M_ii = G_i W G_iᵀ + K_ii bounds |(G W Gᵀ)_ij| (W PSD). Row j of G
+  // against column j of Y, both sorted by their inner index (G by rows: a
+  // scan of G's whole column per entry of Y costs O(n · nnz(column)), 10 ms
+  // on a 3744-variable LCP); the terms are added in the same order as before.
+  const Eigen::SparseMatrix<double, Eigen::RowMajor> Gr = G_;
   double m = 0;
   for (Eigen::Index j = 0; j < n; ++j) {
     double mjj = 0;
-    for (SparseMatrixX::InnerIterator y(Y_, j); y; ++y)
-      for (SparseMatrixX::InnerIterator g(G_, y.row()); g; ++g)
-        if (g.row() == j) mjj += g.value() * y.value();
+    Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator g(Gr, j);
+    for (SparseMatrixX::InnerIterator y(Y_, j); y; ++y) {
+      while (g && g.col() < y.row()) ++g;
+      if (g && g.col() == y.row()) mjj += g.value() * y.value();
+    }
     m = std::max(m, std::abs(mjj));
   }
   for (Eigen::Index i = 0; i < K_.nonZeros(); ++i) m = std::max(m, std::abs(K_.valuePtr()[i]));

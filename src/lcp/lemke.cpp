@@ -525,7 +525,11 @@ LcpResult SolveLemke(const MatrixX& M, const VectorX& q, const LemkeParameters& 
   // (massively degenerate contact sets: a basis built on pivots of roundoff
   // size). Then the ties are broken by a perturbation of q instead (see
   // factored_lcp.h) and the final basis is re-solved with the true q.
-  if (result.status == LcpStatus::kNumericalFailure) {
+  // A path that cycles (the pivot limit) or ends on a secondary ray of an LCP
+  // that has a solution is the same trouble seen later: ties blurred on the
+  // way. The perturbed path is tried for those too.
+  if (result.status == LcpStatus::kNumericalFailure || result.status == LcpStatus::kPivotLimit ||
+      result.status == LcpStatus::kRayTermination) {
     VectorX q_pert = q;
     for (Eigen::Index i = 0; i < n; ++i)
       q_pert[i] += internal::kLcpPerturbation * scale *

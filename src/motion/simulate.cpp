@@ -5,6 +5,7 @@
 #include <numeric>
 #include <sstream>
 
+#include "cairn/core/check.h"
 #include "cairn/geometry/polygon.h"
 #include "cairn/geometry/polyhedron.h"
 
@@ -134,6 +135,9 @@ std::string Describe(const Assembly& a, const MotionFailure& f) {
 
 SimulationResult SimulatePlan(const Assembly& assembly, const Plan& plan,
                               const SimulationOptions& options) {
+  CAIRN_THROW_UNLESS(!assembly.has_interfaces(),
+                     "SimulatePlan: the assembly's contacts are given interfaces of its assembled "
+                     "configuration; its parts cannot move");
   SimulationResult result;
   const int n = assembly.num_parts();
   const bool assemble = plan.mode == PlanMode::kAssemble;

@@ -105,6 +105,9 @@ nlohmann::json StabilityToJson(const Assembly& assembly, const Configuration& co
     jr["lcp_size"] = r.lcp_size;
     jr["status"] = to_string(r.status);
     jr["pivots"] = r.pivots;
+    // Decided by a linear program's solution at rest rather than by Lemke's
+    // method (weak stability: some solution of the LCP keeps the parts put).
+    jr["rest_solution"] = r.rest_solution;
     jr["residual"] = r.residual;
     jr["consistency_residual"] = r.consistency_residual;
     if (!r.message.empty()) jr["message"] = r.message;

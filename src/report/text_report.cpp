@@ -55,6 +55,10 @@ std::string StabilityToText(const Assembly& assembly, const Configuration& confi
      << result.contacts.size() << " contacts, " << result.components.size() << " component"
      << (result.components.size() == 1 ? "" : "s") << "; LCP " << lcp_vars << " variables, "
      << pivots << " pivots\n";
+  for (const ComponentReport& c : result.components)
+    if (c.rest_solution)
+      os << "  component of " << c.parts.size()
+         << " parts decided by a solution at rest: " << c.message << '\n';
   if (result.weakly_stable)
     os << "  WEAKLY STABLE: a static equilibrium exists, but only with forces nothing produces\n"
           "  from rest (a squeeze between faces: jamming); the contact dynamics move\n";

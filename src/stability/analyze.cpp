@@ -287,12 +287,13 @@ StabilityResult AnalyzeConfiguration(const Assembly& assembly, const Configurati
                                           options.dt, drive, options.lcp_storage);
     result.profile.build += Seconds(t0);
     std::optional<bool> equilibrium;
+    std::optional<StaticEquilibrium> eq;
     if (options.check_equilibrium) {
-      const StaticEquilibrium eq = FindStaticEquilibrium(lcp);
-      if (eq.solved)
-        equilibrium = eq.exists;
+      eq = FindStaticEquilibrium(lcp);
+      if (eq->solved)
+        equilibrium = eq->exists;
       else
-        result.diagnostics += "component " + std::to_string(ci) + ": " + eq.message + "; ";
+        result.diagnostics += "component " + std::to_string(ci) + ": " + eq->message + "; ";
     }
 
     // SolveLemke, then re-check the answer independently of the status.
@@ -303,8 +304,49 @@ StabilityResult AnalyzeConfiguration(const Assembly& assembly, const Configurati
       hash = KeyHash(lcp);
       basis = FindBasis(*workspace, hash, lcp);
     }
-    LcpResult sol = SolveContactLcp(lcp, options.lemke, basis);
-    if (workspace && (sol.status == LcpStatus::kSolved || sol.status == LcpStatus::kTrivial)) {
+    const double check_tol =
+        options.lemke.solution_tolerance * std::max(1.0, lcp.q.lpNorm<Eigen::Infinity>());
+    // The rest hypothesis first, where it applies (StabilityOptions::rest_first):
+    // a driven 3-D component with friction whose every part is judged or driven
+    // (a carried part's motion is what the LCP must find).
+    LcpResult sol;
+    bool rest = false, no_rest = false;
+    int lp_iterations = 0;
+    if (options.rest_first && drive && assembly.is_3d() && st && lcp.num_friction > 0) {
+      bool driven = false, carried = false;
+      for (int p : comp.parts) {
+        const PartRole role = RoleOf(drive, p);
+        driven |= role == PartRole::kGuided || role == PartRole::kPrescribed;
+        carried |= role == PartRole::kCarried;
+      }
+      if (driven && !carried) {
+        RestSolution r = FindRestSolution(lcp, workspace ? &workspace->rest_bases[hash] : nullptr);
+        lp_iterations = r.iterations;
+        // No rest for all: perhaps for all but a guided part (which then
+        // leaves its path: unsupported, with the assembly at rest).
+        if (r.outcome == RestSolution::Outcome::kNone) {
+          no_rest = true;
+          bool guided = false;
+          for (int p : comp.parts) guided |= RoleOf(drive, p) == PartRole::kGuided;
+          if (guided) {
+            r = FindRestSolution(lcp, nullptr, RestHypothesis::kGuidedFree);
+            lp_iterations += r.iterations;
+          }
+        }
+        if (r.outcome == RestSolution::Outcome::kFound &&
+            IsContactLcpSolution(lcp, r.z, check_tol)) {
+          rest = true;
+          sol.status = LcpStatus::kSolved;
+          sol.w = lcp.Multiply(r.z) + lcp.q;
+          for (Eigen::Index i = 0; i < r.z.size(); ++i)
+            sol.residual = std::max(sol.residual, std::abs(std::min(r.z[i], sol.w[i])));
+          sol.z = std::move(r.z);
+        }
+      }
+    }
+    if (!rest) sol = SolveContactLcp(lcp, options.lemke, basis);
+    if (workspace && !rest &&
+        (sol.status == LcpStatus::kSolved || sol.status == LcpStatus::kTrivial)) {
       // A warm start returns the basis it was given: nothing to store.
       if (!basis)
         workspace->bases.emplace(hash,
@@ -323,13 +365,39 @@ StabilityResult AnalyzeConfiguration(const Assembly& assembly, const Configurati
     report.pivots = sol.pivots;
     report.residual = sol.residual;
     report.warm_start_used = sol.warm_start_used;
+    report.rest_solution = rest;
+    report.lp_iterations = lp_iterations;
     bool solved = sol.status == LcpStatus::kSolved || sol.status == LcpStatus::kTrivial;
-    const double check_tol =
-        options.lemke.solution_tolerance * std::max(1.0, lcp.q.lpNorm<Eigen::Infinity>());
-    if (solved && !IsContactLcpSolution(lcp, sol.z, check_tol)) {
+    if (solved && !rest && !IsContactLcpSolution(lcp, sol.z, check_tol)) {
       solved = false;
       report.status = LcpStatus::kNumericalFailure;
       report.message = "the solver's answer failed the independent LCP check";
+    }
+    // Lemke's method failed (on a large statically indeterminate component
+    // its path can end on a secondary ray among near-singular bases, as on
+    // the 184-block cross vault). A static equilibrium, where one exists, is
+    // itself a solution of the LCP with every part at rest (from rest, no
+    // gaps, nothing driven: checked, not assumed). The verdict is then
+    // decided by it: weak stability, as along paths (rest_solution.h); the
+    // report says so.
+    if (!solved && !rest) {
+      if (!eq) eq = FindStaticEquilibrium(lcp);
+      if (eq->solved && eq->exists && IsContactLcpSolution(lcp, eq->lcp_z, check_tol)) {
+        solved = true;
+        rest = true;
+        report.rest_solution = true;
+        report.status = LcpStatus::kSolved;
+        report.message = std::string("Lemke's method failed (") + to_string(sol.status) +
+                         (sol.message.empty() ? "" : ": " + sol.message) +
+                         "); the static equilibrium solves the LCP with every part at rest";
+        result.diagnostics += "component " + std::to_string(ci) + ": " + report.message + "; ";
+        sol.z = eq->lcp_z;
+        sol.w = lcp.Multiply(sol.z) + lcp.q;
+        sol.residual = 0;
+        for (Eigen::Index i = 0; i < sol.z.size(); ++i)
+          sol.residual = std::max(sol.residual, std::abs(std::min(sol.z[i], sol.w[i])));
+        report.residual = sol.residual;
+      }
     }
     // A driven part whose prescribed motion no contact forces allow (the LCP
     // has no solution, Lemke ends on a ray) is jammed: the path drives it into
@@ -350,6 +418,16 @@ StabilityResult AnalyzeConfiguration(const Assembly& assembly, const Configurati
     }
     if (!solved) {
       if (report.message.empty()) report.message = sol.message;
+      // The rest LP's infeasibility proves that some part must move even when
+      // Lemke's method cannot say which or how: say so.
+      if (!no_rest && eq && eq->solved && !eq->exists)
+        report.message +=
+            " (no static equilibrium exists either: some part must move, which and how is "
+            "unknown)";
+      if (no_rest)
+        report.message +=
+            " (no contact forces hold the judged parts at rest with the driven ones on their "
+            "path: something must move)";
       result.diagnostics +=
           "component " + std::to_string(ci) + " (" + std::to_string(comp.parts.size()) +
           " parts, " + std::to_string(lcp.size()) + " LCP variables): " + to_string(report.status) +

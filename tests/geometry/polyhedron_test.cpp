@@ -508,5 +508,19 @@ TEST(PolyhedronFaults, CreateThrowsTheMessage) {
   }
 }
 
+// The L prism's centroid, (1.1, 1.1), lies outside the L, in its inner
+// corner: a small box there touches nothing, while one in an arm overlaps.
+TEST(PolyhedronOverlap, ANonConvexSolidsCentroidIsNotSampledWhenOutsideIt) {
+  const Polyhedron l = Polyhedron::Create(LPrism(2), kTol);
+  const Eigen::Isometry3d I = Eigen::Isometry3d::Identity();
+  EXPECT_GT(SignedDistance(l, I, l.mass().centroid), 0);
+  const Polyhedron corner = Polyhedron::Create(Box(0.15, 0.15, 1, {1.05, 1.05, 0.5}), kTol);
+  EXPECT_FALSE(FindPolyhedronOverlap(l, I, corner, I, kTol));
+  EXPECT_FALSE(FindPolyhedronOverlap(corner, I, l, I, kTol));
+  const Polyhedron in_arm = Polyhedron::Create(Box(0.3, 0.5, 0.5, {0.5, 1.5, 0.5}), kTol);
+  EXPECT_TRUE(FindPolyhedronOverlap(l, I, in_arm, I, kTol));
+  EXPECT_TRUE(FindPolyhedronOverlap(in_arm, I, l, I, kTol));
+}
+
 }  // namespace
 }  // namespace cairn

@@ -42,8 +42,8 @@ TEST(StaticEquilibrium, BlockOnAnInclineHoldsIffTanThetaIsAtMostMu) {
 }
 
 // The LP's forces balance the block: on the incline, N = m g cos θ and
-// F = m g sin θ (its objective, the least total normal force, is exactly
-// that here).
+// F = m g sin θ (the only equilibrium's totals, whichever share of them the
+// LP gives each corner).
 TEST(StaticEquilibrium, ForcesOnAnInclineAreTheTextbookOnes) {
   const double theta = 20 * kDeg;
   const Assembly a = Assembly::Create(BlockOnIncline(theta, 0.5), "incline");
@@ -58,6 +58,12 @@ TEST(StaticEquilibrium, ForcesOnAnInclineAreTheTextbookOnes) {
   for (const Vector3& f : eq.friction_force) friction += f;
   EXPECT_NEAR(friction.norm(), W * std::sin(theta), 1e-9 * W);
   EXPECT_LE(eq.residual, 1e-9 * W);
+  // As the LCP's unknowns (impulses over Δt, λ = 0), it solves the LCP: the
+  // fallback when Lemke's method fails (analyze.cpp).
+  ASSERT_EQ(eq.lcp_z.size(), lcps[0].size());
+  EXPECT_TRUE(IsContactLcpSolution(lcps[0], eq.lcp_z, 1e-9 * W));
+  EXPECT_NEAR(eq.lcp_z.head(lcps[0].contacts.size()).sum(), W * std::cos(theta) * lcps[0].dt,
+              1e-9 * W);
 }
 
 // A block that just fits between two fixed walls, with nothing under it.

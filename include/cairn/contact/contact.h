@@ -34,20 +34,21 @@ enum class ContactFeature {
   kEdgeFace,    ///< 3-D: an end of edge `index_a` of a lying on face `index_b` of b
   kFaceEdge,    ///< 3-D: an end of edge `index_b` of b lying on face `index_a` of a
   kEdgeEdge,    ///< 3-D: edge `index_a` of a crossing edge `index_b` of b
+  kInterface,   ///< 3-D: vertex `index_b` of given interface `index_a` (Assembly::interfaces())
 };
 
 /// "vertex-edge", "edge-vertex", "fixture", "face-face", "vertex-face",
-/// "face-vertex", "edge-face", "face-edge", "edge-edge".
+/// "face-vertex", "edge-face", "face-edge", "edge-edge", "interface".
 const char* to_string(ContactFeature feature);
 
 /// One contact point.
 struct Contact {
-  int part_a = -1;         ///< index of part a (always a part)
-  int part_b = kWorld;     ///< index of part b, or kWorld
-  Vector3 p_WC{0, 0, 0};   ///< contact point, world frame (length)
-  Vector3 n_W{0, 1, 0};    ///< unit normal from b into a, world frame
-  double gap = 0;          ///< signed distance along n_W (length; < 0: penetration within tolerance)
-  double mu = 0;           ///< Coulomb coefficient of the pair
+  int part_a = -1;        ///< index of part a (always a part)
+  int part_b = kWorld;    ///< index of part b, or kWorld
+  Vector3 p_WC{0, 0, 0};  ///< contact point, world frame (length)
+  Vector3 n_W{0, 1, 0};   ///< unit normal from b into a, world frame
+  double gap = 0;         ///< signed distance along n_W (length; < 0: penetration within tolerance)
+  double mu = 0;          ///< Coulomb coefficient of the pair
   ContactFeature feature = ContactFeature::kVertexOfAOnEdgeOfB;
   int index_a = -1;  ///< the feature of a (vertex, edge, face; see `feature`), or fixture index
   int index_b = -1;  ///< the feature of b (see `feature`); -1 for fixtures

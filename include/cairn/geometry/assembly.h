@@ -44,6 +44,20 @@ struct FixtureDef {
   Vector3 normal{0, 0, 0};
 };
 
+/// A contact interface the model gives rather than Cairn finding it from the
+/// shapes (scene file `interfaces[i]`; COMPAS files store them): a planar
+/// contact polygon between two parts of the assembled configuration. 3-D
+/// only. For models whose shapes are not exact enough to find contacts from
+/// (CAD blocks that interpenetrate by more than any sensible tolerance, faces
+/// far off plane: the Armadillo vault): with interfaces the contacts are
+/// exactly these, and the parts are not checked for overlap.
+struct InterfaceDef {
+  std::string part_a;
+  std::string part_b;
+  std::vector<Vector3> points;  ///< the polygon's vertices (≥ 3), world frame, assembled pose
+  Vector3 normal{0, 0, 0};      ///< from b into a (normalised on validation)
+};
+
 /// The friction coefficient between two named parts (`friction_pairs[i]`).
 struct FrictionPairDef {
   std::string part_a;
@@ -68,6 +82,14 @@ struct AssemblyDef {
   double tolerance = 0;  ///< contact distance tolerance (length); ≤ 0: scaled to the scene
   std::vector<PartDef> parts;
   std::vector<FixtureDef> fixtures;
+  std::vector<InterfaceDef> interfaces;  ///< given contacts (3-D); empty: found from the shapes
+};
+
+/// A validated interface (InterfaceDef).
+struct Interface {
+  int part_a = -1, part_b = -1;  ///< indices into Assembly::parts()
+  std::vector<Vector3> points;   ///< world frame, assembled pose
+  Vector3 normal{0, 0, 1};       ///< unit, from b into a
 };
 
 /// A validated part, in world coordinates of the assembled pose.
@@ -118,6 +140,12 @@ class Assembly {
   /// Index of the part with this name, or -1.
   int FindPart(const std::string& name) const;
   const std::vector<Fixture>& fixtures() const { return fixtures_; }
+  /// The given contact interfaces (AssemblyDef::interfaces); empty when the
+  /// contacts are found from the shapes.
+  const std::vector<Interface>& interfaces() const { return interfaces_; }
+  /// True when the contacts are the given interfaces: they describe the
+  /// assembled configuration only (parts may be taken away, not moved).
+  bool has_interfaces() const { return !interfaces_.empty(); }
   /// 2 (polygons, planar motion) or 3 (polyhedra, six freedoms per part).
   int dimension() const { return dimension_; }
   bool is_3d() const { return dimension_ == 3; }
@@ -143,6 +171,7 @@ class Assembly {
   std::string name_;
   std::vector<Part> parts_;
   std::vector<Fixture> fixtures_;
+  std::vector<Interface> interfaces_;
   int dimension_ = 2;
   Vector3 gravity_{0, -9.81, 0};
   int friction_directions_ = 2;

@@ -34,9 +34,10 @@ struct PolyhedronFault {
 
 /// Exact mass properties of a solid of unit density (divergence theorem).
 struct PolyhedronMass {
-  double volume = 0;                                     ///< length³
-  Vector3 centroid{0, 0, 0};                             ///< length
-  Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();     ///< ∫ (|r|² I − r rᵀ) dV about the centroid, length⁵
+  double volume = 0;          ///< length³
+  Vector3 centroid{0, 0, 0};  ///< length
+  Eigen::Matrix3d inertia =
+      Eigen::Matrix3d::Zero();  ///< ∫ (|r|² I − r rᵀ) dV about the centroid, length⁵
 };
 
 /// A validated polyhedron: every face planar, simple and of nonzero area;

@@ -26,6 +26,7 @@
 #include "cairn/geometry/assembly.h"
 #include "cairn/lcp/lemke.h"
 #include "cairn/mechanics/contact_model.h"
+#include "cairn/mechanics/rest_solution.h"
 
 namespace cairn {
 
@@ -96,7 +97,11 @@ struct ComponentReport {
   double residual = 0;              ///< natural-map residual of the LCP solution
   double consistency_residual = 0;  ///< LCP w against the recovered body motions
   bool warm_start_used = false;
-  std::string message;  ///< diagnostics when the solve failed
+  /// Solved by the rest hypothesis (mechanics/rest_solution.h: every judged
+  /// part at rest, an LP) rather than by Lemke's method; `pivots` is then 0.
+  bool rest_solution = false;
+  int lp_iterations = 0;  ///< simplex iterations of the rest hypothesis, when tried
+  std::string message;    ///< diagnostics when the solve failed
   /// With StabilityOptions::check_equilibrium: whether the component could
   /// stand in static equilibrium (mechanics/static_equilibrium.h); empty when
   /// not asked for or when the LP solver failed.
@@ -169,6 +174,9 @@ struct StabilityWorkspace {
   };
   std::unordered_multimap<std::uint64_t, Entry> bases;  ///< hash of Entry::key → entry
   int warm_starts = 0;                                  ///< solves answered by a warm start
+  /// The last rest-hypothesis LP basis of each structure (same hash; a hint,
+  /// so no exact compare: a wrong basis costs iterations, not answers).
+  std::unordered_map<std::uint64_t, RestLpBasis> rest_bases;
 };
 
 /// Options of AnalyzeConfiguration.
@@ -184,6 +192,16 @@ struct StabilityOptions {
   /// static equilibrium exists (StabilityResult::static_equilibrium,
   /// weakly_stable). One LP per component; off along motion paths.
   bool check_equilibrium = false;
+  /// With a drive, in 3-D with friction: first look for a solution of a
+  /// component's LCP that keeps every judged part at rest and the driven ones
+  /// on their prescribed motion (mechanics/rest_solution.h, a linear
+  /// program), and use Lemke's method only when there is none (or the
+  /// component carries a part, whose motion is not known beforehand). In 3-D
+  /// the frictional LCP of stacked blocks has whole families of solutions, of
+  /// which Lemke's method picks one by its pivoting rules (and on large
+  /// components fails); this asks whether the parts can stay put (weak
+  /// stability). Off: Lemke's method only, as in 2-D.
+  bool rest_first = true;
 };
 
 /// The contact LCP of every contact-graph component of `config`: the first
