@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
@@ -49,8 +50,9 @@ INSTANTIATE_TEST_SUITE_P(
         ExampleVerdict{"ladder.json", "", 0}, ExampleVerdict{"paper_fig1.json", "", 0},
         ExampleVerdict{"paper_fig1.json", "C", 1}, ExampleVerdict{"paper_fig1.json", "D", 0},
         ExampleVerdict{"paper_fig1.json", "D,C", 0}, ExampleVerdict{"paper_fig4.json", "", 0},
-        ExampleVerdict{"paper_fig4.json", "A", 1},
-        ExampleVerdict{"paper_fig4_fixels.json", "A", 0}),
+        ExampleVerdict{"paper_fig4.json", "A", 1}, ExampleVerdict{"paper_fig4_fixels.json", "A", 0},
+        ExampleVerdict{"paper_fig9.json", "", 0}, ExampleVerdict{"paper_fig9.json", "A", 1},
+        ExampleVerdict{"jenga.json", "", 0}),
     [](const ::testing::TestParamInfo<ExampleVerdict>& param_info) {
       std::string name = std::string(param_info.param.file);
       name = name.substr(0, name.size() - 5);
@@ -155,6 +157,40 @@ TEST(CheckErrors, BadSceneNamesFileAndJsonPath) {
   EXPECT_NE(r.err.find(path.string()), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("parts[1].polygon"), std::string::npos) << r.err;
   std::filesystem::remove(path);
+}
+
+// The 3-D document (docs/cli.md): 3-vectors everywhere, contact patches, and
+// for a part that tips the axis through its pivot. Fig. 9 without A: C's
+// weight on B's slab overhang tips B (and C with it) about lines along y.
+TEST(CheckJson, ThreeDimensionalDocument) {
+  const CliRun r = Cairn("check " + ExamplePath("paper_fig9.json") + " --without A --json");
+  ASSERT_EQ(r.exit_code, 1) << r.err;
+  const auto doc = nlohmann::json::parse(r.out);
+  EXPECT_EQ(doc["dimension"], 3);
+  EXPECT_EQ(doc["formulation"], "baraff");
+  EXPECT_EQ(doc["moving"], nlohmann::json::array({"B", "C"}));
+  for (const auto& p : doc["parts"]) {
+    EXPECT_EQ(p["centroid"].size(), 3u) << p["name"];
+    if (p["fixed"] || p["name"] == "G") continue;
+    EXPECT_EQ(p["motion"], "tips") << p["name"];
+    ASSERT_EQ(p["axis"].size(), 3u);
+    EXPECT_NEAR(std::abs(p["axis"][1].get<double>()), 1.0, 1e-12) << p["name"];
+    EXPECT_EQ(p["pivot"].size(), 3u);
+    EXPECT_EQ(p["acceleration"]["angular"].size(), 3u);
+    EXPECT_EQ(p["acceleration"]["linear"].size(), 3u);
+  }
+  // 2 face patches of 4 corners: B on the table, C on B (A is away, the pad G
+  // absent until a step grips it).
+  std::map<int, int> corners;
+  for (const auto& c : doc["contacts"]) {
+    EXPECT_EQ(c["feature"], "face-face");
+    EXPECT_EQ(c["point"].size(), 3u);
+    EXPECT_EQ(c["friction_force"].size(), 3u);
+    EXPECT_EQ(c["tangential_acceleration"].size(), 3u);
+    ++corners[c["patch"].get<int>()];
+  }
+  EXPECT_EQ(corners.size(), 2u);
+  for (const auto& [patch, n] : corners) EXPECT_EQ(n, 4) << "patch " << patch;
 }
 
 }  // namespace

@@ -122,6 +122,38 @@ TEST(Simulate, TimelineHasARowPerTickAndContactWithNormalisedForces) {
   std::filesystem::remove(csv);
 }
 
+// In 3-D the timeline has a column per coordinate and the contact's patch.
+// Fig. 9, A lifted first: at t = 0 the table carries the whole weight
+// (g = 1; A 1.5 × 2 × 0.5 at density 1, B (2 + 6) × 0.5, C 1.5 × 2.5: 9.25).
+TEST(Simulate, TimelineIn3dHasPatchesAndVectors) {
+  const std::string csv =
+      (std::filesystem::temp_directory_path() / "cairn_timeline3d_test.csv").string();
+  std::filesystem::remove(csv);
+  const CliRun r = Cairn("simulate " + ExamplePath("paper_fig9.json") + " " +
+                         Plan("paper_fig9_acb") + " --timeline " + csv);
+  ASSERT_EQ(r.exit_code, 1) << r.err;
+  std::istringstream in(Slurp(csv));
+  std::string line;
+  std::getline(in, line);
+  EXPECT_EQ(line,
+            "time,step,tick,part_a,part_b,patch,x,y,z,normal_x,normal_y,normal_z,normal_force,"
+            "friction_x,friction_y,friction_z,normal_velocity,sliding_x,sliding_y,sliding_z,"
+            "breaks,slides");
+  double table_at_0 = 0;
+  int rows = 0;
+  while (std::getline(in, line)) {
+    ++rows;
+    std::vector<std::string> f;
+    std::stringstream ss(line);
+    for (std::string cell; std::getline(ss, cell, ',');) f.push_back(cell);
+    ASSERT_EQ(f.size(), 22u) << line;
+    if (std::stod(f[0]) == 0.0 && f[4] == "table") table_at_0 += std::stod(f[12]);
+  }
+  EXPECT_GT(rows, 12);
+  EXPECT_NEAR(table_at_0, 9.25, 1e-9);
+  std::filesystem::remove(csv);
+}
+
 TEST(Simulate, DrivingIntoAWallIsInfeasibleWithExitCodeThree) {
   const std::string scene = TempFile("cairn_wall_scene.json", R"({"cairn": 1, "parts": [
     {"name": "floor", "fixed": true, "box": {"min": [-5, -1], "max": [5, 0]}},
