@@ -35,6 +35,7 @@
 #include "cairn/io/scene_reader.h"
 #include "cairn/motion/simulate.h"
 #include "cairn/stability/analyze.h"
+#include "run_benchmarks.h"
 
 namespace {
 
@@ -252,10 +253,5 @@ int main(int argc, char** argv) {
     benchmark::RegisterBenchmark(("Simulate/" + s.name + "/continue").c_str(), BM_Simulate, p, true)
         ->Unit(benchmark::kMillisecond);
   }
-  int bargc = static_cast<int>(args.size());
-  benchmark::Initialize(&bargc, args.data());
-  if (benchmark::ReportUnrecognizedArguments(bargc, args.data())) return 1;
-  benchmark::RunSpecifiedBenchmarks();
-  benchmark::Shutdown();
-  return 0;
+  return cairn::bench::RunBenchmarks(args);
 }

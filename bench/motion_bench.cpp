@@ -67,6 +67,7 @@
 #include "cairn/io/scene_reader.h"
 #include "cairn/motion/simulate.h"
 #include "cairn/stability/analyze.h"
+#include "run_benchmarks.h"
 #include "scene_builders.h"  // tests/: the scene builders the tests use
 
 namespace {
@@ -630,10 +631,5 @@ int main(int argc, char** argv) {
     if (std::string(argv[i]) != "--no_summary" &&
         std::string(argv[i]).rfind("--wall_budget=", 0) != 0)
       args.push_back(argv[i]);
-  int bargc = static_cast<int>(args.size());
-  benchmark::Initialize(&bargc, args.data());
-  if (benchmark::ReportUnrecognizedArguments(bargc, args.data())) return 1;
-  benchmark::RunSpecifiedBenchmarks();
-  benchmark::Shutdown();
-  return 0;
+  return cairn::bench::RunBenchmarks(args);
 }

@@ -27,20 +27,6 @@ const char* to_string(MotionVerdict v) {
 
 namespace {
 
-// A point or direction for people: (x, y) in 2-D, (x, y, z) in 3-D.
-std::string Pt(const Vector3& p, int dim) {
-  std::ostringstream os;
-  os.precision(4);
-  // Round-off dust (1e-12 of a unit axis) printed at 4 digits would read as a
-  // real component: below 1e-9 of the largest coordinate (or of 1) it is 0.
-  const double dust = 1e-9 * std::max(1.0, p.cwiseAbs().maxCoeff());
-  const auto clean = [dust](double x) { return std::abs(x) < dust ? 0.0 : x; };
-  os << "(" << clean(p.x()) << ", " << clean(p.y());
-  if (dim == 3) os << ", " << clean(p.z());
-  os << ")";
-  return os.str();
-}
-
 std::string Names(const Assembly& a, const std::vector<int>& parts) {
   std::string out;
   for (size_t i = 0; i < parts.size(); ++i) out += (i ? ", " : "") + a.part(parts[i]).name;
@@ -97,15 +83,7 @@ std::string Describe(const Assembly& a, const MotionFailure& f) {
     case MotionVerdict::kUnstable:
       for (size_t i = 0; i < f.motions.size(); ++i) {
         const PartMotion& m = f.motions[i];
-        os << (i ? "; " : "") << a.part(m.part).name << ' ' << to_string(m.kind);
-        if (m.kind == MotionKind::kTips && m.pivot && dim == 2)
-          os << " about " << Pt(*m.pivot, dim)
-             << (m.angular.z() > 0 ? " counter-clockwise" : " clockwise");
-        else if (m.kind == MotionKind::kTips && m.pivot)
-          os << " about the axis through " << Pt(*m.pivot, dim) << " along "
-             << Pt(m.angular.normalized(), dim);
-        else if (m.linear.norm() > 0)
-          os << " along " << Pt(m.linear.normalized(), dim);
+        os << (i ? "; " : "") << a.part(m.part).name << ' ' << DescribeMotion(m, dim);
       }
       break;
     case MotionVerdict::kUnsupported:
@@ -126,7 +104,7 @@ std::string Describe(const Assembly& a, const MotionFailure& f) {
     if (!(c.breaking || c.sliding)) continue;
     os << "; contact " << a.part(c.contact.part_a).name << "-"
        << (c.contact.part_b >= 0 ? a.part(c.contact.part_b).name : std::string("fixture")) << " at "
-       << Pt(c.contact.p_WC, dim) << (c.breaking ? " breaks" : " slides");
+       << FormatPoint(c.contact.p_WC, dim) << (c.breaking ? " breaks" : " slides");
   }
   return os.str();
 }

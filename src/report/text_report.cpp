@@ -13,12 +13,6 @@ std::string Fmt(const char* format, double x) {
   std::snprintf(buf, sizeof buf, format, std::abs(x) < 5e-13 ? 0.0 : x);
   return buf;
 }
-std::string Pt(const Vector3& v, int dim) {
-  // Round-off dust below 1e-9 of the largest coordinate (or of 1) prints as 0.
-  const double dust = 1e-9 * std::max(1.0, v.cwiseAbs().maxCoeff());
-  const auto c = [dust](double x) { return Fmt("%.4g", std::abs(x) < dust ? 0.0 : x); };
-  return "(" + c(v.x()) + ", " + c(v.y()) + (dim == 3 ? ", " + c(v.z()) : std::string()) + ")";
-}
 std::string PartName(const Assembly& a, int i) { return i >= 0 ? a.part(i).name : "fixture"; }
 }  // namespace
 
@@ -70,17 +64,9 @@ std::string StabilityToText(const Assembly& assembly, const Configuration& confi
     if (!m.moving) continue;
     const Part& p = assembly.part(m.part);
     const char* what = st ? "velocity" : "acceleration";
-    os << "  " << p.name << ' ' << to_string(m.kind);
-    if (m.kind == MotionKind::kTips && m.pivot && dim == 2)
-      os << " about " << Pt(*m.pivot, dim)
-         << (m.angular.z() > 0 ? " counter-clockwise" : " clockwise");
-    else if (m.kind == MotionKind::kTips && m.pivot)
-      os << " about the axis through " << Pt(*m.pivot, dim) << " along "
-         << Pt(m.angular.normalized(), dim);
-    else if (m.linear.norm() > 0)
-      os << " along " << Pt(m.linear.normalized(), dim);
-    os << ": centroid " << what << ' ' << Pt(m.linear, dim) << ", angular "
-       << (dim == 2 ? Fmt("%.4g", m.angular.z()) : Pt(m.angular, dim)) << '\n';
+    os << "  " << p.name << ' ' << DescribeMotion(m, dim);
+    os << ": centroid " << what << ' ' << FormatPoint(m.linear, dim) << ", angular "
+       << (dim == 2 ? Fmt("%.4g", m.angular.z()) : FormatPoint(m.angular, dim)) << '\n';
   }
 
   // Contact forces.
@@ -89,12 +75,12 @@ std::string StabilityToText(const Assembly& assembly, const Configuration& confi
     const Contact& c = cr.contact;
     // The force on a from b acts along n: "b pushes a".
     os << "    " << PartName(assembly, c.part_b) << " pushes " << PartName(assembly, c.part_a)
-       << " at " << Pt(c.p_WC, dim) << " n=" << Pt(c.n_W, dim) << "  normal "
+       << " at " << FormatPoint(c.p_WC, dim) << " n=" << FormatPoint(c.n_W, dim) << "  normal "
        << Fmt("%.6g", cr.normal_force / force_scale);
     if (c.mu > 0 && dim == 2)
       os << "  friction " << Fmt("%.6g", cr.friction_force.dot(c.t_W()) / force_scale);
     else if (c.mu > 0)
-      os << "  friction " << Pt(cr.friction_force / force_scale, dim);
+      os << "  friction " << FormatPoint(cr.friction_force / force_scale, dim);
     if (cr.breaking) os << "  BREAKS";
     if (cr.sliding) os << "  SLIDES";
     os << '\n';

@@ -15,6 +15,24 @@ using testing::Slurp;
 
 std::string Plan(const std::string& name) { return ExamplePath("plans/" + name + ".plan.json"); }
 
+// A timeline CSV: its header line and its rows split at the commas.
+struct Csv {
+  std::string header;
+  std::vector<std::vector<std::string>> rows;
+};
+
+Csv ReadCsv(const std::string& path) {
+  Csv csv;
+  std::istringstream in(Slurp(path));
+  std::getline(in, csv.header);
+  for (std::string line; std::getline(in, line);) {
+    std::vector<std::string>& f = csv.rows.emplace_back();
+    std::stringstream ss(line);
+    for (std::string cell; std::getline(ss, cell, ',');) f.push_back(cell);
+  }
+  return csv;
+}
+
 std::string TempFile(const std::string& name, const std::string& text) {
   const auto path = std::filesystem::temp_directory_path() / name;
   std::ofstream(path) << text;
@@ -99,25 +117,18 @@ TEST(Simulate, TimelineHasARowPerTickAndContactWithNormalisedForces) {
   const CliRun r = Cairn("simulate " + ExamplePath("paper_fig1.json") + " " +
                          Plan("paper_fig1_dcba") + " --timeline " + csv + " --normalize B");
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  std::istringstream in(Slurp(csv));
-  std::string line;
-  std::getline(in, line);
-  EXPECT_EQ(line,
+  const Csv t = ReadCsv(csv);
+  EXPECT_EQ(t.header,
             "time,step,tick,part_a,part_b,x,y,normal_x,normal_y,normal_force,friction_force,"
             "normal_velocity,sliding_velocity,breaks,slides");
   // At t = 0 the table carries everything: Σ (A on E) = total mass / m_B
   // (g = 1, unit density: A 2, B 3, C 1.5, D 3, over m_B = 3).
   double table_at_0 = 0;
-  int rows = 0;
-  while (std::getline(in, line)) {
-    ++rows;
-    std::vector<std::string> f;
-    std::stringstream ss(line);
-    for (std::string cell; std::getline(ss, cell, ',');) f.push_back(cell);
-    ASSERT_EQ(f.size(), 15u) << line;
+  for (const auto& f : t.rows) {
+    ASSERT_EQ(f.size(), 15u);
     if (std::stod(f[0]) == 0.0 && f[4] == "E") table_at_0 += std::stod(f[9]);
   }
-  EXPECT_GT(rows, 20);
+  EXPECT_GT(t.rows.size(), 20u);
   EXPECT_NEAR(table_at_0, 9.5 / 3.0, 1e-9);
   std::filesystem::remove(csv);
 }
@@ -132,24 +143,17 @@ TEST(Simulate, TimelineIn3dHasPatchesAndVectors) {
   const CliRun r = Cairn("simulate " + ExamplePath("paper_fig9.json") + " " +
                          Plan("paper_fig9_acb") + " --timeline " + csv);
   ASSERT_EQ(r.exit_code, 1) << r.err;
-  std::istringstream in(Slurp(csv));
-  std::string line;
-  std::getline(in, line);
-  EXPECT_EQ(line,
+  const Csv t = ReadCsv(csv);
+  EXPECT_EQ(t.header,
             "time,step,tick,part_a,part_b,patch,x,y,z,normal_x,normal_y,normal_z,normal_force,"
             "friction_x,friction_y,friction_z,normal_velocity,sliding_x,sliding_y,sliding_z,"
             "breaks,slides");
   double table_at_0 = 0;
-  int rows = 0;
-  while (std::getline(in, line)) {
-    ++rows;
-    std::vector<std::string> f;
-    std::stringstream ss(line);
-    for (std::string cell; std::getline(ss, cell, ',');) f.push_back(cell);
-    ASSERT_EQ(f.size(), 22u) << line;
+  for (const auto& f : t.rows) {
+    ASSERT_EQ(f.size(), 22u);
     if (std::stod(f[0]) == 0.0 && f[4] == "table") table_at_0 += std::stod(f[12]);
   }
-  EXPECT_GT(rows, 12);
+  EXPECT_GT(t.rows.size(), 12u);
   EXPECT_NEAR(table_at_0, 9.25, 1e-9);
   std::filesystem::remove(csv);
 }

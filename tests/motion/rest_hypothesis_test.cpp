@@ -92,14 +92,19 @@ TEST(RestHypothesis, TheLayerAboveRestsOnTheSideBlocksWhileTheMiddleOneIsPulled)
   EXPECT_NEAR(weight_on_it, 0, 1e-9);
 }
 
-TEST(RestHypothesis, ABlockRidingOnThePulledOneIsDraggedAlong) {
+// B (0.2 m cube) resting on A (0.4 × 0.2 × 0.1 m) on a fixed table, μ = 0.5.
+AssemblyDef BlockOnAPulledBlock() {
   AssemblyDef def;
   def.friction = kMu;
   def.gravity = Vector3(0, 0, -9.81);
   def.parts.push_back(Box3("table", {-1, -1, -0.1}, {1, 1, 0}, true));
   def.parts.push_back(Box3("A", {-0.2, -0.1, 0}, {0.2, 0.1, 0.1}));
   def.parts.push_back(Box3("B", {-0.1, -0.1, 0.1}, {0.1, 0.1, 0.2}));
-  const Assembly a = Assembly::Create(def);
+  return def;
+}
+
+TEST(RestHypothesis, ABlockRidingOnThePulledOneIsDraggedAlong) {
+  const Assembly a = Assembly::Create(BlockOnAPulledBlock());
   StabilityOptions options;
   options.dt = 0.1;
   const DriveInputs drive = Pull(a, a.FindPart("A"), 0.1);
@@ -124,13 +129,7 @@ TEST(RestHypothesis, ABlockRidingOnThePulledOneIsDraggedAlong) {
 TEST(RestHypothesis, OffItGivesLemkesAnswer) {
   // rest_first = false: Lemke's method only (whatever solution it finds, it
   // is checked); the same verdict on the dragged block.
-  AssemblyDef def;
-  def.friction = kMu;
-  def.gravity = Vector3(0, 0, -9.81);
-  def.parts.push_back(Box3("table", {-1, -1, -0.1}, {1, 1, 0}, true));
-  def.parts.push_back(Box3("A", {-0.2, -0.1, 0}, {0.2, 0.1, 0.1}));
-  def.parts.push_back(Box3("B", {-0.1, -0.1, 0.1}, {0.1, 0.1, 0.2}));
-  const Assembly a = Assembly::Create(def);
+  const Assembly a = Assembly::Create(BlockOnAPulledBlock());
   StabilityOptions options;
   options.dt = 0.1;
   options.rest_first = false;
