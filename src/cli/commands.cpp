@@ -16,111 +16,10 @@
 #include "cairn/motion/simulate.h"
 #include "cairn/report/report.h"
 #include "cairn/stability/analyze.h"
+#include "cli/model.h"
 #include "cli/scene_writer.h"
 
 namespace cairn::cli {
-
-namespace {
-
-// ---- Reading the model -----------------------------------------------------
-
-// A model read from a file with the command line's changes applied: the
-// definition (what convert writes) and the validated Assembly.
-struct Model {
-  AssemblyDef def;
-  Assembly assembly;
-};
-
-std::string Num(double x) {
-  std::ostringstream os;
-  os << x;
-  return os.str();
-}
-
-// Reads `file` in `args.format` and applies --friction, --supports and
-// --gravity. Every fault is an InputError: of the file (with its JSON path),
-// or of a flag (the flag as path).
-Model LoadModel(const std::string& file, const ModelArgs& args) {
-  if (args.friction) {
-    // CLI11 parses "nan" and "inf" as doubles; neither is a coefficient.
-    if (!std::isfinite(*args.friction))
-      throw InputError("", "--friction",
-                       "must be a finite number (got " + Num(*args.friction) + ")");
-    if (*args.friction < 0)
-      throw InputError("", "--friction", "must not be negative (got " + Num(*args.friction) + ")");
-  }
-  if (args.tolerance && !(std::isfinite(*args.tolerance) && *args.tolerance > 0))
-    throw InputError("", "--tolerance",
-                     "must be a positive length (got " + Num(*args.tolerance) + ")");
-  for (double g : args.gravity) {
-    if (!std::isfinite(g))
-      throw InputError("", "--gravity", "must have finite components (got " + Num(g) + ")");
-  }
-
-  Model m;
-  std::optional<CompasModel> compas;
-  if (args.format == "compas") {
-    // COMPAS files store no friction coefficient, and guessing one (0 is
-    // "everything slides", compas_cra's 0.84 is a choice of theirs) would
-    // change the verdict silently.
-    if (!args.friction)
-      throw InputError("", "--friction",
-                       "is required with --format compas (COMPAS files store no friction "
-                       "coefficient; give 0 for frictionless contacts)");
-    CompasOptions options;
-    options.friction = *args.friction;
-    options.tolerance = args.tolerance.value_or(0.0);
-    options.stored_interfaces = args.interfaces == "stored";
-    compas = CompasToModel(ReadCompasAssembly(file), options, file);
-    m.def = compas->def;
-  } else {
-    if (args.interfaces == "stored")
-      throw InputError("", "--interfaces",
-                       "stored is for --format compas (a scene file gives its interfaces in "
-                       "`interfaces`)");
-    try {
-      m.def = ReadSceneDef(file);
-    } catch (const InputError& e) {
-      // A COMPAS file read as a scene misses the version key first: say what
-      // to do instead of only what is wrong.
-      if (e.json_path() != "cairn" || e.message().find("required key is missing") != 0) throw;
-      throw InputError(e.file(), e.json_path(),
-                       e.message() + "; if this is a COMPAS assembly, give --format compas");
-    }
-    if (args.friction) m.def.friction = *args.friction;
-    if (args.tolerance) m.def.tolerance = *args.tolerance;
-  }
-
-  const bool is3 = !m.def.parts.empty() && m.def.parts[0].polyhedron.has_value();
-  for (const std::string& name : args.supports) {
-    const auto it = std::find_if(m.def.parts.begin(), m.def.parts.end(),
-                                 [&](const PartDef& p) { return p.name == name; });
-    if (it == m.def.parts.end())
-      throw InputError("", "--supports", "no part named '" + name + "' in " + file);
-    if (it->tool)
-      throw InputError("", "--supports",
-                       "part '" + name + "' is a tool (a gripper's pad): it cannot be fixed");
-    it->fixed = true;
-  }
-  if (!args.gravity.empty()) {
-    const size_t dim = is3 ? 3 : 2;
-    if (args.gravity.size() != dim)
-      throw InputError("", "--gravity",
-                       "must have " + std::to_string(dim) + " numbers in a " + std::to_string(dim) +
-                           "-D scene, not " + std::to_string(args.gravity.size()));
-    m.def.gravity = Vector3(args.gravity[0], args.gravity[1], is3 ? args.gravity[2] : 0.0);
-  }
-
-  if (compas) {
-    compas->def = m.def;
-    m.assembly = CreateCompasAssembly(*compas, file);
-  } else {
-    m.assembly = Assembly::Create(m.def, file);
-  }
-  return m;
-}
-
-}  // namespace
 
 int RunCheck(const CheckArgs& args, std::ostream& out, std::ostream& err) {
   try {
@@ -157,29 +56,6 @@ int RunCheck(const CheckArgs& args, std::ostream& out, std::ostream& err) {
     return kExitBadInput;
   }
 }
-
-namespace {
-
-// Writes `text` to `path` whole or not at all: a temporary file beside it,
-// renamed over it once complete. @throws InputError naming the flag.
-void WriteAtomically(const std::string& path, const std::string& text, const std::string& flag) {
-  const std::string tmp = path + ".tmp";
-  {
-    std::ofstream f(tmp, std::ios::binary);
-    if (!(f << text) || !f.flush()) {
-      std::remove(tmp.c_str());
-      throw InputError("", flag, "cannot write '" + path + "'");
-    }
-  }
-  std::error_code ec;
-  std::filesystem::rename(tmp, path, ec);
-  if (ec) {
-    std::remove(tmp.c_str());
-    throw InputError("", flag, "cannot write '" + path + "': " + ec.message());
-  }
-}
-
-}  // namespace
 
 int RunSimulate(const SimulateArgs& args, std::ostream& out, std::ostream& err) {
   try {

@@ -56,6 +56,10 @@ struct SimulateArgs {
   std::string timeline;   // CSV file, or empty
   std::string normalize;  // part name, or empty
   bool continue_after_failure = false;
+  /// --suggest-fixtures: when a step fails, look for the fewest fixels that
+  /// make the plan stable (planning/fixtures.h) and report them.
+  bool suggest_fixtures = false;
+  int max_fixels = 3;  ///< --max-fixels
   ModelArgs model;
 };
 
@@ -73,5 +77,36 @@ struct ConvertArgs {
 /// scene file (format v1), whole or not at all; a one-line summary to `out`.
 /// Exit 0, or 2 on bad input (nothing written).
 int RunConvert(const ConvertArgs& args, std::ostream& out, std::ostream& err);
+
+struct BlockingArgs {
+  std::string scene;
+  bool json = false;
+  std::vector<std::string> without;  // part names
+  ModelArgs model;
+};
+
+/// `cairn blocking`: the NDBG of the scene (planning/blocking.h), per cell
+/// its directions and the parts that can leave. Exit 0, or 2 on bad input.
+int RunBlocking(const BlockingArgs& args, std::ostream& out, std::ostream& err);
+
+struct PlanArgs {
+  std::string scene;
+  bool json = false;
+  int max = 0;                    // --max K; 0: every sequence
+  int threads = 0;                // --threads; 0: every core
+  std::string paths;              // --paths FILE: candidate paths per part
+  std::string emit_plans;         // --emit-plans DIR
+  std::string dot;                // --dot FILE
+  std::vector<std::string> keep;  // --keep: parts never removed
+  std::string support = "full";   // --support full|none|both
+  bool no_subassemblies = false;  // --single-parts
+  double dt = 0, speed = 0;       // --dt, --speed; 0: automatic
+  int allow_fixtures = 0;         // --allow-fixtures N
+  ModelArgs model;
+};
+
+/// `cairn plan`: stable disassembly sequences (planning/planner.h). Exit 0
+/// when a stable sequence was found, 1 when none, 2 on bad input.
+int RunPlan(const PlanArgs& args, std::ostream& out, std::ostream& err);
 
 }  // namespace cairn::cli

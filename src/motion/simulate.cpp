@@ -131,6 +131,11 @@ SimulationResult SimulatePlan(const Assembly& assembly, const Plan& plan,
   if (assemble)
     for (const PlanStep& step : plan.steps)
       for (int p : step.remove) config.present[p] = false;
+  for (int p : options.absent) {
+    CAIRN_THROW_UNLESS(p >= 0 && p < n, "SimulatePlan: absent part " + std::to_string(p) +
+                                            " out of range");
+    config.present[p] = false;
+  }
 
   std::vector<Vector6> nu(n, Vector6::Zero());  // each part's velocity after the last tick
   std::vector<bool> held(n, false);             // held in place after a failure (continue mode)

@@ -101,6 +101,9 @@ struct AnalysisInputs {
 struct SimulationOptions {
   bool continue_after_failure = false;
   bool record_timeline = false;
+  /// Parts (indices) taken away before the plan starts: the plan runs on that
+  /// subassembly (a node of the planner's AND/OR graph). Default: none.
+  std::vector<int> absent;
   LemkeParameters lemke;
   /// Called before every AnalyzeConfiguration, in order (may be empty).
   std::function<void(const AnalysisInputs&)> on_analysis;

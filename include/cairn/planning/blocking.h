@@ -1,0 +1,129 @@
+#pragma once
+/// @file
+/// Geometric feasibility of translational removals: directional blocking
+/// graphs and the nondirectional blocking graph (NDBG) of Wilson and Latombe
+/// ("Geometric reasoning about mechanical assembly", AIJ 1994; paper refs.
+/// [16], [36]).
+///
+/// For a unit direction d, the directional blocking graph DBG(d) has an arc
+/// i → j when part i, translated along d while every other part stays, runs
+/// into part j:
+///   - *infinitesimally* (BlockingKind::kInfinitesimal): i has a contact with j
+///     whose normal n (from j into i) has d · n < 0 (beyond the angle
+///     tolerance): the smallest motion along d pushes into j;
+///   - *to infinity* (BlockingKind::kInfinity): i + t d overlaps the interior
+///     of j (deeper than the length tolerance) for some t > 0. This contains
+///     the infinitesimal relation.
+/// A subassembly S can leave along d when no part of S has an arc to a
+/// present part outside S (CanLeave); the smallest such S containing a part
+/// i is the set of parts reachable from i (BlockingClosure), a union of
+/// strongly connected components of DBG(d).
+///
+/// The NDBG partitions the directions into cells on which DBG(d) is
+/// constant:
+///   - 2-D: the circle of directions is cut at the critical directions (those
+///     perpendicular to a contact normal, where the infinitesimal relation
+///     changes, and the directions where a pair's swept overlap starts or
+///     stops, which are directions of differences of the pair's vertices: the
+///     vertices of their Minkowski difference). The cells are the critical
+///     directions and the open arcs between them; both graphs are exact on
+///     every cell.
+///   - 3-D: the great circles d · n = 0 of the distinct contact normals cut
+///     the sphere into vertices, open arcs and open faces: the exact
+///     infinitesimal NDBG. The relation to infinity is evaluated at each
+///     cell's representative direction by a swept-collision test.
+///
+/// Fixed parts are in the graphs like any other part (they block; a set that
+/// contains one cannot leave). Absent parts (Configuration::present) and
+/// tools have no arcs.
+
+#include <vector>
+
+#include "cairn/core/types.h"
+#include "cairn/geometry/assembly.h"
+
+namespace cairn {
+
+/// Which motion a blocking graph is about.
+enum class BlockingKind {
+  kInfinitesimal,  ///< the smallest motion along d (from the contact normals)
+  kInfinity,       ///< the whole translation along d, to infinity (swept collision)
+};
+
+/// "infinitesimal", "infinity".
+const char* to_string(BlockingKind kind);
+
+/// DBG(d): which parts each part runs into when translated along d.
+struct BlockingGraph {
+  Vector3 direction{0, 1, 0};  ///< d, unit, world frame (2-D: z = 0)
+  BlockingKind kind = BlockingKind::kInfinity;
+  /// (num_parts) blockers[i]: the parts j with an arc i → j, ascending.
+  std::vector<std::vector<int>> blockers;
+
+  /// True when there is an arc i → j.
+  bool Blocks(int i, int j) const;
+};
+
+/// One cell of the NDBG: a set of directions with one blocking graph each.
+struct NdbgCell {
+  /// The cell's dimension: 0 for a critical direction (2-D) or a vertex of
+  /// the arrangement (3-D), 1 for an open arc, 2 for an open face (3-D).
+  int cell_dimension = 1;
+  /// A direction of the cell, unit: where the cell contains a world axis
+  /// direction (±x, ±y, ±z), that one, else the middle of the arc (2-D) or a
+  /// point well inside the face (3-D). Removal paths use it.
+  Vector3 direction{0, 1, 0};
+  /// 2-D: the cell's angular extent, radians counter-clockwise from +x in
+  /// [0, 2π), from `angle_from` to `angle_to` (equal for a critical direction;
+  /// angle_to < angle_from when the arc crosses +x). 3-D: both 0.
+  double angle_from = 0, angle_to = 0;
+  /// 3-D: the sign (−1, 0, +1) of d · n_k for each of Ndbg::normals, the
+  /// cell's position in the arrangement. 2-D: empty.
+  std::vector<int> signs;
+  BlockingGraph infinitesimal;  ///< DBG(d) for the smallest motion
+  BlockingGraph infinity;       ///< DBG(d) for removal to infinity (at `direction` in 3-D)
+  /// Movable present parts that can leave alone to infinity along the cell's
+  /// directions (no arc to another present part in `infinity`), ascending.
+  std::vector<int> removable;
+};
+
+/// The nondirectional blocking graph of one configuration.
+struct Ndbg {
+  int dimension = 2;
+  /// The distinct contact normals (unit, one of each ± pair, in order of
+  /// first appearance) that define the cells: 3-D the great circles, 2-D the
+  /// critical directions ±(−n_y, n_x) of the infinitesimal relation.
+  std::vector<Vector3> normals;
+  /// 2-D: in counter-clockwise order from +x, critical directions and arcs
+  /// alternating. 3-D: vertices, then arcs, then faces, each in a fixed order.
+  std::vector<NdbgCell> cells;
+};
+
+/// DBG(d) of `config` (every present part; tools absent unless present).
+/// `direction` need not be unit (it is normalised; nonzero).
+BlockingGraph ComputeBlockingGraph(const Assembly& assembly, const Configuration& config,
+                                   const Vector3& direction, BlockingKind kind);
+
+/// The NDBG of `config`: its cells with both graphs each. Deterministic (the
+/// same cells in the same order on every run and thread count).
+Ndbg ComputeNdbg(const Assembly& assembly, const Configuration& config);
+
+/// True when the set `in_s` (num_parts flags; only present movable parts)
+/// can leave along the graph's direction: no part of S has an arc to a part
+/// that is present and outside S.
+bool CanLeave(const BlockingGraph& graph, const std::vector<bool>& in_s,
+              const std::vector<bool>& present);
+
+/// The smallest set containing `part` that can leave along the graph's
+/// direction, among the `present` parts: every present part reachable from
+/// `part` by arcs (ascending). It contains a fixed part when nothing with
+/// `part` can leave.
+std::vector<int> BlockingClosure(const BlockingGraph& graph, int part,
+                                 const std::vector<bool>& present);
+
+/// The strongly connected components of the graph restricted to the present
+/// parts, each ascending, in a deterministic order (of their smallest part).
+std::vector<std::vector<int>> StronglyConnectedComponents(const BlockingGraph& graph,
+                                                          const std::vector<bool>& present);
+
+}  // namespace cairn
