@@ -1,8 +1,38 @@
-#include "cli/commands.h"
+// `cairn blocking`: the NDBG of a scene (planning/blocking.h) and, per cell,
+// the parts that can be taken out along its directions.
 #include <ostream>
+
+#include "cairn/core/error.h"
+#include "cairn/planning/blocking.h"
+#include "cairn/report/blocking_report.h"
+#include "cli/commands.h"
+#include "cli/model.h"
+
 namespace cairn::cli {
-int RunBlocking(const BlockingArgs&, std::ostream&, std::ostream& err) {
-  err << "cairn: blocking: being written\n";
-  return kExitBadInput;
+
+int RunBlocking(const BlockingArgs& args, std::ostream& out, std::ostream& err) {
+  try {
+    const Assembly assembly = LoadModel(args.scene, args.model).assembly;
+    ReportOptions report;
+    report.scene_file = args.scene;
+    Configuration config = Configuration::Assembled(assembly);
+    // Parts taken away first, by name, as `cairn check --without` does.
+    for (const std::string& name : args.without) {
+      const int i = assembly.FindPart(name);
+      if (i < 0) throw InputError("", "--without", "no part named '" + name + "' in " + args.scene);
+      config.present[i] = false;
+      report.without.push_back(i);
+    }
+    const Ndbg ndbg = ComputeNdbg(assembly, config);
+    if (args.json)
+      out << NdbgToJson(assembly, ndbg, report).dump(2) << '\n';
+    else
+      out << NdbgToText(assembly, ndbg, report);
+    return kExitStable;
+  } catch (const InputError& e) {
+    err << "cairn: error: " << e.what() << '\n';
+    return kExitBadInput;
+  }
 }
+
 }  // namespace cairn::cli

@@ -14,6 +14,8 @@
 #include "cairn/io/plan_reader.h"
 #include "cairn/io/scene_reader.h"
 #include "cairn/motion/simulate.h"
+#include "cairn/planning/fixtures.h"
+#include "cairn/report/fixture_report.h"
 #include "cairn/report/report.h"
 #include "cairn/stability/analyze.h"
 #include "cli/model.h"
@@ -59,7 +61,9 @@ int RunCheck(const CheckArgs& args, std::ostream& out, std::ostream& err) {
 
 int RunSimulate(const SimulateArgs& args, std::ostream& out, std::ostream& err) {
   try {
-    const Assembly assembly = LoadModel(args.scene, args.model).assembly;
+    // The definition too: a fixel suggestion adds fixtures to it.
+    const Model model = LoadModel(args.scene, args.model);
+    const Assembly& assembly = model.assembly;
     if (assembly.has_interfaces())
       throw InputError(args.scene, "interfaces",
                        "the contacts are given as interfaces of the assembled configuration: "
@@ -79,10 +83,27 @@ int RunSimulate(const SimulateArgs& args, std::ostream& out, std::ostream& err) 
     options.continue_after_failure = args.continue_after_failure;
     options.record_timeline = !args.timeline.empty();
     const SimulationResult result = SimulatePlan(assembly, plan, options);
+    // --suggest-fixtures: when the plan fails, the fewest fixels that make it
+    // stable (docs/fixtures.md). The exit code stays the plan's own verdict.
+    std::optional<FixtureSuggestion> suggestion;
+    FixtureSearchOptions search;
+    search.max_fixels = args.max_fixels;
+    if (args.suggest_fixtures && !result.stable())
+      suggestion = SuggestFixtures(model.def, assembly, plan, result, search);
     // Everything is computed before anything is written.
-    const std::string text = args.json
-                                 ? SimulationToJson(assembly, plan, result, report).dump(2) + "\n"
-                                 : SimulationToText(assembly, plan, result, report);
+    std::string text;
+    if (args.json) {
+      nlohmann::json doc = SimulationToJson(assembly, plan, result, report);
+      // null: asked for, but the plan is stable without fixels.
+      if (args.suggest_fixtures)
+        doc["fixtures"] = suggestion
+                              ? FixtureSuggestionToJson(assembly, *suggestion, search, report)
+                              : nlohmann::json(nullptr);
+      text = doc.dump(2) + "\n";
+    } else {
+      text = SimulationToText(assembly, plan, result, report);
+      if (suggestion) text += FixtureSuggestionToText(assembly, *suggestion, search, report);
+    }
     if (!args.timeline.empty())
       WriteAtomically(args.timeline, TimelineToCsv(assembly, result, report), "--timeline");
     out << text;

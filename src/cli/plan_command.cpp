@@ -1,8 +1,106 @@
-#include "cli/commands.h"
+// `cairn plan`: stable disassembly sequences of a scene (docs/planning.md).
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
 #include <ostream>
+#include <sstream>
+
+#include "cairn/core/error.h"
+#include "cairn/io/paths_reader.h"
+#include "cairn/planning/planner.h"
+#include "cairn/report/plan_report.h"
+#include "cli/commands.h"
+#include "cli/model.h"
+#include "cli/scene_writer.h"
+
 namespace cairn::cli {
-int RunPlan(const PlanArgs&, std::ostream&, std::ostream& err) {
-  err << "cairn: plan: being written\n";
-  return kExitBadInput;
+namespace {
+
+using nlohmann::json;
+
+std::string Numbered(const std::string& stem, size_t k, const std::string& suffix) {
+  char buf[16];
+  std::snprintf(buf, sizeof buf, "%03zu", k + 1);
+  return stem + buf + suffix;
 }
+
+}  // namespace
+
+int RunPlan(const PlanArgs& args, std::ostream& out, std::ostream& err) {
+  try {
+    const Model model = LoadModel(args.scene, args.model);
+    const Assembly& assembly = model.assembly;
+    if (assembly.has_interfaces())
+      throw InputError(args.scene, "interfaces",
+                       "the contacts are given as interfaces of the assembled configuration: "
+                       "parts cannot be moved, so no removal can be planned");
+    PlannerOptions options;
+    options.max_sequences = args.max;
+    options.threads = args.threads;
+    options.subassemblies = !args.no_subassemblies;
+    options.dt = args.dt;
+    options.speed = args.speed;
+    options.allow_fixtures = args.allow_fixtures;
+    options.support = args.support == "none"   ? SupportChoice::kNone
+                      : args.support == "both" ? SupportChoice::kBoth
+                                               : SupportChoice::kFull;
+    for (const std::string& name : args.keep) {
+      const int i = assembly.FindPart(name);
+      if (i < 0) throw InputError("", "--keep", "no part named '" + name + "' in " + args.scene);
+      options.keep.push_back(i);
+    }
+    if (!args.paths.empty()) options.given_paths = ReadCandidatePaths(args.paths, assembly);
+
+    const PlannerResult result = PlanDisassembly(model.def, assembly, options);
+
+    // Everything is computed before anything is written.
+    const std::string text = args.json ? PlannerToJson(assembly, result, args.scene).dump(2) + "\n"
+                                       : PlannerToText(assembly, result, args.scene);
+    if (!args.emit_plans.empty()) {
+      std::error_code ec;
+      std::filesystem::create_directories(args.emit_plans, ec);
+      if (ec)
+        throw InputError("", "--emit-plans",
+                         "cannot create folder '" + args.emit_plans + "': " + ec.message());
+      const std::filesystem::path dir(args.emit_plans);
+      const int dim = assembly.dimension();
+      for (size_t k = 0; k < result.sequences.size(); ++k) {
+        const PlannedSequence& s = result.sequences[k];
+        WriteAtomically(
+            (dir / Numbered("sequence_", k, ".plan.json")).string(),
+            PlanDefToJson(SequenceToPlanDef(s, result, PlanMode::kDisassemble), dim).dump(2) + "\n",
+            "--emit-plans");
+        if (!s.fixels.empty()) {
+          // The plan needs its fixels: the scene with them, beside the plan.
+          AssemblyDef def = model.def;
+          def.fixtures.insert(def.fixtures.end(), s.fixels.begin(), s.fixels.end());
+          WriteAtomically((dir / Numbered("sequence_", k, ".scene.json")).string(),
+                          WriteSceneJson(def), "--emit-plans");
+          continue;  // the assembly direction was not checked with fixels
+        }
+        WriteAtomically(
+            (dir / Numbered("sequence_", k, ".assemble.plan.json")).string(),
+            PlanDefToJson(SequenceToPlanDef(s, result, PlanMode::kAssemble), dim).dump(2) + "\n",
+            "--emit-plans");
+      }
+      for (size_t k = 0; k < result.assembly_only.size(); ++k)
+        WriteAtomically((dir / Numbered("assembly_only_", k, ".plan.json")).string(),
+                        PlanDefToJson(SequenceToPlanDef(result.assembly_only[k], result,
+                                                        PlanMode::kAssemble),
+                                      dim)
+                                .dump(2) +
+                            "\n",
+                        "--emit-plans");
+    }
+    if (!args.dot.empty()) WriteAtomically(args.dot, PlannerToDot(assembly, result), "--dot");
+    out << text;
+    return result.sequences.empty() ? kExitUnstable : kExitStable;
+  } catch (const InputError& e) {
+    err << "cairn: error: " << e.what() << '\n';
+    return kExitBadInput;
+  }
+}
+
 }  // namespace cairn::cli

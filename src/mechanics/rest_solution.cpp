@@ -323,4 +323,6 @@ RestSolution FindRestSolution(const ContactLcp& lcp, RestLpBasis* warm, RestHypo
   return SolveRestLp(lcp, nu, solved, fixed, fixed_lambda, warm);
 }
 
+void ReleaseThreadSolverState() { glp_free_env(); }
+
 }  // namespace cairn

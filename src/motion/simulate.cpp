@@ -257,8 +257,13 @@ SimulationResult SimulatePlan(const Assembly& assembly, const Plan& plan,
         f.description = "the contact LCP could not be solved: " + r.diagnostics;
       }
       if (f.verdict == MotionVerdict::kStable && !r.unsupported.empty()) {
-        f.verdict = MotionVerdict::kUnsupported;
-        f.parts = r.unsupported;
+        if (options.carry_when_unsupported) {
+          // The paper's Fig. 6 gripper: it takes the part's weight from here on.
+          support = SupportMode::kFull;
+        } else {
+          f.verdict = MotionVerdict::kUnsupported;
+          f.parts = r.unsupported;
+        }
       }
 
       if (f.verdict != MotionVerdict::kStable && !step_failed) {

@@ -1,1 +1,1024 @@
-// placeholder: being written
+// Directional blocking graphs and the NDBG (Wilson and Latombe 1994).
+//
+// The method, in the order ComputeNdbg runs it:
+//
+// 1. Scene. The present parts in the world frame (polygons, or polyhedra with
+//    their vertices, edges and face triangles), their bounding boxes, and
+//    whether each is convex; the contacts (DetectContacts) grouped by part
+//    pair, each contact's normal written as ± one of the distinct normals
+//    (Ndbg::normals, deduplicated up to sign within the angle tolerance, each
+//    turned so that its largest component is positive).
+//
+// 2. The infinitesimal relation of a pair (i, j) at d: with n the contact
+//    normal from j into i, i → j when d · n < −tol_angle, j → i when
+//    d · n > +tol_angle. It only depends on the signs of d · n_k, so on a cell
+//    of the arrangement of the great circles d · n_k = 0 (3-D) or between the
+//    perpendiculars of the n_k (2-D) it is exact.
+//
+// 3. The relation to infinity, i → j at d: the ray {t d : t > 0} meets the
+//    interior of the Minkowski difference j ⊖ i (deeper than tol_length).
+//    Decided per pair in three steps, cheapest first:
+//      a. the ray against the Minkowski difference of the bounding boxes
+//         (slab test; exact for axis-aligned boxes, which most blocks are);
+//      b. both parts convex: the separating-axis theorem over time. On each
+//         axis a (face normals of both; in 3-D also the cross products of
+//         their edge directions) the projections overlap by more than tol
+//         for t in an open interval (two linear inequalities in t); the parts
+//         overlap deeper than tol exactly where every axis does, so i → j
+//         iff the intersection of those intervals with t > 0 is not empty
+//         (for convex polytopes the penetration depth is the smallest
+//         projected overlap over exactly these axes);
+//      c. otherwise (non-convex parts) events: the overlap of i + t d and j
+//         can only start or stop when a vertex of one crosses an edge (2-D)
+//         or face (3-D) of the other, or (3-D) an edge of one crosses an
+//         edge of the other. Those times are collected and sorted; the
+//         overlap is constant between two of them, so it is tested once per
+//         interval, at its middle, with FindOverlap / FindPolyhedronOverlap.
+//    The result is united with the infinitesimal relation (an overlap that
+//    grows from a contact at a grazing angle is shallower than tol_length for
+//    a long way).
+//
+// 4. Cells, 2-D. The relation of a pair changes only at directions of
+//    differences v_j − v_i of its vertices (the vertices and edges of the
+//    Minkowski difference seen from the origin) and at the perpendiculars of
+//    its contact normals. All those candidate angles of all pairs are
+//    clustered (within tol_angle) into canonical directions; a cluster that
+//    holds a world axis direction is that axis exactly. Each pair is then
+//    evaluated at each of its candidates and at the middle of each arc
+//    between two of them, and keeps only the candidates where a bit changes.
+//    The union of the kept candidates cuts the circle; walking the cells
+//    and each pair's list side by side gives every cell's graphs without
+//    re-evaluating anything. At a critical direction the infinitesimal
+//    relation treats d · n_k as 0 when the direction is a perpendicular of
+//    n_k (the cluster it fell into), so a slot's direction is free exactly.
+//
+// 5. Cells, 3-D. The arrangement of the great circles of the distinct
+//    normals: vertices ±(n_k × n_l) normalised, arcs between consecutive
+//    vertices on each circle, faces found by pushing each arc's middle off its
+//    circle (by less than its distance to any other circle) to both sides;
+//    each cell is identified by its sign vector (unique in a central
+//    arrangement). The infinitesimal graph comes from the sign vector
+//    (exact); the graph to infinity from step 3 at the cell's representative.
+//
+// Everything is sequential and visits pairs in (i, j) order: deterministic.
+#include "cairn/planning/blocking.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <map>
+#include <numbers>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+#include "cairn/contact/contact.h"
+#include "cairn/contact/detect_contacts.h"
+#include "cairn/core/check.h"
+
+namespace cairn {
+
+const char* to_string(BlockingKind kind) {
+  switch (kind) {
+    case BlockingKind::kInfinitesimal:
+      return "infinitesimal";
+    case BlockingKind::kInfinity:
+      return "infinity";
+  }
+  return "unknown";
+}
+
+bool BlockingGraph::Blocks(int i, int j) const {
+  if (i < 0 || i >= static_cast<int>(blockers.size())) return false;
+  const std::vector<int>& b = blockers[i];
+  return std::binary_search(b.begin(), b.end(), j);
+}
+
+namespace {
+
+constexpr double kTwoPi = 2.0 * std::numbers::pi;
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// The bits of a pair (i, j), i < j, at one direction.
+enum : std::uint8_t {
+  kInfIJ = 1,  // infinitesimal: i → j
+  kInfJI = 2,  // infinitesimal: j → i
+  kFarIJ = 4,  // to infinity (contains the infinitesimal one): i → j
+  kFarJI = 8,  // to infinity: j → i
+};
+
+// One present part in the world frame of the configuration.
+struct Shape {
+  bool present = false;
+  bool fixed = false;
+  bool tool = false;
+  bool convex = false;
+  Vector3 lo{0, 0, 0}, hi{0, 0, 0};  // bounding box (length)
+  std::vector<Vector3> verts;         // every vertex, world (2-D: z = 0)
+  std::vector<Vector3> axes;          // convex: face (2-D: edge) normals, one per ± pair
+  std::vector<Vector3> edge_dirs;     // convex 3-D: edge directions, one per ± pair
+  Polygon poly;                       // 2-D: counter-clockwise, world
+  // 3-D
+  const Polyhedron* solid = nullptr;
+  Eigen::Isometry3d X_WB = Eigen::Isometry3d::Identity();
+  std::vector<std::array<int, 3>> triangles;  // indices into verts
+  std::vector<std::array<int, 2>> edges;      // indices into verts
+};
+
+// A contact of a pair, as seen by the pair's first part i: the normal from j
+// into i is sign · normals[normal].
+struct PairContact {
+  int normal = 0;
+  int sign = 1;
+};
+
+struct PartPair {
+  int i = 0, j = 0;  // i < j
+  std::vector<PairContact> contacts;
+  bool given_interface = false;  // the contacts are a given interface (shapes may overlap)
+};
+
+struct Scene {
+  int dim = 2;
+  double tol_length = 0;
+  double tol_angle = 0;
+  std::vector<Shape> shapes;     // (num_parts)
+  std::vector<Vector3> normals;  // distinct contact normals, one of each ± pair
+  std::vector<PartPair> pairs;   // present pairs, not both fixed, in (i, j) order
+  std::vector<Vector3> axes;     // world axis directions, preferred first
+};
+
+// +1, 0 or −1: the side of the plane ⟂ n that d is on, within tol.
+int SignOf(double x, double tol) { return x > tol ? 1 : (x < -tol ? -1 : 0); }
+
+// The world axis directions, the one closest to "up" (−gravity) first, then
+// in the order +x, −x, +y, −y (+z, −z): a stable sort by descending dot with up.
+std::vector<Vector3> PreferredAxes(const Assembly& assembly) {
+  const int dim = assembly.dimension();
+  std::vector<Vector3> axes;
+  for (int a = 0; a < dim; ++a) {
+    axes.push_back(Vector3::Unit(a));
+    axes.push_back(-Vector3::Unit(a));
+  }
+  const Vector3 g = assembly.gravity();
+  const Vector3 up = g.norm() > 0 ? Vector3(-g / g.norm()) : Vector3::Zero();
+  std::stable_sort(axes.begin(), axes.end(),
+                   [&](const Vector3& a, const Vector3& b) { return a.dot(up) > b.dot(up) + 1e-12; });
+  return axes;
+}
+
+// Unit vectors `v` not parallel (within tol, up to sign) to any already in `out`.
+void AddUnique(std::vector<Vector3>& out, const Vector3& v, double tol) {
+  for (const Vector3& u : out)
+    if (u.cross(v).norm() <= tol) return;
+  out.push_back(v);
+}
+
+// Step 1: the shapes, the distinct normals and the pairs with their contacts.
+Scene BuildScene(const Assembly& assembly, const Configuration& config) {
+  const int n = assembly.num_parts();
+  CAIRN_THROW_UNLESS(static_cast<int>(config.present.size()) == n &&
+                         static_cast<int>(config.poses.size()) == n,
+                     "blocking: the configuration has " + std::to_string(config.present.size()) +
+                         " presence flags and " + std::to_string(config.poses.size()) +
+                         " poses for " + std::to_string(n) + " parts");
+  const Tolerances tol = assembly.MakeTolerances();
+  Scene sc;
+  sc.dim = assembly.dimension();
+  sc.tol_length = tol.length;
+  sc.tol_angle = tol.angle;
+  sc.axes = PreferredAxes(assembly);
+  sc.shapes.resize(n);
+  for (int i = 0; i < n; ++i) {
+    Shape& s = sc.shapes[i];
+    const Part& part = assembly.part(i);
+    s.present = config.present[i];
+    s.fixed = part.fixed;
+    s.tool = part.tool;
+    if (!s.present) continue;
+    s.verts = config.WorldVertices(assembly, i);
+    s.lo = s.hi = s.verts[0];
+    for (const Vector3& v : s.verts) {
+      s.lo = s.lo.cwiseMin(v);
+      s.hi = s.hi.cwiseMax(v);
+    }
+    if (sc.dim == 2) {
+      s.poly = config.WorldPolygon(assembly, i);
+      s.verts.clear();
+      for (const Vector2& v : s.poly) s.verts.push_back(Embed(v));
+      // A simple counter-clockwise polygon is convex when it never turns right.
+      const int m = static_cast<int>(s.poly.size());
+      s.convex = true;
+      for (int k = 0; k < m && s.convex; ++k) {
+        const Vector2 &a = s.poly[k], &b = s.poly[(k + 1) % m], &c = s.poly[(k + 2) % m];
+        s.convex = LineSide(a, b, c) >= -tol.length;
+      }
+      if (s.convex)
+        for (int k = 0; k < m; ++k) AddUnique(s.axes, Embed(EdgeNormal(s.poly, k)), tol.angle);
+    } else {
+      s.solid = part.polyhedron.get();
+      s.X_WB = config.WorldTransform(assembly, i);
+      const Matrix3 R = s.X_WB.linear();
+      const auto& faces = s.solid->faces();
+      const auto& face_normals = s.solid->face_normals();
+      for (const auto& face : s.solid->face_triangles())
+        for (const auto& t : face) s.triangles.push_back(t);
+      for (const auto& face : faces) {
+        const int m = static_cast<int>(face.size());
+        for (int k = 0; k < m; ++k) {
+          const int a = face[k], b = face[(k + 1) % m];
+          if (a < b) s.edges.push_back({a, b});  // each edge once (the other face has b → a)
+        }
+      }
+      // Convex when every vertex lies behind every face's plane.
+      s.convex = true;
+      for (size_t f = 0; f < faces.size() && s.convex; ++f) {
+        const Vector3 nf = R * face_normals[f];
+        const Vector3& p = s.verts[faces[f][0]];
+        for (const Vector3& v : s.verts)
+          if (nf.dot(v - p) > tol.length) {
+            s.convex = false;
+            break;
+          }
+      }
+      if (s.convex) {
+        for (size_t f = 0; f < faces.size(); ++f) AddUnique(s.axes, R * face_normals[f], tol.angle);
+        for (const auto& e : s.edges)
+          AddUnique(s.edge_dirs, (s.verts[e[1]] - s.verts[e[0]]).normalized(), tol.angle);
+      }
+    }
+  }
+
+  // The pairs, in (i, j) order: every present pair, not both fixed.
+  std::vector<int> pair_of(static_cast<size_t>(n) * n, -1);
+  for (int i = 0; i < n; ++i) {
+    if (!sc.shapes[i].present) continue;
+    for (int j = i + 1; j < n; ++j) {
+      if (!sc.shapes[j].present || (sc.shapes[i].fixed && sc.shapes[j].fixed)) continue;
+      pair_of[static_cast<size_t>(i) * n + j] = static_cast<int>(sc.pairs.size());
+      sc.pairs.push_back({i, j, {}, false});
+    }
+  }
+  // The contacts, their normals deduplicated up to sign (first appearance).
+  for (const Contact& c : DetectContacts(assembly, config, tol.length, tol.angle)) {
+    if (c.part_b == kWorld) continue;  // fixels block nothing (blocking.h)
+    const int i = std::min(c.part_a, c.part_b), j = std::max(c.part_a, c.part_b);
+    const int p = pair_of[static_cast<size_t>(i) * n + j];
+    if (p < 0) continue;
+    // The normal from j into i.
+    const Vector3 n_ji = c.part_a == i ? c.n_W : Vector3(-c.n_W);
+    int k = 0;
+    while (k < static_cast<int>(sc.normals.size()) &&
+           sc.normals[k].cross(n_ji).norm() > tol.angle)
+      ++k;
+    if (k == static_cast<int>(sc.normals.size())) {
+      // Of the ± pair, the one whose largest component is positive.
+      Vector3 nk = n_ji.normalized();
+      int big = 0;
+      nk.cwiseAbs().maxCoeff(&big);
+      if (nk[big] < 0) nk = -nk;
+      sc.normals.push_back(nk);
+    }
+    const int sign = sc.normals[k].dot(n_ji) > 0 ? 1 : -1;
+    std::vector<PairContact>& list = sc.pairs[p].contacts;
+    const bool known = std::any_of(list.begin(), list.end(), [&](const PairContact& pc) {
+      return pc.normal == k && pc.sign == sign;
+    });
+    if (!known) list.push_back({k, sign});
+    if (c.feature == ContactFeature::kInterface) sc.pairs[p].given_interface = true;
+  }
+  return sc;
+}
+
+// Step 2: the infinitesimal bits of a pair from the signs of d · n_k.
+template <class SignFn>
+std::uint8_t InfinitesimalBits(const PartPair& pair, const SignFn& sign_of_normal) {
+  std::uint8_t bits = 0;
+  for (const PairContact& c : pair.contacts) {
+    const int s = c.sign * sign_of_normal(c.normal);
+    if (s < 0) bits |= kInfIJ;
+    if (s > 0) bits |= kInfJI;
+  }
+  return bits;
+}
+
+// Step 3a: does the ray {t d : t > 0} meet the open box (lo, hi) shrunk by tol?
+bool RayMeetsBox(const Vector3& lo, const Vector3& hi, const Vector3& d, double tol, int dim) {
+  double t0 = 0, t1 = kInf;
+  for (int c = 0; c < dim; ++c) {
+    const double a = lo[c] + tol, b = hi[c] - tol;
+    if (!(a < b)) return false;
+    if (d[c] == 0) {
+      if (!(a < 0 && 0 < b)) return false;
+      continue;
+    }
+    double ta = a / d[c], tb = b / d[c];
+    if (ta > tb) std::swap(ta, tb);
+    t0 = std::max(t0, ta);
+    t1 = std::min(t1, tb);
+    if (!(t0 < t1)) return false;
+  }
+  return t0 < t1;
+}
+
+// Narrows the open interval (t0, t1) to where c0 + t s > 0.
+void Narrow(double c0, double s, double& t0, double& t1) {
+  if (s == 0) {
+    if (!(c0 > 0)) t1 = -kInf;
+  } else if (s > 0) {
+    t0 = std::max(t0, -c0 / s);
+  } else {
+    t1 = std::min(t1, -c0 / s);
+  }
+}
+
+// Step 3b: convex a moving along d, convex b still: do they ever overlap by
+// more than tol (separating-axis theorem over time)?
+bool ConvexSweptOverlap(const Shape& a, const Shape& b, const Vector3& d, double tol, int dim) {
+  double t0 = 0, t1 = kInf;
+  const auto axis = [&](const Vector3& u) {
+    double amin = kInf, amax = -kInf, bmin = kInf, bmax = -kInf;
+    for (const Vector3& v : a.verts) {
+      const double x = u.dot(v);
+      amin = std::min(amin, x);
+      amax = std::max(amax, x);
+    }
+    for (const Vector3& v : b.verts) {
+      const double x = u.dot(v);
+      bmin = std::min(bmin, x);
+      bmax = std::max(bmax, x);
+    }
+    const double s = u.dot(d);
+    // Overlap of [amin + t s, amax + t s] and [bmin, bmax] deeper than tol.
+    Narrow(amax - bmin - tol, s, t0, t1);
+    Narrow(bmax - amin - tol, -s, t0, t1);
+    return t0 < t1;
+  };
+  for (const Vector3& u : a.axes)
+    if (!axis(u)) return false;
+  for (const Vector3& u : b.axes)
+    if (!axis(u)) return false;
+  if (dim == 3) {
+    for (const Vector3& e : a.edge_dirs)
+      for (const Vector3& f : b.edge_dirs) {
+        const Vector3 u = e.cross(f);
+        const double len = u.norm();
+        if (len < 1e-9) continue;  // parallel edges: their axis is a face normal's
+        if (!axis(u / len)) return false;
+      }
+  }
+  return t0 < t1;
+}
+
+// Sorts event times, merges those within tol, and tests the middle of each
+// interval between 0 and the last with `overlaps(t)`.
+template <class OverlapFn>
+bool AnyIntervalOverlaps(std::vector<double>& events, double tol, const OverlapFn& overlaps) {
+  std::sort(events.begin(), events.end());
+  double prev = 0;
+  for (const double t : events) {
+    if (t - prev <= tol) continue;
+    if (overlaps(0.5 * (prev + t))) return true;
+    prev = t;
+  }
+  return false;
+}
+
+// Times t > tol at which vertex p moving along d crosses the segment [q0, q1].
+void VertexEdgeEvents(const Vector2& p, const Vector2& d, const Vector2& q0, const Vector2& q1,
+                      double tol, std::vector<double>& out) {
+  const Vector2 e = q1 - q0, w = q0 - p;
+  const double den = Cross2(d, e);
+  if (std::abs(den) <= 1e-12 * e.norm()) {
+    // Parallel: when p slides along the edge's line it meets its ends.
+    if (std::abs(Cross2(w, d)) <= tol) {
+      out.push_back(w.dot(d));
+      out.push_back((q1 - p).dot(d));
+    }
+    return;
+  }
+  const double t = Cross2(w, e) / den, s = Cross2(w, d) / den;
+  if (t > tol && s >= -1e-9 && s <= 1 + 1e-9) out.push_back(t);
+}
+
+// Step 3c, 2-D: a moving along d, b still, either non-convex.
+bool EventSweptOverlap2(const Shape& a, const Shape& b, const Vector3& d3, double tol) {
+  const Vector2 d = d3.head<2>();
+  std::vector<double> events;
+  const int na = static_cast<int>(a.poly.size()), nb = static_cast<int>(b.poly.size());
+  for (const Vector2& p : a.poly)
+    for (int k = 0; k < nb; ++k) VertexEdgeEvents(p, d, b.poly[k], b.poly[(k + 1) % nb], tol, events);
+  for (const Vector2& p : b.poly)
+    for (int k = 0; k < na; ++k)
+      VertexEdgeEvents(p, -d, a.poly[k], a.poly[(k + 1) % na], tol, events);
+  Polygon moved = a.poly;
+  return AnyIntervalOverlaps(events, tol, [&](double t) {
+    for (int k = 0; k < na; ++k) moved[k] = a.poly[k] + t * d;
+    return FindOverlap(moved, b.poly, tol).has_value();
+  });
+}
+
+// Times t > tol at which point p moving along d crosses triangle (q0, q1, q2).
+void VertexTriangleEvent(const Vector3& p, const Vector3& d, const Vector3& q0, const Vector3& q1,
+                         const Vector3& q2, double tol, std::vector<double>& out) {
+  // Möller–Trumbore.
+  const Vector3 e1 = q1 - q0, e2 = q2 - q0;
+  const Vector3 h = d.cross(e2);
+  const double det = e1.dot(h);
+  if (std::abs(det) <= 1e-12 * e1.norm() * e2.norm()) return;  // d parallel to the triangle
+  const Vector3 s = p - q0;
+  const double u = s.dot(h) / det;
+  if (u < -1e-9 || u > 1 + 1e-9) return;
+  const Vector3 q = s.cross(e1);
+  const double v = d.dot(q) / det;
+  if (v < -1e-9 || u + v > 1 + 1e-9) return;
+  const double t = e2.dot(q) / det;
+  if (t > tol) out.push_back(t);
+}
+
+// Step 3c, 3-D: a moving along d, b still, either non-convex.
+bool EventSweptOverlap3(const Shape& a, const Shape& b, const Vector3& d, double tol) {
+  std::vector<double> events;
+  for (const Vector3& p : a.verts)
+    for (const auto& tr : b.triangles)
+      VertexTriangleEvent(p, d, b.verts[tr[0]], b.verts[tr[1]], b.verts[tr[2]], tol, events);
+  for (const Vector3& p : b.verts)
+    for (const auto& tr : a.triangles)
+      VertexTriangleEvent(p, -d, a.verts[tr[0]], a.verts[tr[1]], a.verts[tr[2]], tol, events);
+  // Edge p0 + u e of a moving along d meets edge q0 + v f of b:
+  // t d + u e − v f = q0 − p0.
+  for (const auto& ea : a.edges) {
+    const Vector3 &p0 = a.verts[ea[0]], e = a.verts[ea[1]] - p0;
+    for (const auto& eb : b.edges) {
+      const Vector3 &q0 = b.verts[eb[0]], f = b.verts[eb[1]] - q0;
+      Matrix3 M;
+      M << d, e, -f;
+      const double det = M.determinant();
+      if (std::abs(det) <= 1e-12 * e.norm() * f.norm()) continue;
+      const Vector3 x = M.inverse() * (q0 - p0);
+      if (x[0] > tol && x[1] >= -1e-9 && x[1] <= 1 + 1e-9 && x[2] >= -1e-9 && x[2] <= 1 + 1e-9)
+        events.push_back(x[0]);
+    }
+  }
+  return AnyIntervalOverlaps(events, tol, [&](double t) {
+    Eigen::Isometry3d X = a.X_WB;
+    X.pretranslate(t * d);
+    return FindPolyhedronOverlap(*a.solid, X, *b.solid, b.X_WB, tol).has_value();
+  });
+}
+
+// Step 3: does part a, translated along the unit d to infinity, run into b?
+bool SweptOverlap(const Scene& sc, int ia, int ib, const Vector3& d) {
+  const Shape &a = sc.shapes[ia], &b = sc.shapes[ib];
+  if (!RayMeetsBox(b.lo - a.hi, b.hi - a.lo, d, sc.tol_length, sc.dim)) return false;
+  if (a.convex && b.convex) return ConvexSweptOverlap(a, b, d, sc.tol_length, sc.dim);
+  return sc.dim == 2 ? EventSweptOverlap2(a, b, d, sc.tol_length)
+                     : EventSweptOverlap3(a, b, d, sc.tol_length);
+}
+
+// Both relations of a pair at d, given its infinitesimal bits there.
+std::uint8_t PairBits(const Scene& sc, const PartPair& pair, const Vector3& d, std::uint8_t inf) {
+  std::uint8_t bits = inf;
+  if (inf & kInfIJ) bits |= kFarIJ;
+  if (inf & kInfJI) bits |= kFarJI;
+  // Given interfaces: the shapes of the two parts may interpenetrate (that is
+  // why the interfaces are given), so the contacts alone decide.
+  if (pair.given_interface) return bits;
+  if (!(bits & kFarIJ) && SweptOverlap(sc, pair.i, pair.j, d)) bits |= kFarIJ;
+  if (!(bits & kFarJI) && SweptOverlap(sc, pair.j, pair.i, d)) bits |= kFarJI;
+  return bits;
+}
+
+// An empty graph over the scene's parts.
+BlockingGraph EmptyGraph(const Scene& sc, const Vector3& d, BlockingKind kind) {
+  BlockingGraph g;
+  g.direction = d;
+  g.kind = kind;
+  g.blockers.resize(sc.shapes.size());
+  g.fixed.resize(sc.shapes.size());
+  for (size_t i = 0; i < sc.shapes.size(); ++i) g.fixed[i] = sc.shapes[i].fixed;
+  return g;
+}
+
+// Adds the arcs of `bits` for a pair; pairs must come in (i, j) order so that
+// every blockers list stays ascending.
+void AddArcs(const PartPair& pair, std::uint8_t bits, std::uint8_t ij, std::uint8_t ji,
+             BlockingGraph& g) {
+  if (bits & ij) g.blockers[pair.i].push_back(pair.j);
+  if (bits & ji) g.blockers[pair.j].push_back(pair.i);
+}
+
+// Finishes a cell: the movable present parts with no arc to infinity.
+void FinishCell(const Scene& sc, NdbgCell& cell) {
+  cell.removable.clear();
+  for (size_t i = 0; i < sc.shapes.size(); ++i) {
+    const Shape& s = sc.shapes[i];
+    if (s.present && !s.fixed && !s.tool && cell.infinity.blockers[i].empty())
+      cell.removable.push_back(static_cast<int>(i));
+  }
+}
+
+// ---------------------------------------------------------------------------
+// 2-D cells (step 4).
+
+double NormalizeAngle(double a) {
+  a = std::fmod(a, kTwoPi);
+  if (a < 0) a += kTwoPi;
+  if (a >= kTwoPi) a = 0;
+  return a;
+}
+
+double AngleOf(const Vector3& d) { return NormalizeAngle(std::atan2(d.y(), d.x())); }
+
+// Canonical directions: clusters of candidate angles.
+struct Cluster {
+  double lo = 0, hi = 0;  // the smallest and largest member angle
+  double angle = 0;       // canonical angle, [0, 2π)
+  Vector3 dir{1, 0, 0};   // canonical unit direction
+};
+
+struct Clusters {
+  std::vector<Cluster> list;  // ascending by angle
+  int wrap_alias = -1;        // a last cluster merged into cluster 0 across 2π, or -1
+
+  // The cluster of an angle that was one of the members.
+  int Find(double a) const {
+    auto it = std::upper_bound(list.begin(), list.end(), a,
+                               [](double x, const Cluster& c) { return x < c.lo; });
+    int c = static_cast<int>(it - list.begin()) - 1;
+    if (c < 0) c = 0;
+    return c == wrap_alias ? 0 : c;
+  }
+};
+
+// The candidate angles of a pair: directions of ±(v_j − v_i), and the
+// perpendiculars of its contact normals.
+void PairCandidates(const Scene& sc, const PartPair& pair,
+                    const std::vector<std::array<double, 2>>& perps, std::vector<double>& out) {
+  for (const Vector3& v : sc.shapes[pair.i].verts)
+    for (const Vector3& w : sc.shapes[pair.j].verts) {
+      const Vector3 e = w - v;
+      if (e.norm() <= sc.tol_length) continue;
+      const double a = AngleOf(e);
+      out.push_back(a);
+      out.push_back(NormalizeAngle(a + std::numbers::pi));
+    }
+  for (const PairContact& c : pair.contacts) {
+    out.push_back(perps[c.normal][0]);
+    out.push_back(perps[c.normal][1]);
+  }
+}
+
+Clusters MakeClusters(std::vector<double> angles, const std::vector<Vector3>& axes, double tol) {
+  Clusters cl;
+  std::sort(angles.begin(), angles.end());
+  for (const double a : angles) {
+    if (cl.list.empty() || a - cl.list.back().lo > tol) cl.list.push_back({a, a, a, Vector3::Zero()});
+    cl.list.back().hi = a;
+  }
+  if (cl.list.size() > 1 && cl.list[0].lo + kTwoPi - cl.list.back().hi <= tol)
+    cl.wrap_alias = static_cast<int>(cl.list.size()) - 1;
+  // A cluster that holds a world axis direction (within tol) is that axis,
+  // exactly; each axis snaps one cluster only (the first), so no two
+  // canonical directions coincide.
+  std::vector<bool> used(axes.size(), false);
+  for (int c = 0; c < static_cast<int>(cl.list.size()); ++c) {
+    Cluster& k = cl.list[c];
+    k.angle = k.lo;
+    k.dir = Vector3(std::cos(k.lo), std::sin(k.lo), 0);
+    if (c == cl.wrap_alias) continue;
+    const auto near = [&](double x) {
+      const Cluster& alias = cl.list.back();
+      return (x >= k.lo - tol && x <= k.hi + tol) ||
+             (c == 0 && cl.wrap_alias >= 0 && x >= alias.lo - tol && x <= alias.hi + tol);
+    };
+    for (size_t a = 0; a < axes.size(); ++a) {
+      const double aa = AngleOf(axes[a]);
+      if (used[a] || !(near(aa) || near(aa + kTwoPi) || near(aa - kTwoPi))) continue;
+      used[a] = true;
+      k.angle = aa;
+      k.dir = axes[a];
+      break;
+    }
+  }
+  return cl;
+}
+
+// A pair's relation as a function of the direction: its critical clusters,
+// the bits at each and on the arc after each (constant when none).
+struct PairFunction {
+  std::vector<int> critical;
+  std::vector<std::uint8_t> at, after;
+  std::uint8_t constant = 0;
+};
+
+// The middle of the arc from angle a counter-clockwise to angle b (b == a:
+// the whole circle).
+double ArcMiddle(double a, double b) {
+  double span = b - a;
+  if (span <= 0) span += kTwoPi;
+  return NormalizeAngle(a + 0.5 * span);
+}
+
+Vector3 DirectionAt(double angle) { return {std::cos(angle), std::sin(angle), 0}; }
+
+PairFunction EvaluatePair2(const Scene& sc, const PartPair& pair, const Clusters& cl,
+                           const std::vector<std::array<int, 2>>& perp_cluster,
+                           const std::vector<std::array<double, 2>>& perps) {
+  std::vector<double> raw;
+  PairCandidates(sc, pair, perps, raw);
+  std::vector<int> ids;
+  for (const double a : raw) ids.push_back(cl.Find(a));
+  std::sort(ids.begin(), ids.end());
+  ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+  const int m = static_cast<int>(ids.size());
+  // Signs of d · n_k at a direction; at a cluster, exactly 0 on its normals.
+  const auto bits_at = [&](const Vector3& d, int cluster) {
+    const std::uint8_t inf = InfinitesimalBits(pair, [&](int k) {
+      if (cluster >= 0 && (perp_cluster[k][0] == cluster || perp_cluster[k][1] == cluster)) return 0;
+      return SignOf(d.dot(sc.normals[k]), sc.tol_angle);
+    });
+    return PairBits(sc, pair, d, inf);
+  };
+  PairFunction f;
+  if (m == 0) {
+    f.constant = bits_at(Vector3(1, 0, 0), -1);
+    return f;
+  }
+  std::vector<std::uint8_t> at(m), arc(m);
+  for (int q = 0; q < m; ++q) {
+    const Cluster& c = cl.list[ids[q]];
+    at[q] = bits_at(c.dir, ids[q]);
+    const double next = cl.list[ids[(q + 1) % m]].angle;
+    arc[q] = bits_at(DirectionAt(ArcMiddle(c.angle, next)), -1);
+  }
+  for (int q = 0; q < m; ++q) {
+    const std::uint8_t before = arc[(q + m - 1) % m];
+    if (at[q] != before || at[q] != arc[q]) {
+      f.critical.push_back(ids[q]);
+      f.at.push_back(at[q]);
+      f.after.push_back(arc[q]);
+    }
+  }
+  f.constant = arc[0];
+  return f;
+}
+
+Ndbg ComputeNdbg2(const Scene& sc) {
+  Ndbg out;
+  out.dimension = 2;
+  out.normals = sc.normals;
+  // The perpendiculars of the normals, and every pair's candidates: clusters.
+  std::vector<std::array<double, 2>> perps;
+  for (const Vector3& nk : sc.normals) {
+    const double a = AngleOf(Vector3(-nk.y(), nk.x(), 0));
+    perps.push_back({a, NormalizeAngle(a + std::numbers::pi)});
+  }
+  std::vector<double> all;
+  for (const PartPair& pair : sc.pairs) PairCandidates(sc, pair, perps, all);
+  const Clusters cl = MakeClusters(std::move(all), sc.axes, sc.tol_angle);
+  std::vector<std::array<int, 2>> perp_cluster;
+  for (const auto& p : perps) {
+    if (cl.list.empty())
+      perp_cluster.push_back({-1, -1});
+    else
+      perp_cluster.push_back({cl.Find(p[0]), cl.Find(p[1])});
+  }
+
+  // Each pair's function, and the critical clusters of all.
+  std::vector<PairFunction> fns;
+  fns.reserve(sc.pairs.size());
+  std::vector<int> critical;
+  for (const PartPair& pair : sc.pairs) {
+    fns.push_back(EvaluatePair2(sc, pair, cl, perp_cluster, perps));
+    critical.insert(critical.end(), fns.back().critical.begin(), fns.back().critical.end());
+  }
+  std::sort(critical.begin(), critical.end());
+  critical.erase(std::unique(critical.begin(), critical.end()), critical.end());
+  const int r_count = static_cast<int>(critical.size());
+
+  // The cells: each critical direction, then the arc after it.
+  const auto arc_direction = [&](double from, double to) {
+    double span = to - from;
+    if (span <= 0) span += kTwoPi;
+    for (const Vector3& ax : sc.axes) {
+      double off = AngleOf(ax) - from;
+      if (off < 0) off += kTwoPi;
+      if (off > sc.tol_angle && off < span - sc.tol_angle) return ax;
+    }
+    return DirectionAt(ArcMiddle(from, to));
+  };
+  const auto new_cell = [&](int dimension, double from, double to, const Vector3& d) {
+    NdbgCell cell;
+    cell.cell_dimension = dimension;
+    cell.direction = d;
+    cell.angle_from = from;
+    cell.angle_to = to;
+    cell.infinitesimal = EmptyGraph(sc, d, BlockingKind::kInfinitesimal);
+    cell.infinity = EmptyGraph(sc, d, BlockingKind::kInfinity);
+    out.cells.push_back(std::move(cell));
+  };
+  if (r_count == 0) {
+    new_cell(1, 0, kTwoPi, arc_direction(0, 0));
+  } else {
+    for (int r = 0; r < r_count; ++r) {
+      const Cluster& c = cl.list[critical[r]];
+      const double next = cl.list[critical[(r + 1) % r_count]].angle;
+      new_cell(0, c.angle, c.angle, c.dir);
+      new_cell(1, c.angle, next, arc_direction(c.angle, next));
+    }
+  }
+
+  // Walk the cells and each pair's critical list side by side.
+  for (size_t p = 0; p < sc.pairs.size(); ++p) {
+    const PartPair& pair = sc.pairs[p];
+    const PairFunction& f = fns[p];
+    const int m = static_cast<int>(f.critical.size());
+    const auto add = [&](NdbgCell& cell, std::uint8_t bits) {
+      AddArcs(pair, bits, kInfIJ, kInfJI, cell.infinitesimal);
+      AddArcs(pair, bits, kFarIJ, kFarJI, cell.infinity);
+    };
+    if (r_count == 0 || m == 0) {
+      for (NdbgCell& cell : out.cells) add(cell, f.constant);
+      continue;
+    }
+    int q = 0;  // f.critical[0, q) are before the current critical direction
+    for (int r = 0; r < r_count; ++r) {
+      while (q < m && f.critical[q] < critical[r]) ++q;
+      std::uint8_t at, after;
+      if (q < m && f.critical[q] == critical[r]) {
+        at = f.at[q];
+        after = f.after[q];
+      } else {
+        at = after = f.after[(q + m - 1) % m];
+      }
+      add(out.cells[2 * r], at);
+      add(out.cells[2 * r + 1], after);
+    }
+  }
+  for (NdbgCell& cell : out.cells) FinishCell(sc, cell);
+  return out;
+}
+
+// ---------------------------------------------------------------------------
+// 3-D cells (step 5).
+
+std::vector<int> SignsOf(const Vector3& d, const std::vector<Vector3>& normals, double tol) {
+  std::vector<int> s(normals.size());
+  for (size_t k = 0; k < normals.size(); ++k) s[k] = SignOf(d.dot(normals[k]), tol);
+  return s;
+}
+
+struct ArrangementCell {
+  int dimension = 0;
+  Vector3 direction{0, 0, 1};
+  std::vector<int> signs;
+};
+
+// The cells of the arrangement of the great circles d · n_k = 0.
+std::vector<ArrangementCell> Arrangement(const std::vector<Vector3>& normals,
+                                         const std::vector<Vector3>& axes, double tol) {
+  const int nn = static_cast<int>(normals.size());
+  std::vector<ArrangementCell> cells;
+  // A representative: a world axis direction with the cell's signs, if any.
+  const auto prefer_axis = [&](ArrangementCell& c) {
+    for (const Vector3& ax : axes)
+      if (SignsOf(ax, normals, tol) == c.signs) {
+        c.direction = ax;
+        return;
+      }
+  };
+  if (nn == 0) {
+    ArrangementCell whole{2, axes[0], {}};
+    cells.push_back(whole);
+    return cells;
+  }
+  if (nn == 1) {
+    ArrangementCell circle{1, TangentBasis(normals[0]).first, {0}};
+    prefer_axis(circle);
+    cells.push_back(circle);
+    for (const int s : {-1, 1}) {
+      ArrangementCell half{2, Vector3(s * normals[0]), {s}};
+      prefer_axis(half);
+      cells.push_back(half);
+    }
+    return cells;
+  }
+  // Vertices: ±(n_k × n_l), identified by their sign vectors.
+  std::map<std::vector<int>, Vector3> vertices;
+  for (int k = 0; k < nn; ++k)
+    for (int l = k + 1; l < nn; ++l) {
+      const Vector3 v = normals[k].cross(normals[l]).normalized();
+      for (const Vector3& w : {v, Vector3(-v)}) {
+        std::vector<int> s = SignsOf(w, normals, tol);
+        s[k] = s[l] = 0;
+        vertices.emplace(s, w);
+      }
+    }
+  // Arcs: between consecutive vertices on each circle. Faces: each arc's
+  // middle pushed off its circle to both sides; their representative the
+  // normalised sum of the middles of the arcs around them.
+  std::map<std::vector<int>, Vector3> arcs;
+  std::map<std::vector<int>, std::pair<Vector3, Vector3>> faces;  // (sum of middles, pushed point)
+  for (int k = 0; k < nn; ++k) {
+    const auto [u, w] = TangentBasis(normals[k]);
+    std::vector<double> phi;
+    for (const auto& [s, v] : vertices)
+      if (s[k] == 0) phi.push_back(std::atan2(v.dot(w), v.dot(u)));
+    std::sort(phi.begin(), phi.end());
+    const int m = static_cast<int>(phi.size());
+    for (int q = 0; q < m; ++q) {
+      const double a = phi[q], b = q + 1 < m ? phi[q + 1] : phi[0] + kTwoPi;
+      if (b - a <= tol) continue;
+      const double mid = 0.5 * (a + b);
+      const Vector3 mpt = std::cos(mid) * u + std::sin(mid) * w;
+      std::vector<int> s = SignsOf(mpt, normals, tol);
+      s[k] = 0;
+      if (std::count(s.begin(), s.end(), 0) != 1) continue;  // degenerate (vertices too close)
+      arcs.emplace(s, mpt);
+      double eps = 0.5;
+      for (int l = 0; l < nn; ++l)
+        if (l != k) eps = std::min(eps, 0.5 * std::abs(mpt.dot(normals[l])));
+      for (const int side : {-1, 1}) {
+        const Vector3 pushed = (mpt + side * eps * normals[k]).normalized();
+        std::vector<int> fs = s;
+        fs[k] = side;
+        auto [it, fresh] = faces.emplace(fs, std::make_pair(Vector3::Zero().eval(), pushed));
+        it->second.first += mpt;
+        (void)fresh;
+      }
+    }
+  }
+  for (const auto& [s, v] : vertices) {
+    ArrangementCell c{0, v, s};
+    prefer_axis(c);
+    cells.push_back(c);
+  }
+  for (const auto& [s, v] : arcs) {
+    ArrangementCell c{1, v, s};
+    prefer_axis(c);
+    cells.push_back(c);
+  }
+  for (const auto& [s, sums] : faces) {
+    ArrangementCell c{2, sums.second, s};
+    if (sums.first.norm() > 1e-9) {
+      const Vector3 inside = sums.first.normalized();
+      if (SignsOf(inside, normals, tol) == s) c.direction = inside;
+    }
+    prefer_axis(c);
+    cells.push_back(c);
+  }
+  return cells;
+}
+
+Ndbg ComputeNdbg3(const Scene& sc) {
+  Ndbg out;
+  out.dimension = 3;
+  out.normals = sc.normals;
+  for (const ArrangementCell& a : Arrangement(sc.normals, sc.axes, sc.tol_angle)) {
+    NdbgCell cell;
+    cell.cell_dimension = a.dimension;
+    cell.direction = a.direction;
+    cell.signs = a.signs;
+    cell.infinitesimal = EmptyGraph(sc, a.direction, BlockingKind::kInfinitesimal);
+    cell.infinity = EmptyGraph(sc, a.direction, BlockingKind::kInfinity);
+    for (const PartPair& pair : sc.pairs) {
+      const std::uint8_t inf = InfinitesimalBits(pair, [&](int k) { return a.signs[k]; });
+      const std::uint8_t bits = PairBits(sc, pair, a.direction, inf);
+      AddArcs(pair, bits, kInfIJ, kInfJI, cell.infinitesimal);
+      AddArcs(pair, bits, kFarIJ, kFarJI, cell.infinity);
+    }
+    FinishCell(sc, cell);
+    out.cells.push_back(std::move(cell));
+  }
+  return out;
+}
+
+}  // namespace
+
+BlockingGraph ComputeBlockingGraph(const Assembly& assembly, const Configuration& config,
+                                   const Vector3& direction, BlockingKind kind) {
+  Vector3 d = direction;
+  if (!assembly.is_3d()) d.z() = 0;
+  std::ostringstream given;
+  given << "(" << direction.x() << ", " << direction.y() << ", " << direction.z() << ")";
+  CAIRN_THROW_UNLESS(d.allFinite() && d.norm() > 0,
+                     "ComputeBlockingGraph: the direction must be finite and nonzero, got " +
+                         given.str());
+  d.normalize();
+  const Scene sc = BuildScene(assembly, config);
+  BlockingGraph g = EmptyGraph(sc, d, kind);
+  for (const PartPair& pair : sc.pairs) {
+    const std::uint8_t inf = InfinitesimalBits(
+        pair, [&](int k) { return SignOf(d.dot(sc.normals[k]), sc.tol_angle); });
+    if (kind == BlockingKind::kInfinitesimal)
+      AddArcs(pair, inf, kInfIJ, kInfJI, g);
+    else
+      AddArcs(pair, PairBits(sc, pair, d, inf), kFarIJ, kFarJI, g);
+  }
+  return g;
+}
+
+Ndbg ComputeNdbg(const Assembly& assembly, const Configuration& config) {
+  const Scene sc = BuildScene(assembly, config);
+  return sc.dim == 2 ? ComputeNdbg2(sc) : ComputeNdbg3(sc);
+}
+
+bool CanLeave(const BlockingGraph& graph, const std::vector<bool>& in_s,
+              const std::vector<bool>& present) {
+  const size_t n = graph.blockers.size();
+  CAIRN_THROW_UNLESS(in_s.size() == n && present.size() == n,
+                     "CanLeave: " + std::to_string(in_s.size()) + " set flags and " +
+                         std::to_string(present.size()) + " presence flags for a graph of " +
+                         std::to_string(n) + " parts");
+  for (size_t i = 0; i < n; ++i) {
+    if (!in_s[i] || !present[i]) continue;
+    if (i < graph.fixed.size() && graph.fixed[i]) return false;
+    for (const int j : graph.blockers[i])
+      if (present[j] && !in_s[j]) return false;
+  }
+  return true;
+}
+
+std::vector<int> BlockingClosure(const BlockingGraph& graph, int part,
+                                 const std::vector<bool>& present) {
+  const int n = static_cast<int>(graph.blockers.size());
+  CAIRN_THROW_UNLESS(part >= 0 && part < n && static_cast<int>(present.size()) == n,
+                     "BlockingClosure: part " + std::to_string(part) + " of a graph of " +
+                         std::to_string(n) + " parts, " + std::to_string(present.size()) +
+                         " presence flags");
+  std::vector<bool> seen(n, false);
+  std::vector<int> stack{part}, out;
+  seen[part] = true;
+  while (!stack.empty()) {
+    const int i = stack.back();
+    stack.pop_back();
+    out.push_back(i);
+    for (const int j : graph.blockers[i])
+      if (present[j] && !seen[j]) {
+        seen[j] = true;
+        stack.push_back(j);
+      }
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+std::vector<std::vector<int>> StronglyConnectedComponents(const BlockingGraph& graph,
+                                                          const std::vector<bool>& present) {
+  // Tarjan's algorithm, iterative (no recursion depth limit on big scenes).
+  const int n = static_cast<int>(graph.blockers.size());
+  CAIRN_THROW_UNLESS(static_cast<int>(present.size()) == n,
+                     "StronglyConnectedComponents: " + std::to_string(present.size()) +
+                         " presence flags for a graph of " + std::to_string(n) + " parts");
+  std::vector<int> index(n, -1), low(n, 0), stack;
+  std::vector<bool> on_stack(n, false);
+  std::vector<std::vector<int>> components;
+  int counter = 0;
+  for (int root = 0; root < n; ++root) {
+    if (!present[root] || index[root] >= 0) continue;
+    std::vector<std::pair<int, size_t>> calls{{root, 0}};  // (node, next arc)
+    index[root] = low[root] = counter++;
+    stack.push_back(root);
+    on_stack[root] = true;
+    while (!calls.empty()) {
+      auto& [v, next] = calls.back();
+      if (next < graph.blockers[v].size()) {
+        const int w = graph.blockers[v][next++];
+        if (!present[w]) continue;
+        if (index[w] < 0) {
+          index[w] = low[w] = counter++;
+          stack.push_back(w);
+          on_stack[w] = true;
+          calls.emplace_back(w, 0);
+        } else if (on_stack[w]) {
+          low[v] = std::min(low[v], index[w]);
+        }
+        continue;
+      }
+      const int done = v;
+      calls.pop_back();
+      if (!calls.empty()) low[calls.back().first] = std::min(low[calls.back().first], low[done]);
+      if (low[done] == index[done]) {
+        std::vector<int> comp;
+        int w = -1;
+        do {
+          w = stack.back();
+          stack.pop_back();
+          on_stack[w] = false;
+          comp.push_back(w);
+        } while (w != done);
+        std::sort(comp.begin(), comp.end());
+        components.push_back(std::move(comp));
+      }
+    }
+  }
+  std::sort(components.begin(), components.end(),
+            [](const std::vector<int>& a, const std::vector<int>& b) { return a[0] < b[0]; });
+  return components;
+}
+
+}  // namespace cairn

@@ -1,1 +1,89 @@
-// placeholder: being written
+#include "cairn/report/fixture_report.h"
+
+#include <cstdio>
+#include <sstream>
+
+#include "report/report_common.h"
+
+namespace cairn {
+
+namespace {
+using report_internal::Clean;
+using report_internal::Vec;
+
+std::string Num(double x) {
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.6g", Clean(x));
+  return buf;
+}
+
+// A fixel as a scene file's `fixtures` entry.
+nlohmann::json SceneEntry(const FixtureDef& f, int dim) {
+  return {{"part", f.part}, {"point", Vec(f.point, dim)}, {"normal", Vec(f.normal, dim)}};
+}
+}  // namespace
+
+nlohmann::json FixtureSuggestionToJson(const Assembly& assembly,
+                                       const FixtureSuggestion& suggestion,
+                                       const FixtureSearchOptions& search,
+                                       const ReportOptions& options) {
+  using nlohmann::json;
+  const auto [force_scale, force_unit] = ForceScale(assembly, options);
+  const int dim = assembly.dimension();
+  json doc;
+  doc["found"] = suggestion.found;
+  doc["message"] = suggestion.message;
+  doc["max_fixels"] = search.max_fixels;
+  doc["candidates"] = suggestion.candidates;
+  doc["simulations"] = suggestion.simulations;
+  doc["force_unit"] = force_unit;
+  json fixels = json::array(), entries = json::array();
+  for (const SuggestedFixel& s : suggestion.fixels) {
+    json f = SceneEntry(s.fixture, dim);
+    f["face"] = s.face;
+    f["step"] = s.step;
+    f["max_force"] = Clean(s.max_force / force_scale);
+    fixels.push_back(f);
+    entries.push_back(SceneEntry(s.fixture, dim));
+  }
+  doc["fixels"] = fixels;
+  doc["scene_fixtures"] = entries;
+  const SimulationResult& v = suggestion.verification;
+  doc["verification"] = {{"verdict", to_string(v.verdict)},
+                         {"stable", v.stable()},
+                         {"failure", v.failure ? json(v.failure->description) : json(nullptr)}};
+  return doc;
+}
+
+std::string FixtureSuggestionToText(const Assembly& assembly, const FixtureSuggestion& suggestion,
+                                    const FixtureSearchOptions& search,
+                                    const ReportOptions& options) {
+  const auto [force_scale, force_unit] = ForceScale(assembly, options);
+  const int dim = assembly.dimension();
+  std::ostringstream os;
+  os << "Fixel suggestion (at most " << search.max_fixels
+     << "): " << (suggestion.found ? "FOUND" : "NONE") << " - " << suggestion.message << '\n';
+  for (size_t i = 0; i < suggestion.fixels.size(); ++i) {
+    const SuggestedFixel& s = suggestion.fixels[i];
+    os << "  fixel " << i + 1 << ": " << s.fixture.part << " at "
+       << FormatPoint(s.fixture.point, dim) << ", normal " << FormatPoint(s.fixture.normal, dim)
+       << " (" << s.face << "), for step " << s.step << ": max force "
+       << Num(s.max_force / force_scale) << ' ' << force_unit << '\n';
+  }
+  const SimulationResult& v = suggestion.verification;
+  if (!suggestion.fixels.empty()) {
+    os << "  verified: the plan with "
+       << (suggestion.fixels.size() == 1 ? "this fixel" : "these fixels") << " is "
+       << to_string(v.verdict);
+    if (v.failure) os << ": " << v.failure->description;
+    os << '\n';
+    nlohmann::json entries = nlohmann::json::array();
+    for (const SuggestedFixel& s : suggestion.fixels) entries.push_back(SceneEntry(s.fixture, dim));
+    os << "  scene fixtures to add: " << entries.dump() << '\n';
+  }
+  os << "  (" << suggestion.candidates << " candidate points, " << suggestion.simulations
+     << " simulations)\n";
+  return os.str();
+}
+
+}  // namespace cairn

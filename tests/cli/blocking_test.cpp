@@ -1,1 +1,100 @@
+// The `cairn blocking` command, run as a user runs it: the real binary, its
+// stdout, stderr and exit code.
 #include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "cli/cli_run.h"
+#include "test_paths.h"
+
+namespace cairn {
+namespace {
+
+using testing::Cairn;
+using testing::CliRun;
+using testing::ExamplePath;
+
+// The removable parts of the cell whose direction is `direction`.
+std::vector<std::string> RemovableAt(const nlohmann::json& doc, const nlohmann::json& direction) {
+  for (const auto& cell : doc["cells"])
+    if (cell["direction"] == direction) return cell["removable"].get<std::vector<std::string>>();
+  ADD_FAILURE() << "no cell with direction " << direction.dump();
+  return {};
+}
+
+TEST(CliBlocking, PegInSlotJson) {
+  const CliRun r = Cairn("blocking " + ExamplePath("peg_in_slot.json") + " --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(r.err.empty()) << r.err;
+  const nlohmann::json doc = nlohmann::json::parse(r.out);
+  EXPECT_EQ(doc["dimension"], 2);
+  EXPECT_EQ(doc["normals"].size(), 2u);
+  ASSERT_EQ(doc["cells"].size(), 4u);
+  const nlohmann::json& up = doc["cells"][0];
+  EXPECT_EQ(up["dimension"], 0);
+  EXPECT_EQ(up["direction"], nlohmann::json::parse("[0, 1]"));
+  EXPECT_EQ(up["angles_deg"], nlohmann::json::parse("[90, 90]"));
+  EXPECT_EQ(up["removable"], nlohmann::json::parse(R"(["peg"])"));
+  EXPECT_EQ(up["infinity"], nlohmann::json::parse(R"([["base", "peg"]])"));
+  const nlohmann::json& left = doc["cells"][1];
+  EXPECT_EQ(left["angles_deg"], nlohmann::json::parse("[90, 270]"));
+  EXPECT_EQ(left["direction"], nlohmann::json::parse("[-1, 0]"));
+  EXPECT_TRUE(left["removable"].empty());
+  EXPECT_EQ(left["infinitesimal"].size(), 2u);
+  EXPECT_FALSE(up.contains("signs"));
+}
+
+TEST(CliBlocking, LShapesText) {
+  const CliRun r = Cairn("blocking " + ExamplePath("l_shapes.json"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("NDBG (2-D), 8 cells"), std::string::npos) << r.out;
+  // The arc between 135° and 180°: B is blocked by A only at infinity.
+  EXPECT_NE(r.out.find("(135°, 180°)"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("leave: none   blocked: A by B*; B by A\n"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("leave: B"), std::string::npos) << r.out;
+}
+
+TEST(CliBlocking, PaperFig1UpwardAndWithout) {
+  const nlohmann::json up = nlohmann::json::parse("[0, 1]");
+  CliRun r = Cairn("blocking " + ExamplePath("paper_fig1.json") + " --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(RemovableAt(nlohmann::json::parse(r.out), up), (std::vector<std::string>{"C", "D"}));
+  r = Cairn("blocking " + ExamplePath("paper_fig1.json") + " --json --without D,C");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json doc = nlohmann::json::parse(r.out);
+  EXPECT_EQ(doc["without"], nlohmann::json::parse(R"(["D", "C"])"));
+  EXPECT_EQ(RemovableAt(doc, up), (std::vector<std::string>{"B"}));
+}
+
+TEST(CliBlocking, ThreeDimensionalJson) {
+  const CliRun r = Cairn("blocking " + ExamplePath("jenga.json") + " --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json doc = nlohmann::json::parse(r.out);
+  EXPECT_EQ(doc["dimension"], 3);
+  EXPECT_EQ(doc["normals"], nlohmann::json::parse("[[0, 0, 1]]"));
+  ASSERT_EQ(doc["cells"].size(), 3u);
+  EXPECT_EQ(doc["cells"][2]["signs"], nlohmann::json::parse("[1]"));
+  EXPECT_FALSE(doc["cells"][2].contains("angles_deg"));
+  EXPECT_EQ(RemovableAt(doc, nlohmann::json::parse("[0, 0, 1]")),
+            (std::vector<std::string>{"L18_1", "L18_2", "L18_3"}));
+}
+
+TEST(CliBlocking, UnknownWithoutPartIsBadInput) {
+  const CliRun r = Cairn("blocking " + ExamplePath("paper_fig1.json") + " --without Z");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_TRUE(r.out.empty()) << r.out;
+  EXPECT_NE(r.err.find("cairn: error: "), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("--without"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("no part named 'Z'"), std::string::npos) << r.err;
+}
+
+TEST(CliBlocking, MissingSceneIsBadInput) {
+  const CliRun r = Cairn("blocking " + ExamplePath("no_such_scene.json"));
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("cairn: error: "), std::string::npos) << r.err;
+}
+
+}  // namespace
+}  // namespace cairn

@@ -1,1 +1,458 @@
+// Blocking graphs and the NDBG (planning/blocking.h): 2-D cells against hand
+// computations (two interlocking L-shapes, a peg in a slot), the 3-D
+// infinitesimal arrangement of a box in a corner, blocking only at infinity,
+// a swept test through a non-convex part, the paper's Fig. 1, the graph
+// algorithms, postconditions and determinism.
 #include <gtest/gtest.h>
+
+#include <chrono>
+#include <cmath>
+#include <numbers>
+#include <set>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "cairn/io/scene_reader.h"
+#include "cairn/planning/blocking.h"
+#include "scene_builders.h"
+#include "test_paths.h"
+
+namespace cairn {
+namespace {
+
+using testing::Box;
+using testing::Box3;
+using testing::ExamplePath;
+
+constexpr double kDeg = std::numbers::pi / 180.0;
+
+Assembly Example(const std::string& name) { return ReadScene(ExamplePath(name)); }
+
+// The arcs of a graph as (blocked, blocker) pairs.
+std::set<std::pair<int, int>> Arcs(const BlockingGraph& g) {
+  std::set<std::pair<int, int>> out;
+  for (int i = 0; i < static_cast<int>(g.blockers.size()); ++i)
+    for (const int j : g.blockers[i]) out.insert({i, j});
+  return out;
+}
+
+using ArcSet = std::set<std::pair<int, int>>;
+
+// One expected 2-D cell.
+struct Cell2 {
+  int dimension;
+  double from_deg, to_deg;
+  ArcSet infinitesimal, infinity;
+  std::vector<int> removable;
+};
+
+void ExpectCells(const Ndbg& ndbg, const std::vector<Cell2>& expected) {
+  ASSERT_EQ(ndbg.cells.size(), expected.size());
+  for (size_t c = 0; c < expected.size(); ++c) {
+    SCOPED_TRACE("cell " + std::to_string(c));
+    const NdbgCell& cell = ndbg.cells[c];
+    const Cell2& e = expected[c];
+    EXPECT_EQ(cell.cell_dimension, e.dimension);
+    EXPECT_NEAR(cell.angle_from, e.from_deg * kDeg, 1e-9);
+    EXPECT_NEAR(cell.angle_to, e.to_deg * kDeg, 1e-9);
+    EXPECT_EQ(Arcs(cell.infinitesimal), e.infinitesimal);
+    EXPECT_EQ(Arcs(cell.infinity), e.infinity);
+    EXPECT_EQ(cell.removable, e.removable);
+    EXPECT_NEAR(cell.direction.norm(), 1.0, 1e-12);
+    EXPECT_EQ(cell.infinity.direction, cell.direction);
+  }
+}
+
+// Every 2-D cell's graphs are DBG(d) at its direction (the NDBG and the
+// direct computation agree), the infinity relation contains the
+// infinitesimal one, and the cells tile the circle in order.
+void ExpectConsistent(const Assembly& assembly, const Configuration& config, const Ndbg& ndbg) {
+  for (size_t c = 0; c < ndbg.cells.size(); ++c) {
+    SCOPED_TRACE("cell " + std::to_string(c));
+    const NdbgCell& cell = ndbg.cells[c];
+    const BlockingGraph inf =
+        ComputeBlockingGraph(assembly, config, cell.direction, BlockingKind::kInfinitesimal);
+    const BlockingGraph far =
+        ComputeBlockingGraph(assembly, config, cell.direction, BlockingKind::kInfinity);
+    EXPECT_EQ(Arcs(inf), Arcs(cell.infinitesimal));
+    EXPECT_EQ(Arcs(far), Arcs(cell.infinity));
+    for (const auto& arc : Arcs(cell.infinitesimal)) EXPECT_TRUE(Arcs(cell.infinity).count(arc));
+    if (ndbg.dimension == 2 && ndbg.cells.size() > 1) {
+      const NdbgCell& next = ndbg.cells[(c + 1) % ndbg.cells.size()];
+      EXPECT_EQ(cell.cell_dimension + next.cell_dimension, 1);  // alternating
+      EXPECT_NEAR(next.angle_from, cell.angle_to, 1e-15);
+      if (cell.cell_dimension == 1) {  // the direction lies inside the arc
+        double span = cell.angle_to - cell.angle_from, off = std::atan2(cell.direction.y(),
+                                                                        cell.direction.x()) -
+                                                             cell.angle_from;
+        if (span <= 0) span += 2 * std::numbers::pi;
+        if (off < 0) off += 2 * std::numbers::pi;
+        EXPECT_GT(off, 0);
+        EXPECT_LT(off, span);
+      }
+    }
+  }
+}
+
+// Two L-shapes that close into a square frame: B (the upper one, part 1)
+// rests on A's stem and foot. Hand-computed: B leaves to infinity for
+// 0° ≤ θ ≤ 135° (at 135° its inner corner (3, 1) slides past A's corner
+// (1, 3)); A, symmetrically, for 180° ≤ θ ≤ 315°. Between 135° and 180° B
+// is free infinitesimally but runs into A's stem: blocked only at infinity.
+TEST(Ndbg2d, InterlockingLShapesHandComputedCells) {
+  const Assembly assembly = Example("l_shapes.json");
+  const Configuration config = Configuration::Assembled(assembly);
+  const int A = assembly.FindPart("A"), B = assembly.FindPart("B");
+  const Ndbg ndbg = ComputeNdbg(assembly, config);
+  EXPECT_EQ(ndbg.dimension, 2);
+  ASSERT_EQ(ndbg.normals.size(), 1u);  // both contacts push along ±y
+  EXPECT_NEAR(std::abs(ndbg.normals[0].y()), 1.0, 1e-12);
+  const ArcSet none, ab{{A, B}}, ba{{B, A}}, both{{A, B}, {B, A}};
+  ExpectCells(ndbg, {
+                        {0, 0, 0, none, ab, {B}},
+                        {1, 0, 135, ab, ab, {B}},
+                        {0, 135, 135, ab, ab, {B}},
+                        {1, 135, 180, ab, both, {}},
+                        {0, 180, 180, none, ba, {A}},
+                        {1, 180, 315, ba, ba, {A}},
+                        {0, 315, 315, ba, ba, {A}},
+                        {1, 315, 0, ba, both, {}},
+                    });
+  // Representatives: the axes where the cell holds one, else the middle.
+  EXPECT_EQ(ndbg.cells[0].direction, Vector3(1, 0, 0));
+  EXPECT_EQ(ndbg.cells[1].direction, Vector3(0, 1, 0));  // up first
+  EXPECT_NEAR(ndbg.cells[3].direction.x(), std::cos(157.5 * kDeg), 1e-12);
+  EXPECT_EQ(ndbg.cells[4].direction, Vector3(-1, 0, 0));
+  EXPECT_EQ(ndbg.cells[5].direction, Vector3(0, -1, 0));
+  EXPECT_NEAR(ndbg.cells[7].direction.y(), std::sin(337.5 * kDeg), 1e-12);
+  ExpectConsistent(assembly, config, ndbg);
+}
+
+// A peg in a slot of a fixed base: the peg leaves straight up only; the
+// side walls' normals (±x) cut the circle nowhere, because nothing changes
+// at ±y... except at the slot's axis itself.
+TEST(Ndbg2d, PegInSlotHandComputedCells) {
+  const Assembly assembly = Example("peg_in_slot.json");
+  const Configuration config = Configuration::Assembled(assembly);
+  const int base = assembly.FindPart("base"), peg = assembly.FindPart("peg");
+  const Ndbg ndbg = ComputeNdbg(assembly, config);
+  EXPECT_EQ(ndbg.normals.size(), 2u);  // the floor (y) and the walls (x)
+  const ArcSet both{{peg, base}, {base, peg}}, up{{base, peg}}, down{{peg, base}};
+  ExpectCells(ndbg, {
+                        {0, 90, 90, up, up, {peg}},
+                        {1, 90, 270, both, both, {}},
+                        {0, 270, 270, down, down, {}},
+                        {1, 270, 90, both, both, {}},
+                    });
+  EXPECT_EQ(ndbg.cells[0].direction, Vector3(0, 1, 0));
+  EXPECT_EQ(ndbg.cells[1].direction, Vector3(-1, 0, 0));
+  EXPECT_EQ(ndbg.cells[3].direction, Vector3(1, 0, 0));
+  ExpectConsistent(assembly, config, ndbg);
+  // A hair off vertical, the peg is blocked (infinitesimally, by a wall).
+  const Vector3 tilted(std::sin(1e-3), std::cos(1e-3), 0);
+  EXPECT_TRUE(
+      ComputeBlockingGraph(assembly, config, tilted, BlockingKind::kInfinitesimal).Blocks(peg, base));
+  EXPECT_FALSE(ComputeBlockingGraph(assembly, config, Vector3(0, 5, 0), BlockingKind::kInfinity)
+                   .Blocks(peg, base));
+}
+
+// Two blocks on a table with a gap: A (left) is not touched by B, so moving
+// right it is blocked only to infinity; the critical direction where A's
+// lower right corner just clears B's upper left corner is 45°.
+TEST(BlockingGraph, BlockedOnlyAtInfinity) {
+  AssemblyDef def;
+  def.parts = {Box("table", -5, -1, 5, 0, true), Box("A", 0, 0, 1, 1), Box("B", 2, 0, 3, 1)};
+  const Assembly assembly = Assembly::Create(def);
+  const Configuration config = Configuration::Assembled(assembly);
+  const int A = 1, B = 2;
+  const Vector3 right(1, 0, 0);
+  EXPECT_FALSE(ComputeBlockingGraph(assembly, config, right, BlockingKind::kInfinitesimal)
+                   .Blocks(A, B));
+  const BlockingGraph far = ComputeBlockingGraph(assembly, config, right, BlockingKind::kInfinity);
+  EXPECT_TRUE(far.Blocks(A, B));
+  EXPECT_FALSE(far.Blocks(B, A));
+  EXPECT_TRUE(far.blockers[B].empty());
+  EXPECT_TRUE(ComputeBlockingGraph(assembly, config, -right, BlockingKind::kInfinity).Blocks(B, A));
+  // Just below 45° A's corner hits B's side; just above it clears B's top.
+  const auto at = [&](double deg) {
+    return ComputeBlockingGraph(assembly, config, Vector3(std::cos(deg * kDeg), std::sin(deg * kDeg), 0),
+                                BlockingKind::kInfinity)
+        .Blocks(A, B);
+  };
+  EXPECT_TRUE(at(44.9));
+  EXPECT_FALSE(at(45.0));
+  EXPECT_FALSE(at(45.1));
+  // The NDBG has 45° as a critical direction where A can leave, and the arc
+  // below it (which holds +x) where it cannot, while not touching B.
+  const Ndbg ndbg = ComputeNdbg(assembly, config);
+  int found = 0;
+  for (size_t c = 0; c < ndbg.cells.size(); ++c) {
+    const NdbgCell& cell = ndbg.cells[c];
+    if (cell.cell_dimension == 0 && std::abs(cell.angle_from - 45 * kDeg) < 1e-9) {
+      ++found;
+      EXPECT_FALSE(cell.infinity.Blocks(A, B));
+      const NdbgCell& before = ndbg.cells[(c + ndbg.cells.size() - 1) % ndbg.cells.size()];
+      EXPECT_TRUE(before.infinity.Blocks(A, B));
+      EXPECT_FALSE(before.infinitesimal.Blocks(A, B));
+    }
+  }
+  EXPECT_EQ(found, 1);
+  ExpectConsistent(assembly, config, ndbg);
+}
+
+// A box in a corner: a floor and two walls (fixed). The three normals' great
+// circles are the coordinate planes: 6 vertices (±x, ±y, ±z), 12 arcs, 8
+// octants. The box leaves exactly where d ≥ 0 componentwise: 7 cells.
+TEST(Ndbg3d, BoxInACornerInfinitesimalArrangement) {
+  AssemblyDef def;
+  def.gravity = Vector3(0, 0, -9.81);
+  def.parts = {Box3("floor", {-1, -1, -1}, {3, 3, 0}, true),
+               Box3("wall_x", {-1, 0, 0}, {0, 3, 3}, true),
+               Box3("wall_y", {0, -1, 0}, {3, 0, 3}, true), Box3("box", {0, 0, 0}, {1, 1, 1})};
+  const Assembly assembly = Assembly::Create(def);
+  const Configuration config = Configuration::Assembled(assembly);
+  const int floor = 0, wall_x = 1, wall_y = 2, box = 3;
+  const Ndbg ndbg = ComputeNdbg(assembly, config);
+  EXPECT_EQ(ndbg.dimension, 3);
+  ASSERT_EQ(ndbg.normals.size(), 3u);
+  int count[3] = {0, 0, 0}, free_cells = 0;
+  for (const NdbgCell& cell : ndbg.cells) {
+    ++count[cell.cell_dimension];
+    const Vector3& d = cell.direction;
+    SCOPED_TRACE("cell at " + std::to_string(d.x()) + ", " + std::to_string(d.y()) + ", " +
+                 std::to_string(d.z()));
+    EXPECT_EQ(static_cast<int>(std::count(cell.signs.begin(), cell.signs.end(), 0)),
+              2 - cell.cell_dimension);
+    EXPECT_EQ(cell.infinitesimal.Blocks(box, floor), d.z() < -1e-9);
+    EXPECT_EQ(cell.infinitesimal.Blocks(box, wall_x), d.x() < -1e-9);
+    EXPECT_EQ(cell.infinitesimal.Blocks(box, wall_y), d.y() < -1e-9);
+    const bool free = d.minCoeff() > -1e-9;
+    EXPECT_EQ(cell.removable == std::vector<int>{box}, free);
+    free_cells += free ? 1 : 0;
+    // Fixed parts have no arcs between them.
+    EXPECT_FALSE(cell.infinity.Blocks(wall_x, floor));
+    if (cell.cell_dimension == 2 && free)  // the positive octant: its centre
+      EXPECT_TRUE(d.isApprox(Vector3(1, 1, 1).normalized(), 1e-12));
+  }
+  EXPECT_EQ(count[0], 6);
+  EXPECT_EQ(count[1], 12);
+  EXPECT_EQ(count[2], 8);
+  EXPECT_EQ(free_cells, 7);
+  EXPECT_EQ(ndbg.cells[0].cell_dimension, 0);
+  EXPECT_EQ(ndbg.cells.back().cell_dimension, 2);
+  ExpectConsistent(assembly, config, ndbg);
+}
+
+// A U-shaped channel (non-convex; profile in xz, open along y) with a peg
+// standing on its floor, clear of its walls: up and along the channel the
+// peg is free; sideways it is blocked, though only at infinity. The swept
+// test runs through the non-convex part's event times.
+TEST(BlockingGraph, SweptThroughNonConvexUSlot) {
+  const std::vector<Vector2> profile = {{0, 0}, {3, 0}, {3, 2}, {2, 2},
+                                        {2, 1}, {1, 1}, {1, 2}, {0, 2}};
+  PartDef u;
+  u.name = "U";
+  u.fixed = true;
+  PolyhedronDef poly;
+  for (double y : {0.0, 1.0})
+    for (const Vector2& p : profile) poly.vertices.push_back({p.x(), y, p.y()});
+  poly.faces.push_back({0, 1, 2, 3, 4, 5, 6, 7});
+  poly.faces.push_back({15, 14, 13, 12, 11, 10, 9, 8});
+  for (int k = 0; k < 8; ++k) poly.faces.push_back({k, 8 + k, 8 + (k + 1) % 8, (k + 1) % 8});
+  u.polyhedron = poly;
+  AssemblyDef def;
+  def.gravity = Vector3(0, 0, -9.81);
+  def.parts = {u, Box3("peg", {1.2, 0.2, 1}, {1.8, 0.8, 2.5})};
+  const Assembly assembly = Assembly::Create(def);
+  const Configuration config = Configuration::Assembled(assembly);
+  const int U = 0, peg = 1;
+  const auto far = [&](const Vector3& d) {
+    return ComputeBlockingGraph(assembly, config, d, BlockingKind::kInfinity).Blocks(peg, U);
+  };
+  const auto inf = [&](const Vector3& d) {
+    return ComputeBlockingGraph(assembly, config, d, BlockingKind::kInfinitesimal).Blocks(peg, U);
+  };
+  EXPECT_FALSE(far({0, 0, 1}));
+  EXPECT_FALSE(far({0, 1, 0}));  // along the channel
+  EXPECT_FALSE(far({0, -1, 0}));
+  EXPECT_TRUE(far({1, 0, 0}));
+  EXPECT_TRUE(far({-1, 0, 0}));
+  EXPECT_FALSE(inf({1, 0, 0}));  // not touching the walls
+  EXPECT_TRUE(inf({0, 0, -1}));
+  // The corner (1.8, ·, 1) clears the wall top (2, ·, 2) at slope dz/dx = 5.
+  EXPECT_TRUE(far({1, 0, 4}));
+  EXPECT_FALSE(far({1, 0, 6}));
+  EXPECT_TRUE(far({1, 0.5, 4}));
+  // The arrangement of the one normal (+z): the circle z = 0 (represented by
+  // +x, where the walls block) and two hemispheres.
+  const Ndbg ndbg = ComputeNdbg(assembly, config);
+  ASSERT_EQ(ndbg.cells.size(), 3u);
+  EXPECT_EQ(ndbg.cells[0].cell_dimension, 1);
+  EXPECT_EQ(ndbg.cells[0].direction, Vector3(1, 0, 0));
+  EXPECT_TRUE(ndbg.cells[0].removable.empty());
+  EXPECT_TRUE(ndbg.cells[0].infinitesimal.blockers[peg].empty());
+  EXPECT_EQ(ndbg.cells[1].signs, std::vector<int>{-1});
+  EXPECT_EQ(ndbg.cells[1].direction, Vector3(0, 0, -1));
+  EXPECT_TRUE(ndbg.cells[1].removable.empty());
+  EXPECT_EQ(ndbg.cells[2].signs, std::vector<int>{1});
+  EXPECT_EQ(ndbg.cells[2].direction, Vector3(0, 0, 1));
+  EXPECT_EQ(ndbg.cells[2].removable, std::vector<int>{peg});
+}
+
+// The paper's Fig. 1: D and C can leave upward; B (under C and D) and A
+// (under B) cannot; A's closure upward is the whole stack.
+TEST(Ndbg2d, PaperFig1Upward) {
+  const Assembly assembly = Example("paper_fig1.json");
+  const Configuration config = Configuration::Assembled(assembly);
+  const int A = assembly.FindPart("A"), B = assembly.FindPart("B"), C = assembly.FindPart("C"),
+            D = assembly.FindPart("D"), E = assembly.FindPart("E");
+  const Ndbg ndbg = ComputeNdbg(assembly, config);
+  const NdbgCell* up = nullptr;
+  for (const NdbgCell& cell : ndbg.cells)
+    if (cell.direction == Vector3(0, 1, 0)) up = &cell;
+  ASSERT_NE(up, nullptr);
+  std::vector<int> expected = {C, D};
+  std::sort(expected.begin(), expected.end());
+  EXPECT_EQ(up->removable, expected);
+  EXPECT_TRUE(up->infinity.Blocks(B, C));
+  EXPECT_TRUE(up->infinity.Blocks(B, D));
+  EXPECT_TRUE(up->infinity.Blocks(A, B));
+  EXPECT_FALSE(up->infinity.Blocks(A, C));  // C is beside A's column, not above it
+  std::vector<bool> present(assembly.num_parts(), true);
+  EXPECT_EQ(BlockingClosure(up->infinity, A, present), (std::vector<int>{A, B, C, D}));
+  EXPECT_EQ(BlockingClosure(up->infinity, D, present), (std::vector<int>{D}));
+  std::vector<bool> cd(assembly.num_parts(), false);
+  cd[C] = cd[D] = true;
+  EXPECT_TRUE(CanLeave(up->infinity, cd, present));
+  cd[B] = true;
+  EXPECT_TRUE(CanLeave(up->infinity, cd, present));  // B with C and D on it
+  cd[E] = true;
+  EXPECT_FALSE(CanLeave(up->infinity, cd, present));  // the fixed table never leaves
+  // Downward nothing leaves, and the table blocks A and B.
+  const BlockingGraph down =
+      ComputeBlockingGraph(assembly, config, Vector3(0, -1, 0), BlockingKind::kInfinity);
+  EXPECT_TRUE(down.Blocks(A, E));
+  EXPECT_TRUE(down.Blocks(B, E));
+  ExpectConsistent(assembly, config, ndbg);
+  // Without D, the cell is the same and C alone can leave.
+  Configuration without_d = config;
+  without_d.present[D] = false;
+  const BlockingGraph up2 =
+      ComputeBlockingGraph(assembly, without_d, Vector3(0, 1, 0), BlockingKind::kInfinity);
+  EXPECT_TRUE(up2.blockers[D].empty());
+  EXPECT_FALSE(up2.Blocks(B, D));
+}
+
+// A 3-D tower (Jenga, 18 layers of 3 with gaps in each layer): one normal
+// (z), three cells; upward only the top layer leaves. Timed.
+TEST(Ndbg3d, JengaTopLayerLeavesUpward) {
+  const Assembly assembly = Example("jenga.json");
+  const Configuration config = Configuration::Assembled(assembly);
+  const auto start = std::chrono::steady_clock::now();
+  const Ndbg ndbg = ComputeNdbg(assembly, config);
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  std::printf("ComputeNdbg(jenga): %zu cells, %.3f s\n", ndbg.cells.size(), seconds);
+  ASSERT_EQ(ndbg.cells.size(), 3u);
+  const NdbgCell& up = ndbg.cells[2];
+  ASSERT_EQ(up.direction, Vector3(0, 0, 1));
+  std::vector<int> top = {assembly.FindPart("L18_1"), assembly.FindPart("L18_2"),
+                          assembly.FindPart("L18_3")};
+  EXPECT_EQ(up.removable, top);
+  // Each block of layer 1 is blocked to infinity by every block above its
+  // footprint: all of layer 2 (across it), and layers 3, 5, … only the
+  // block right above it.
+  const int l1 = assembly.FindPart("L01_2");
+  EXPECT_TRUE(up.infinity.Blocks(l1, assembly.FindPart("L02_1")));
+  EXPECT_TRUE(up.infinity.Blocks(l1, assembly.FindPart("L17_2")));
+  EXPECT_FALSE(up.infinity.Blocks(l1, assembly.FindPart("L17_1")));
+  EXPECT_EQ(up.infinitesimal.blockers[l1].size(), 3u);  // layer 2 only
+}
+
+TEST(GraphAlgorithms, ClosureComponentsAndCanLeave) {
+  BlockingGraph g;
+  g.blockers = {{1}, {0}, {0}, {}, {4}};  // 0 ⇄ 1, 2 → 0, 3 alone, a self-loop on 4
+  g.fixed = {false, false, false, false, false};
+  const std::vector<bool> all(5, true);
+  EXPECT_EQ(StronglyConnectedComponents(g, all),
+            (std::vector<std::vector<int>>{{0, 1}, {2}, {3}, {4}}));
+  EXPECT_EQ(BlockingClosure(g, 2, all), (std::vector<int>{0, 1, 2}));
+  EXPECT_EQ(BlockingClosure(g, 3, all), (std::vector<int>{3}));
+  EXPECT_TRUE(CanLeave(g, {true, true, false, false, false}, all));
+  EXPECT_FALSE(CanLeave(g, {true, false, false, false, false}, all));
+  EXPECT_FALSE(CanLeave(g, {false, false, true, false, false}, all));
+  // Absent blockers do not block.
+  const std::vector<bool> no0 = {false, true, true, true, true};
+  EXPECT_TRUE(CanLeave(g, {false, false, true, false, false}, no0));
+  EXPECT_EQ(BlockingClosure(g, 2, no0), (std::vector<int>{2}));
+  EXPECT_EQ(StronglyConnectedComponents(g, no0),
+            (std::vector<std::vector<int>>{{1}, {2}, {3}, {4}}));
+  // A fixed part never leaves.
+  g.fixed[3] = true;
+  EXPECT_FALSE(CanLeave(g, {false, false, false, true, false}, all));
+  EXPECT_THROW(CanLeave(g, {true}, all), std::invalid_argument);
+  EXPECT_THROW(BlockingClosure(g, 7, all), std::invalid_argument);
+}
+
+TEST(BlockingGraph, RejectsZeroDirection) {
+  const Assembly assembly = Example("paper_fig1.json");
+  const Configuration config = Configuration::Assembled(assembly);
+  EXPECT_THROW(ComputeBlockingGraph(assembly, config, Vector3(0, 0, 1), BlockingKind::kInfinity),
+               std::invalid_argument);  // 2-D: z is ignored
+  EXPECT_THROW(ComputeBlockingGraph(assembly, config, Vector3(NAN, 1, 0), BlockingKind::kInfinity),
+               std::invalid_argument);
+}
+
+bool SameNdbg(const Ndbg& a, const Ndbg& b) {
+  if (a.dimension != b.dimension || a.normals != b.normals || a.cells.size() != b.cells.size())
+    return false;
+  for (size_t c = 0; c < a.cells.size(); ++c) {
+    const NdbgCell &x = a.cells[c], &y = b.cells[c];
+    if (x.cell_dimension != y.cell_dimension || x.direction != y.direction ||
+        x.angle_from != y.angle_from || x.angle_to != y.angle_to || x.signs != y.signs ||
+        x.infinitesimal.blockers != y.infinitesimal.blockers ||
+        x.infinity.blockers != y.infinity.blockers || x.removable != y.removable)
+      return false;
+  }
+  return true;
+}
+
+TEST(Ndbg, DeterministicAcrossRuns) {
+  for (const char* name : {"paper_fig1.json", "l_shapes.json", "paper_fig9.json"}) {
+    SCOPED_TRACE(name);
+    const Assembly assembly = Example(name);
+    const Configuration config = Configuration::Assembled(assembly);
+    const Ndbg first = ComputeNdbg(assembly, config);
+    EXPECT_FALSE(first.cells.empty());
+    EXPECT_TRUE(SameNdbg(first, ComputeNdbg(assembly, config)));
+    // A copy of the assembly (another object, the same model) too.
+    const Assembly copy = Example(name);
+    EXPECT_TRUE(SameNdbg(first, ComputeNdbg(copy, Configuration::Assembled(copy))));
+  }
+}
+
+// Postconditions on every bundled example: infinitesimal ⊆ infinity, the
+// removable parts are exactly the movable ones without arcs, and the 2-D
+// cells agree with DBG(d) computed directly.
+TEST(Ndbg, PostconditionsOnExamples) {
+  for (const char* name : {"paper_fig1.json", "paper_fig4.json", "paper_fig6.json",
+                           "paper_fig9.json", "stack3.json", "ladder.json", "l_shapes.json"}) {
+    SCOPED_TRACE(name);
+    const Assembly assembly = Example(name);
+    const Configuration config = Configuration::Assembled(assembly);
+    const Ndbg ndbg = ComputeNdbg(assembly, config);
+    for (const NdbgCell& cell : ndbg.cells) {
+      for (int i = 0; i < assembly.num_parts(); ++i) {
+        const Part& p = assembly.part(i);
+        const bool removable =
+            std::binary_search(cell.removable.begin(), cell.removable.end(), i);
+        EXPECT_EQ(removable, !p.fixed && !p.tool && cell.infinity.blockers[i].empty());
+      }
+    }
+    if (ndbg.dimension == 2) ExpectConsistent(assembly, config, ndbg);
+  }
+}
+
+}  // namespace
+}  // namespace cairn

@@ -101,4 +101,9 @@ enum class RestHypothesis {
 RestSolution FindRestSolution(const ContactLcp& lcp, RestLpBasis* warm = nullptr,
                               RestHypothesis hypothesis = RestHypothesis::kEverythingButDriven);
 
+/// Frees the LP solver's state of the calling thread (GLPK keeps one
+/// environment per thread). Worker threads that may have solved LPs call it
+/// before they end; harmless when they have not.
+void ReleaseThreadSolverState();
+
 }  // namespace cairn

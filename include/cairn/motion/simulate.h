@@ -101,6 +101,12 @@ struct AnalysisInputs {
 struct SimulationOptions {
   bool continue_after_failure = false;
   bool record_timeline = false;
+  /// With support "none": when a guided part would fall or tip off its path,
+  /// the gripper takes its weight (support "full") for the rest of the step
+  /// instead of the step failing as `unsupported` ("the weight of the moving
+  /// part is not supported by the gripper unless the part itself becomes
+  /// unstable", paper Section V-A). The planner's paths use it.
+  bool carry_when_unsupported = false;
   /// Parts (indices) taken away before the plan starts: the plan runs on that
   /// subassembly (a node of the planner's AND/OR graph). Default: none.
   std::vector<int> absent;

@@ -34,8 +34,19 @@
 ///     cell's representative direction by a swept-collision test.
 ///
 /// Fixed parts are in the graphs like any other part (they block; a set that
-/// contains one cannot leave). Absent parts (Configuration::present) and
-/// tools have no arcs.
+/// contains one cannot leave), except that two fixed parts have no arcs
+/// between them (neither ever moves; DetectContacts makes no contact between
+/// them). Absent parts (Configuration::present; tools are absent unless a
+/// configuration makes them present) have no arcs. Fixtures (fixels) block
+/// nothing: the world has no part index, and a fixel is a retractable point
+/// support that the stability analysis accounts for, not an obstacle.
+///
+/// Both relations are decided with the scene's tolerances
+/// (Assembly::MakeTolerances): a contact blocks when |d · n| exceeds the
+/// angle tolerance, and a swept overlap counts when it is deeper than the
+/// length tolerance, so parts that slide along each other (a peg along its
+/// slot's walls, a block along its neighbour) are not blocked. docs/blocking.md
+/// describes the method.
 
 #include <vector>
 
@@ -59,6 +70,9 @@ struct BlockingGraph {
   BlockingKind kind = BlockingKind::kInfinity;
   /// (num_parts) blockers[i]: the parts j with an arc i → j, ascending.
   std::vector<std::vector<int>> blockers;
+  /// (num_parts) fixed[i]: part i is fixed (Part::fixed), so a set holding it
+  /// cannot leave (CanLeave). Empty in a graph built by hand: no part fixed.
+  std::vector<bool> fixed;
 
   /// True when there is an arc i → j.
   bool Blocks(int i, int j) const;
@@ -70,37 +84,53 @@ struct NdbgCell {
   /// the arrangement (3-D), 1 for an open arc, 2 for an open face (3-D).
   int cell_dimension = 1;
   /// A direction of the cell, unit: where the cell contains a world axis
-  /// direction (±x, ±y, ±z), that one, else the middle of the arc (2-D) or a
-  /// point well inside the face (3-D). Removal paths use it.
+  /// direction (±x, ±y, ±z), that one (the one closest to "up", −gravity,
+  /// first; then +x, −x, +y, −y, +z, −z), else the middle of the arc (2-D, or
+  /// a 3-D arc of a great circle), the vertex itself (3-D), or a point well
+  /// inside the face (3-D: the normalised sum of its boundary arcs' middles).
+  /// Removal paths use it; both graphs' `direction` is this one.
   Vector3 direction{0, 1, 0};
   /// 2-D: the cell's angular extent, radians counter-clockwise from +x in
   /// [0, 2π), from `angle_from` to `angle_to` (equal for a critical direction;
-  /// angle_to < angle_from when the arc crosses +x). 3-D: both 0.
+  /// angle_to < angle_from when the arc crosses +x; an arc with angle_to ==
+  /// angle_from is the rest of the circle after its only critical direction;
+  /// with no critical direction at all the one cell is the whole circle, 0 to
+  /// 2π). 3-D: both 0.
   double angle_from = 0, angle_to = 0;
   /// 3-D: the sign (−1, 0, +1) of d · n_k for each of Ndbg::normals, the
   /// cell's position in the arrangement. 2-D: empty.
   std::vector<int> signs;
   BlockingGraph infinitesimal;  ///< DBG(d) for the smallest motion
   BlockingGraph infinity;       ///< DBG(d) for removal to infinity (at `direction` in 3-D)
-  /// Movable present parts that can leave alone to infinity along the cell's
-  /// directions (no arc to another present part in `infinity`), ascending.
+  /// Movable (neither fixed nor tool) present parts that can leave alone to
+  /// infinity along the cell's directions (no arc to another present part in
+  /// `infinity`; 3-D: at `direction`), ascending.
   std::vector<int> removable;
 };
 
 /// The nondirectional blocking graph of one configuration.
 struct Ndbg {
   int dimension = 2;
-  /// The distinct contact normals (unit, one of each ± pair, in order of
-  /// first appearance) that define the cells: 3-D the great circles, 2-D the
+  /// The distinct contact normals between parts (unit, one of each ± pair:
+  /// the one whose largest component is positive; in order of first
+  /// appearance in DetectContacts' order) that define the cells: 3-D the
+  /// great circles (NdbgCell::signs refer to them), 2-D the candidate
   /// critical directions ±(−n_y, n_x) of the infinitesimal relation.
   std::vector<Vector3> normals;
   /// 2-D: in counter-clockwise order from +x, critical directions and arcs
-  /// alternating. 3-D: vertices, then arcs, then faces, each in a fixed order.
+  /// alternating (each critical direction followed by the arc after it; the
+  /// arc that crosses +x comes last). The partition is the coarsest one: a
+  /// direction is critical only where some pair's relation (infinitesimal or
+  /// to infinity) changes, so a perpendicular of a contact normal at which
+  /// nothing changes does not cut the circle. 3-D: the full arrangement of
+  /// the great circles: vertices, then arcs, then faces, each group sorted by
+  /// its sign vector (lexicographically, −1 < 0 < +1).
   std::vector<NdbgCell> cells;
 };
 
 /// DBG(d) of `config` (every present part; tools absent unless present).
-/// `direction` need not be unit (it is normalised; nonzero).
+/// `direction` need not be unit (it is normalised); in 2-D its z is ignored.
+/// @throws std::invalid_argument when the direction is zero or not finite.
 BlockingGraph ComputeBlockingGraph(const Assembly& assembly, const Configuration& config,
                                    const Vector3& direction, BlockingKind kind);
 
@@ -108,9 +138,11 @@ BlockingGraph ComputeBlockingGraph(const Assembly& assembly, const Configuration
 /// same cells in the same order on every run and thread count).
 Ndbg ComputeNdbg(const Assembly& assembly, const Configuration& config);
 
-/// True when the set `in_s` (num_parts flags; only present movable parts)
-/// can leave along the graph's direction: no part of S has an arc to a part
-/// that is present and outside S.
+/// True when the set `in_s` (num_parts flags) can leave along the graph's
+/// direction: it holds no fixed part (BlockingGraph::fixed) and no part of S
+/// has an arc to a part that is present and outside S. Parts of S that are
+/// not present are ignored. The empty set can leave.
+/// @throws std::invalid_argument when the flags are not num_parts long.
 bool CanLeave(const BlockingGraph& graph, const std::vector<bool>& in_s,
               const std::vector<bool>& present);
 
