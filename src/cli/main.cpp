@@ -67,8 +67,9 @@ int main(int argc, char** argv) {
   sim_cmd->add_flag("--suggest-fixtures", sim.suggest_fixtures,
                     "When a step fails, suggest the fewest fixels (point fixtures) that make the "
                     "plan stable, verified by re-running it");
-  sim_cmd->add_option("--max-fixels", sim.max_fixels,
-                      "The most fixels --suggest-fixtures adds (default 3)")
+  sim_cmd
+      ->add_option("--max-fixels", sim.max_fixels,
+                   "The most fixels --suggest-fixtures adds (default 3)")
       ->check(CLI::Range(1, 20));
   AddModelOptions(sim_cmd, sim.model);
 
@@ -84,7 +85,8 @@ int main(int argc, char** argv) {
   cairn::cli::BlockingArgs blocking;
   CLI::App* blocking_cmd = app.add_subcommand(
       "blocking", "Which parts can be taken out, and along which directions? (the NDBG)");
-  blocking_cmd->add_option("scene", blocking.scene, "Scene file (JSON: format 1, or --format compas)")
+  blocking_cmd
+      ->add_option("scene", blocking.scene, "Scene file (JSON: format 1, or --format compas)")
       ->required();
   blocking_cmd->add_flag("--json", blocking.json, "Print a JSON document instead of a summary");
   blocking_cmd
@@ -99,22 +101,25 @@ int main(int argc, char** argv) {
   plan_cmd->add_option("scene", plan.scene, "Scene file (JSON: format 1, or --format compas)")
       ->required();
   plan_cmd->add_flag("--json", plan.json, "Print a JSON document instead of a summary");
-  plan_cmd->add_option("--max", plan.max,
-                       "Stop after K stable sequences (best-first search); default: all")
+  plan_cmd
+      ->add_option("--max", plan.max,
+                   "Stop after K stable sequences (best-first search); default: all")
       ->check(CLI::NonNegativeNumber);
   plan_cmd->add_option("--threads", plan.threads, "Worker threads (default: every core)")
       ->check(CLI::NonNegativeNumber);
   plan_cmd->add_option("--paths", plan.paths,
                        "Candidate paths per part (JSON: part name -> list of paths)");
-  plan_cmd->add_option("--emit-plans", plan.emit_plans,
-                       "Write each sequence as plan files (disassembly and assembly) in this folder");
+  plan_cmd->add_option(
+      "--emit-plans", plan.emit_plans,
+      "Write each sequence as plan files (disassembly and assembly) in this folder");
   plan_cmd->add_option("--dot", plan.dot,
                        "Write the AND/OR graph (Graphviz dot) with stable and unstable edges");
   plan_cmd->add_option("--keep", plan.keep, "Parts that stay in the assembly (comma-separated)")
       ->delimiter(',');
-  plan_cmd->add_option("--support", plan.support,
-                       "Support of straight removals: full (carried, default), none (pushed "
-                       "along the path), both")
+  plan_cmd
+      ->add_option("--support", plan.support,
+                   "Support of straight removals: full (carried, default), none (pushed "
+                   "along the path), both")
       ->check(CLI::IsMember({"full", "none", "both"}));
   plan_cmd->add_flag("--single-parts", plan.no_subassemblies,
                      "Remove one part per step (no subassemblies)");
@@ -122,8 +127,9 @@ int main(int argc, char** argv) {
       ->check(CLI::PositiveNumber);
   plan_cmd->add_option("--speed", plan.speed, "Gripper speed (length/s; default 1)")
       ->check(CLI::PositiveNumber);
-  plan_cmd->add_option("--allow-fixtures", plan.allow_fixtures,
-                       "When nothing is stable, allow up to N fixels (fewest first)")
+  plan_cmd
+      ->add_option("--allow-fixtures", plan.allow_fixtures,
+                   "When nothing is stable, allow up to N fixels (fewest first)")
       ->check(CLI::Range(0, 20));
   AddModelOptions(plan_cmd, plan.model);
 

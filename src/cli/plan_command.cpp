@@ -86,13 +86,13 @@ int RunPlan(const PlanArgs& args, std::ostream& out, std::ostream& err) {
             "--emit-plans");
       }
       for (size_t k = 0; k < result.assembly_only.size(); ++k)
-        WriteAtomically((dir / Numbered("assembly_only_", k, ".plan.json")).string(),
-                        PlanDefToJson(SequenceToPlanDef(result.assembly_only[k], result,
-                                                        PlanMode::kAssemble),
-                                      dim)
-                                .dump(2) +
-                            "\n",
-                        "--emit-plans");
+        WriteAtomically(
+            (dir / Numbered("assembly_only_", k, ".plan.json")).string(),
+            PlanDefToJson(SequenceToPlanDef(result.assembly_only[k], result, PlanMode::kAssemble),
+                          dim)
+                    .dump(2) +
+                "\n",
+            "--emit-plans");
     }
     if (!args.dot.empty()) WriteAtomically(args.dot, PlannerToDot(assembly, result), "--dot");
     out << text;

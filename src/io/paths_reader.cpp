@@ -12,7 +12,7 @@ namespace cairn {
 using nlohmann::json;
 
 std::map<int, std::vector<CandidatePath>> ReadCandidatePaths(const std::string& file,
-                                                         const Assembly& assembly) {
+                                                             const Assembly& assembly) {
   std::ifstream in(file);
   if (!in) throw InputError(file, "", "cannot read the file");
   json doc;

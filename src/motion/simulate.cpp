@@ -132,8 +132,8 @@ SimulationResult SimulatePlan(const Assembly& assembly, const Plan& plan,
     for (const PlanStep& step : plan.steps)
       for (int p : step.remove) config.present[p] = false;
   for (int p : options.absent) {
-    CAIRN_THROW_UNLESS(p >= 0 && p < n, "SimulatePlan: absent part " + std::to_string(p) +
-                                            " out of range");
+    CAIRN_THROW_UNLESS(p >= 0 && p < n,
+                       "SimulatePlan: absent part " + std::to_string(p) + " out of range");
     config.present[p] = false;
   }
 

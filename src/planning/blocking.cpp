@@ -117,10 +117,10 @@ struct Shape {
   bool tool = false;
   bool convex = false;
   Vector3 lo{0, 0, 0}, hi{0, 0, 0};  // bounding box (length)
-  std::vector<Vector3> verts;         // every vertex, world (2-D: z = 0)
-  std::vector<Vector3> axes;          // convex: face (2-D: edge) normals, one per ± pair
-  std::vector<Vector3> edge_dirs;     // convex 3-D: edge directions, one per ± pair
-  Polygon poly;                       // 2-D: counter-clockwise, world
+  std::vector<Vector3> verts;        // every vertex, world (2-D: z = 0)
+  std::vector<Vector3> axes;         // convex: face (2-D: edge) normals, one per ± pair
+  std::vector<Vector3> edge_dirs;    // convex 3-D: edge directions, one per ± pair
+  Polygon poly;                      // 2-D: counter-clockwise, world
   // 3-D
   const Polyhedron* solid = nullptr;
   Eigen::Isometry3d X_WB = Eigen::Isometry3d::Identity();
@@ -165,8 +165,9 @@ std::vector<Vector3> PreferredAxes(const Assembly& assembly) {
   }
   const Vector3 g = assembly.gravity();
   const Vector3 up = g.norm() > 0 ? Vector3(-g / g.norm()) : Vector3::Zero();
-  std::stable_sort(axes.begin(), axes.end(),
-                   [&](const Vector3& a, const Vector3& b) { return a.dot(up) > b.dot(up) + 1e-12; });
+  std::stable_sort(axes.begin(), axes.end(), [&](const Vector3& a, const Vector3& b) {
+    return a.dot(up) > b.dot(up) + 1e-12;
+  });
   return axes;
 }
 
@@ -180,11 +181,11 @@ void AddUnique(std::vector<Vector3>& out, const Vector3& v, double tol) {
 // Step 1: the shapes, the distinct normals and the pairs with their contacts.
 Scene BuildScene(const Assembly& assembly, const Configuration& config) {
   const int n = assembly.num_parts();
-  CAIRN_THROW_UNLESS(static_cast<int>(config.present.size()) == n &&
-                         static_cast<int>(config.poses.size()) == n,
-                     "blocking: the configuration has " + std::to_string(config.present.size()) +
-                         " presence flags and " + std::to_string(config.poses.size()) +
-                         " poses for " + std::to_string(n) + " parts");
+  CAIRN_THROW_UNLESS(
+      static_cast<int>(config.present.size()) == n && static_cast<int>(config.poses.size()) == n,
+      "blocking: the configuration has " + std::to_string(config.present.size()) +
+          " presence flags and " + std::to_string(config.poses.size()) + " poses for " +
+          std::to_string(n) + " parts");
   const Tolerances tol = assembly.MakeTolerances();
   Scene sc;
   sc.dim = assembly.dimension();
@@ -271,8 +272,7 @@ Scene BuildScene(const Assembly& assembly, const Configuration& config) {
     // The normal from j into i.
     const Vector3 n_ji = c.part_a == i ? c.n_W : Vector3(-c.n_W);
     int k = 0;
-    while (k < static_cast<int>(sc.normals.size()) &&
-           sc.normals[k].cross(n_ji).norm() > tol.angle)
+    while (k < static_cast<int>(sc.normals.size()) && sc.normals[k].cross(n_ji).norm() > tol.angle)
       ++k;
     if (k == static_cast<int>(sc.normals.size())) {
       // Of the ± pair, the one whose largest component is positive.
@@ -410,7 +410,8 @@ bool EventSweptOverlap2(const Shape& a, const Shape& b, const Vector3& d3, doubl
   std::vector<double> events;
   const int na = static_cast<int>(a.poly.size()), nb = static_cast<int>(b.poly.size());
   for (const Vector2& p : a.poly)
-    for (int k = 0; k < nb; ++k) VertexEdgeEvents(p, d, b.poly[k], b.poly[(k + 1) % nb], tol, events);
+    for (int k = 0; k < nb; ++k)
+      VertexEdgeEvents(p, d, b.poly[k], b.poly[(k + 1) % nb], tol, events);
   for (const Vector2& p : b.poly)
     for (int k = 0; k < na; ++k)
       VertexEdgeEvents(p, -d, a.poly[k], a.poly[(k + 1) % na], tol, events);
@@ -576,7 +577,8 @@ Clusters MakeClusters(std::vector<double> angles, const std::vector<Vector3>& ax
   Clusters cl;
   std::sort(angles.begin(), angles.end());
   for (const double a : angles) {
-    if (cl.list.empty() || a - cl.list.back().lo > tol) cl.list.push_back({a, a, a, Vector3::Zero()});
+    if (cl.list.empty() || a - cl.list.back().lo > tol)
+      cl.list.push_back({a, a, a, Vector3::Zero()});
     cl.list.back().hi = a;
   }
   if (cl.list.size() > 1 && cl.list[0].lo + kTwoPi - cl.list.back().hi <= tol)
@@ -638,7 +640,8 @@ PairFunction EvaluatePair2(const Scene& sc, const PartPair& pair, const Clusters
   // Signs of d · n_k at a direction; at a cluster, exactly 0 on its normals.
   const auto bits_at = [&](const Vector3& d, int cluster) {
     const std::uint8_t inf = InfinitesimalBits(pair, [&](int k) {
-      if (cluster >= 0 && (perp_cluster[k][0] == cluster || perp_cluster[k][1] == cluster)) return 0;
+      if (cluster >= 0 && (perp_cluster[k][0] == cluster || perp_cluster[k][1] == cluster))
+        return 0;
       return SignOf(d.dot(sc.normals[k]), sc.tol_angle);
     });
     return PairBits(sc, pair, d, inf);
@@ -807,15 +810,24 @@ std::vector<ArrangementCell> Arrangement(const std::vector<Vector3>& normals,
     }
     return cells;
   }
-  // Vertices: ±(n_k × n_l), identified by their sign vectors.
-  std::map<std::vector<int>, Vector3> vertices;
+  // Vertices: ±(n_k × n_l), identified by their sign vectors. When all the
+  // normals lie in one plane (every circle through the same two antipodal
+  // points) both vertices have the sign vector 0…0: then the sign of the
+  // vertex's largest component tells them apart.
+  std::map<std::pair<std::vector<int>, int>, Vector3> vertices;
   for (int k = 0; k < nn; ++k)
     for (int l = k + 1; l < nn; ++l) {
       const Vector3 v = normals[k].cross(normals[l]).normalized();
       for (const Vector3& w : {v, Vector3(-v)}) {
         std::vector<int> s = SignsOf(w, normals, tol);
         s[k] = s[l] = 0;
-        vertices.emplace(s, w);
+        int tie = 0;
+        if (std::all_of(s.begin(), s.end(), [](int x) { return x == 0; })) {
+          int big = 0;
+          w.cwiseAbs().maxCoeff(&big);
+          tie = w[big] > 0 ? 1 : -1;
+        }
+        vertices.emplace(std::make_pair(s, tie), w);
       }
     }
   // Arcs: between consecutive vertices on each circle. Faces: each arc's
@@ -826,8 +838,8 @@ std::vector<ArrangementCell> Arrangement(const std::vector<Vector3>& normals,
   for (int k = 0; k < nn; ++k) {
     const auto [u, w] = TangentBasis(normals[k]);
     std::vector<double> phi;
-    for (const auto& [s, v] : vertices)
-      if (s[k] == 0) phi.push_back(std::atan2(v.dot(w), v.dot(u)));
+    for (const auto& [key, v] : vertices)
+      if (key.first[k] == 0) phi.push_back(std::atan2(v.dot(w), v.dot(u)));
     std::sort(phi.begin(), phi.end());
     const int m = static_cast<int>(phi.size());
     for (int q = 0; q < m; ++q) {
@@ -852,9 +864,10 @@ std::vector<ArrangementCell> Arrangement(const std::vector<Vector3>& normals,
       }
     }
   }
-  for (const auto& [s, v] : vertices) {
-    ArrangementCell c{0, v, s};
-    prefer_axis(c);
+  for (const auto& [key, v] : vertices) {
+    ArrangementCell c{0, v, key.first};
+    for (const Vector3& ax : axes)  // a vertex on a world axis is that axis, exactly
+      if ((ax - v).norm() <= tol) c.direction = ax;
     cells.push_back(c);
   }
   for (const auto& [s, v] : arcs) {
@@ -905,15 +918,15 @@ BlockingGraph ComputeBlockingGraph(const Assembly& assembly, const Configuration
   if (!assembly.is_3d()) d.z() = 0;
   std::ostringstream given;
   given << "(" << direction.x() << ", " << direction.y() << ", " << direction.z() << ")";
-  CAIRN_THROW_UNLESS(d.allFinite() && d.norm() > 0,
-                     "ComputeBlockingGraph: the direction must be finite and nonzero, got " +
-                         given.str());
+  CAIRN_THROW_UNLESS(
+      d.allFinite() && d.norm() > 0,
+      "ComputeBlockingGraph: the direction must be finite and nonzero, got " + given.str());
   d.normalize();
   const Scene sc = BuildScene(assembly, config);
   BlockingGraph g = EmptyGraph(sc, d, kind);
   for (const PartPair& pair : sc.pairs) {
-    const std::uint8_t inf = InfinitesimalBits(
-        pair, [&](int k) { return SignOf(d.dot(sc.normals[k]), sc.tol_angle); });
+    const std::uint8_t inf =
+        InfinitesimalBits(pair, [&](int k) { return SignOf(d.dot(sc.normals[k]), sc.tol_angle); });
     if (kind == BlockingKind::kInfinitesimal)
       AddArcs(pair, inf, kInfIJ, kInfJI, g);
     else

@@ -10,9 +10,9 @@
 #include <mutex>
 #include <numeric>
 #include <set>
-#include <tuple>
 #include <sstream>
 #include <thread>
+#include <tuple>
 #include <unordered_map>
 #include <utility>
 
@@ -150,8 +150,8 @@ class Planner {
                   const std::vector<Contact>& contacts, EdgeWork& work) const;
   Plan OneStepPlan(const std::vector<int>& s, const CandidatePath& c, PlanMode mode) const;
   SimulationOptions NodeSimulation(const Key& from_key) const;
-  SimulationResult Simulate(const Key& from_key, const std::vector<int>& s,
-                            const CandidatePath& c, PlanMode mode) const;
+  SimulationResult Simulate(const Key& from_key, const std::vector<int>& s, const CandidatePath& c,
+                            PlanMode mode) const;
   void FixtureSearch();
   // Search.
   void Enumerate();
@@ -166,25 +166,25 @@ class Planner {
   PlannerResult result_;
   int threads_ = 1;
   int words_ = 1;
-  std::vector<int> movable_;             // slot → part index
-  std::vector<int> slot_of_;             // part index → slot, or −1
-  std::vector<bool> base_present_;       // fixed and kept parts
-  std::vector<BlockingGraph> graphs_;    // DBG to infinity per candidate direction
-  std::vector<Vector3> lo_, hi_;         // each part's bounding box, assembled pose
-  Vector3 up_{0, 1, 0};                  // −gravity, unit
-  std::vector<Key> keys_;                // node index → key
+  std::vector<int> movable_;           // slot → part index
+  std::vector<int> slot_of_;           // part index → slot, or −1
+  std::vector<bool> base_present_;     // fixed and kept parts
+  std::vector<BlockingGraph> graphs_;  // DBG to infinity per candidate direction
+  std::vector<Vector3> lo_, hi_;       // each part's bounding box, assembled pose
+  Vector3 up_{0, 1, 0};                // −gravity, unit
+  std::vector<Key> keys_;              // node index → key
   std::unordered_map<Key, int, KeyHash> index_;
-  std::vector<bool> checked_;            // node index → stability known
-  std::vector<std::vector<int>> out_edges_;  // node index → edge indices, in trial order
-  std::vector<bool> evaluated_;              // edge index → trials done
-  std::vector<char> dead_;                   // best-first: node has no stable completion
+  std::vector<bool> checked_;                        // node index → stability known
+  std::vector<std::vector<int>> out_edges_;          // node index → edge indices, in trial order
+  std::vector<bool> evaluated_;                      // edge index → trials done
+  std::vector<char> dead_;                           // best-first: node has no stable completion
   std::vector<std::vector<Contact>> node_contacts_;  // contacts per node (friction scenes)
   // Try every candidate path of an edge (full enumeration: the verdicts of
   // all paths, non-invertible ones included), rather than stopping at the
   // first straight removal stable both ways (best-first search).
   bool all_paths_ = true;
-  int found_ = 0;                                    // best-first: sequences found
-  std::vector<std::vector<int>> found_edges_;        // best-first: their edges
+  int found_ = 0;                              // best-first: sequences found
+  std::vector<std::vector<int>> found_edges_;  // best-first: their edges
 };
 
 void Planner::ChooseParts() {
@@ -405,7 +405,8 @@ std::vector<EdgeCandidate> Planner::Candidates(const Key& key) const {
         c.straight = true;
         c.direction = g.direction;
         c.label = DirectionLabel(g.direction, up_, assembly_.dimension());
-        if (opt_.support == SupportChoice::kBoth) c.label += std::string(", support ") + to_string(support);
+        if (opt_.support == SupportChoice::kBoth)
+          c.label += std::string(", support ") + to_string(support);
         e.paths.push_back(c);
       }
     }
@@ -482,8 +483,9 @@ PathTrial Planner::Trial(const Key& from_key, const std::vector<int>& s, const C
   // Corollary 2 with Proposition 2: S carried whole, rigidly, along a free
   // straight path; without friction, or with every contact opening at once,
   // the rest feels only the two nodes, both stable.
-  const bool node_checks = c.straight && c.support == SupportMode::kFull && c.grip.empty() &&
-                           (assembly_.IsFrictionless() || AllContactsOpen(contacts, s, c.direction));
+  const bool node_checks =
+      c.straight && c.support == SupportMode::kFull && c.grip.empty() &&
+      (assembly_.IsFrictionless() || AllContactsOpen(contacts, s, c.direction));
   if (node_checks) {
     t.disassembly = t.assembly = MotionVerdict::kStable;
     t.decided_by = "nodes";
@@ -524,7 +526,8 @@ EdgeWork Planner::EvaluateEdge(PlanEdge& edge, const std::vector<Contact>& conta
   for (; tried < edge.trials.size(); ++tried) {
     PathTrial& t = edge.trials[tried];
     t = Trial(from_key, edge.remove, t.candidate, contacts, work);
-    const bool both = t.disassembly == MotionVerdict::kStable && t.assembly == MotionVerdict::kStable;
+    const bool both =
+        t.disassembly == MotionVerdict::kStable && t.assembly == MotionVerdict::kStable;
     if (both && t.candidate.straight && !all_paths_) {
       ++tried;
       break;
@@ -535,11 +538,13 @@ EdgeWork Planner::EvaluateEdge(PlanEdge& edge, const std::vector<Contact>& conta
     const PathTrial& t = edge.trials[k];
     const bool dis = t.disassembly == MotionVerdict::kStable;
     const bool as = t.assembly == MotionVerdict::kStable;
-    if (dis && as && (edge.chosen < 0 || edge.trials[edge.chosen].assembly != MotionVerdict::kStable))
+    if (dis && as &&
+        (edge.chosen < 0 || edge.trials[edge.chosen].assembly != MotionVerdict::kStable))
       edge.chosen = static_cast<int>(k);
     if (dis && edge.chosen < 0) edge.chosen = static_cast<int>(k);
-    if (as && (edge.assembly_chosen < 0 ||
-               edge.trials[edge.assembly_chosen].disassembly != MotionVerdict::kStable) &&
+    if (as &&
+        (edge.assembly_chosen < 0 ||
+         edge.trials[edge.assembly_chosen].disassembly != MotionVerdict::kStable) &&
         (dis || edge.assembly_chosen < 0))
       edge.assembly_chosen = static_cast<int>(k);
   }
@@ -579,9 +584,9 @@ void Planner::Enumerate() {
   for (int count = m; count >= 1; --count) {
     std::vector<int> level = bucket[count];
     std::sort(level.begin(), level.end());
-    level.erase(std::remove_if(level.begin(), level.end(),
-                               [&](int i) { return !result_.nodes[i].stable; }),
-                level.end());
+    level.erase(
+        std::remove_if(level.begin(), level.end(), [&](int i) { return !result_.nodes[i].stable; }),
+        level.end());
     if (level.empty()) continue;
     std::vector<std::vector<EdgeCandidate>> cands(level.size());
     ParallelFor(static_cast<int>(level.size()), threads_,
@@ -590,7 +595,8 @@ void Planner::Enumerate() {
     for (size_t k = 0; k < level.size(); ++k) {
       const size_t first = result_.edges.size();
       AddEdges(level[k], std::move(cands[k]));
-      for (size_t e = first; e < result_.edges.size(); ++e) new_edges.push_back(static_cast<int>(e));
+      for (size_t e = first; e < result_.edges.size(); ++e)
+        new_edges.push_back(static_cast<int>(e));
     }
     EvaluateEdges(new_edges);
     queued.resize(result_.nodes.size(), false);
@@ -622,8 +628,7 @@ bool Planner::Visit(int node, std::vector<int>& stack) {
     if (!evaluated_[edges[k]]) {
       std::vector<int> batch;
       for (size_t b = k; b < edges.size() && static_cast<int>(batch.size()) < threads_; ++b)
-        if (!evaluated_[edges[b]] && !dead_[result_.edges[edges[b]].to])
-          batch.push_back(edges[b]);
+        if (!evaluated_[edges[b]] && !dead_[result_.edges[edges[b]].to]) batch.push_back(edges[b]);
       if (batch.empty()) batch.push_back(edges[k]);
       EvaluateEdges(batch);
     }
@@ -700,7 +705,8 @@ void Planner::ListSequences() {
     }
   }
   result_.stats.sequences_total = ways[0];
-  const size_t limit = opt_.max_sequences > 0 ? static_cast<size_t>(opt_.max_sequences) : kMaxListed;
+  const size_t limit =
+      opt_.max_sequences > 0 ? static_cast<size_t>(opt_.max_sequences) : kMaxListed;
 
   std::vector<int> stack;
   std::function<void(int, bool, bool)> walk = [&](int v, bool assembly, bool some_unstable) {
@@ -817,8 +823,10 @@ void Planner::FixtureSearch() {
         PathTrial t;
         t.candidate = c;
         t.disassembly = MotionVerdict::kStable;
-        t.assembly = MotionVerdict::kUnstable;  // not checked with fixels
-        t.decided_by = added.empty() ? "simulation" : "simulation with fixels";
+        t.assembly = MotionVerdict::kUnstable;
+        // The assembly direction is not checked with fixels.
+        t.decided_by =
+            added.empty() ? "fixture search: simulation" : "fixture search: simulation with fixels";
         t.fixels = added;
         edge.trials.push_back(t);
         edge.chosen = 0;

@@ -49,19 +49,37 @@ json StepToJson(const PlanStepDef& s, int dim) {
   return j;
 }
 
-// A candidate path as the graph and the non-invertible list show it.
-json TrialToJson(const Assembly& a, const PathTrial& t) {
+// Fixels as `part`, `point`, `normal` (the scene format's `fixtures`).
+json FixelsToJson(const Assembly& a, const std::vector<FixtureDef>& fixels) {
+  json out = json::array();
+  for (const FixtureDef& f : fixels)
+    out.push_back({{"part", f.part},
+                   {"point", Vec(f.point, a.dimension())},
+                   {"normal", Vec(f.normal, a.dimension())}});
+  return out;
+}
+
+// Paths of the fixture search carry no assembly verdict.
+bool AssemblyChecked(const PathTrial& t) { return t.decided_by.rfind("fixture search", 0) != 0; }
+
+// A candidate path as the graph and the non-invertible list show it; the
+// graph leaves out the points of the path (its label says which it is: a
+// large graph has hundreds of thousands of trials).
+json TrialToJson(const Assembly& a, const PathTrial& t, bool with_path = true) {
   const int dim = a.dimension();
   json j;
   j["label"] = t.candidate.label;
-  json path = json::array();
-  for (const Vector3& p : t.candidate.path) path.push_back(Vec(p, dim));
-  j["path"] = path;
+  if (with_path) {
+    json path = json::array();
+    for (const Vector3& p : t.candidate.path) path.push_back(Vec(p, dim));
+    j["path"] = path;
+  }
   j["support"] = to_string(t.candidate.support);
   if (!t.candidate.grip.empty()) j["tools"] = Names(a, t.candidate.grip);
   j["disassembly"] = to_string(t.disassembly);
-  j["assembly"] = to_string(t.assembly);
+  j["assembly"] = AssemblyChecked(t) ? json(to_string(t.assembly)) : json(nullptr);
   j["decided_by"] = t.decided_by;
+  if (!t.fixels.empty()) j["fixels"] = FixelsToJson(a, t.fixels);
   if (!t.failure.empty()) j["failure"] = t.failure;
   return j;
 }
@@ -71,20 +89,14 @@ json SequenceToJson(const Assembly& a, const PlannerResult& r, const PlannedSequ
   for (const PlannedStep& s : seq.steps) {
     steps.push_back(StepToJson(s.step, a.dimension()));
     const PathTrial& t = r.edges.empty() ? PathTrial{} : r.edges[s.edge].trials[s.trial];
-    checks.push_back({{"label", t.candidate.label},
-                      {"disassembly", to_string(t.disassembly)},
-                      {"assembly", to_string(t.assembly)},
-                      {"decided_by", t.decided_by}});
+    checks.push_back(
+        {{"label", t.candidate.label},
+         {"disassembly", to_string(t.disassembly)},
+         {"assembly", AssemblyChecked(t) ? json(to_string(t.assembly)) : json(nullptr)},
+         {"decided_by", t.decided_by}});
   }
   json out = {{"steps", steps}, {"invertible", seq.invertible}, {"checks", checks}};
-  if (!seq.fixels.empty()) {
-    json fixels = json::array();
-    for (const FixtureDef& f : seq.fixels)
-      fixels.push_back({{"part", f.part},
-                        {"point", Vec(f.point, a.dimension())},
-                        {"normal", Vec(f.normal, a.dimension())}});
-    out["fixels"] = fixels;
-  }
+  if (!seq.fixels.empty()) out["fixels"] = FixelsToJson(a, seq.fixels);
   return out;
 }
 
@@ -129,7 +141,7 @@ json PlannerToJson(const Assembly& assembly, const PlannerResult& r, const std::
   json nonin = json::array();
   for (const PlanEdge& e : r.edges)
     for (const PathTrial& t : e.trials)
-      if (t.disassembly != t.assembly) {
+      if (t.disassembly != t.assembly && AssemblyChecked(t)) {
         json j = TrialToJson(assembly, t);
         j["remove"] = Names(assembly, e.remove);
         j["remaining"] = Names(assembly, r.nodes[e.from].parts);
@@ -147,14 +159,14 @@ json PlannerToJson(const Assembly& assembly, const PlannerResult& r, const std::
   }
   for (const PlanEdge& e : r.edges) {
     json trials = json::array();
-    for (const PathTrial& t : e.trials) trials.push_back(TrialToJson(assembly, t));
-    edges.push_back({{"from", e.from},
-                     {"to", e.to},
-                     {"remove", Names(assembly, e.remove)},
-                     {"trials", trials},
-                     {"chosen", e.chosen >= 0 ? json(e.chosen) : json(nullptr)},
-                     {"assembly_chosen",
-                      e.assembly_chosen >= 0 ? json(e.assembly_chosen) : json(nullptr)}});
+    for (const PathTrial& t : e.trials) trials.push_back(TrialToJson(assembly, t, false));
+    edges.push_back(
+        {{"from", e.from},
+         {"to", e.to},
+         {"remove", Names(assembly, e.remove)},
+         {"trials", trials},
+         {"chosen", e.chosen >= 0 ? json(e.chosen) : json(nullptr)},
+         {"assembly_chosen", e.assembly_chosen >= 0 ? json(e.assembly_chosen) : json(nullptr)}});
   }
   doc["graph"] = {{"nodes", nodes}, {"edges", edges}};
   const PlannerStats& s = r.stats;
@@ -176,9 +188,13 @@ std::string PlannerToText(const Assembly& assembly, const PlannerResult& r,
                           const std::string& scene) {
   std::ostringstream os;
   const PlannerStats& s = r.stats;
-  os << "cairn plan: " << scene << " (" << assembly.dimension() << "-D, "
-     << assembly.num_parts() << " parts)\n";
-  if (r.complete)
+  os << "cairn plan: " << scene << " (" << assembly.dimension() << "-D, " << assembly.num_parts()
+     << " parts)\n";
+  const bool fixels = !r.sequences.empty() && !r.sequences.front().fixels.empty();
+  if (fixels)
+    os << r.sequences.size() << " sequence" << (r.sequences.size() == 1 ? "" : "s")
+       << " stable with fixels (none is stable without)\n";
+  else if (r.complete)
     os << Num(s.sequences_total) << " stable disassembly sequence"
        << (s.sequences_total == 1 ? "" : "s") << " (the AND/OR graph enumerated completely)\n";
   else
@@ -214,7 +230,7 @@ std::string PlannerToText(const Assembly& assembly, const PlannerResult& r,
   bool header = false;
   for (const PlanEdge& e : r.edges)
     for (const PathTrial& t : e.trials) {
-      if (t.disassembly == t.assembly) continue;
+      if (t.disassembly == t.assembly || !AssemblyChecked(t)) continue;
       if (!header) os << "Not invertible (disassembly and assembly differ):\n";
       header = true;
       os << "  " << Joined(assembly, e.remove) << " " << t.candidate.label << " from {"
@@ -227,8 +243,8 @@ std::string PlannerToText(const Assembly& assembly, const PlannerResult& r,
   os << "Work: " << s.nodes << " nodes, " << s.edges << " edges, " << s.node_checks
      << " node checks, " << s.path_simulations << " path simulations; " << s.decided_by_nodes
      << " paths decided by node checks (Corollary 2), " << s.pruned_by_proposition_1
-     << " edges pruned (Proposition 1); " << Num(s.seconds) << " s on " << s.threads
-     << " thread" << (s.threads == 1 ? "" : "s") << '\n';
+     << " edges pruned (Proposition 1); " << Num(s.seconds) << " s on " << s.threads << " thread"
+     << (s.threads == 1 ? "" : "s") << '\n';
   return os.str();
 }
 
@@ -245,8 +261,7 @@ std::string PlannerToDot(const Assembly& assembly, const PlannerResult& r) {
   }
   for (const PlanEdge& e : r.edges) {
     const int shown = e.chosen >= 0 ? e.chosen : (e.assembly_chosen >= 0 ? e.assembly_chosen : 0);
-    const std::string label =
-        Joined(assembly, e.remove) + " " + e.trials[shown].candidate.label;
+    const std::string label = Joined(assembly, e.remove) + " " + e.trials[shown].candidate.label;
     const char* style = e.chosen >= 0            ? "color=darkgreen"
                         : e.assembly_chosen >= 0 ? "color=orange"
                                                  : "color=red, style=dashed";

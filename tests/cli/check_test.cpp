@@ -52,7 +52,8 @@ INSTANTIATE_TEST_SUITE_P(
         ExampleVerdict{"paper_fig1.json", "D,C", 0}, ExampleVerdict{"paper_fig4.json", "", 0},
         ExampleVerdict{"paper_fig4.json", "A", 1}, ExampleVerdict{"paper_fig4_fixels.json", "A", 0},
         ExampleVerdict{"paper_fig9.json", "", 0}, ExampleVerdict{"paper_fig9.json", "A", 1},
-        ExampleVerdict{"jenga.json", "", 0}),
+        ExampleVerdict{"jenga.json", "", 0}, ExampleVerdict{"pyramid10.json", "", 0},
+        ExampleVerdict{"pyramid14.json", "", 0}),
     [](const ::testing::TestParamInfo<ExampleVerdict>& param_info) {
       std::string name = std::string(param_info.param.file);
       name = name.substr(0, name.size() - 5);

@@ -3,6 +3,8 @@
 // infinitesimal arrangement of a box in a corner, blocking only at infinity,
 // a swept test through a non-convex part, the paper's Fig. 1, the graph
 // algorithms, postconditions and determinism.
+#include "cairn/planning/blocking.h"
+
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -14,7 +16,6 @@
 #include <vector>
 
 #include "cairn/io/scene_reader.h"
-#include "cairn/planning/blocking.h"
 #include "scene_builders.h"
 #include "test_paths.h"
 
@@ -83,9 +84,8 @@ void ExpectConsistent(const Assembly& assembly, const Configuration& config, con
       EXPECT_EQ(cell.cell_dimension + next.cell_dimension, 1);  // alternating
       EXPECT_NEAR(next.angle_from, cell.angle_to, 1e-15);
       if (cell.cell_dimension == 1) {  // the direction lies inside the arc
-        double span = cell.angle_to - cell.angle_from, off = std::atan2(cell.direction.y(),
-                                                                        cell.direction.x()) -
-                                                             cell.angle_from;
+        double span = cell.angle_to - cell.angle_from,
+               off = std::atan2(cell.direction.y(), cell.direction.x()) - cell.angle_from;
         if (span <= 0) span += 2 * std::numbers::pi;
         if (off < 0) off += 2 * std::numbers::pi;
         EXPECT_GT(off, 0);
@@ -151,8 +151,8 @@ TEST(Ndbg2d, PegInSlotHandComputedCells) {
   ExpectConsistent(assembly, config, ndbg);
   // A hair off vertical, the peg is blocked (infinitesimally, by a wall).
   const Vector3 tilted(std::sin(1e-3), std::cos(1e-3), 0);
-  EXPECT_TRUE(
-      ComputeBlockingGraph(assembly, config, tilted, BlockingKind::kInfinitesimal).Blocks(peg, base));
+  EXPECT_TRUE(ComputeBlockingGraph(assembly, config, tilted, BlockingKind::kInfinitesimal)
+                  .Blocks(peg, base));
   EXPECT_FALSE(ComputeBlockingGraph(assembly, config, Vector3(0, 5, 0), BlockingKind::kInfinity)
                    .Blocks(peg, base));
 }
@@ -167,8 +167,8 @@ TEST(BlockingGraph, BlockedOnlyAtInfinity) {
   const Configuration config = Configuration::Assembled(assembly);
   const int A = 1, B = 2;
   const Vector3 right(1, 0, 0);
-  EXPECT_FALSE(ComputeBlockingGraph(assembly, config, right, BlockingKind::kInfinitesimal)
-                   .Blocks(A, B));
+  EXPECT_FALSE(
+      ComputeBlockingGraph(assembly, config, right, BlockingKind::kInfinitesimal).Blocks(A, B));
   const BlockingGraph far = ComputeBlockingGraph(assembly, config, right, BlockingKind::kInfinity);
   EXPECT_TRUE(far.Blocks(A, B));
   EXPECT_FALSE(far.Blocks(B, A));
@@ -176,7 +176,8 @@ TEST(BlockingGraph, BlockedOnlyAtInfinity) {
   EXPECT_TRUE(ComputeBlockingGraph(assembly, config, -right, BlockingKind::kInfinity).Blocks(B, A));
   // Just below 45° A's corner hits B's side; just above it clears B's top.
   const auto at = [&](double deg) {
-    return ComputeBlockingGraph(assembly, config, Vector3(std::cos(deg * kDeg), std::sin(deg * kDeg), 0),
+    return ComputeBlockingGraph(assembly, config,
+                                Vector3(std::cos(deg * kDeg), std::sin(deg * kDeg), 0),
                                 BlockingKind::kInfinity)
         .Blocks(A, B);
   };
@@ -232,8 +233,9 @@ TEST(Ndbg3d, BoxInACornerInfinitesimalArrangement) {
     free_cells += free ? 1 : 0;
     // Fixed parts have no arcs between them.
     EXPECT_FALSE(cell.infinity.Blocks(wall_x, floor));
-    if (cell.cell_dimension == 2 && free)  // the positive octant: its centre
+    if (cell.cell_dimension == 2 && free) {  // the positive octant: its centre
       EXPECT_TRUE(d.isApprox(Vector3(1, 1, 1).normalized(), 1e-12));
+    }
   }
   EXPECT_EQ(count[0], 6);
   EXPECT_EQ(count[1], 12);
@@ -241,6 +243,35 @@ TEST(Ndbg3d, BoxInACornerInfinitesimalArrangement) {
   EXPECT_EQ(free_cells, 7);
   EXPECT_EQ(ndbg.cells[0].cell_dimension, 0);
   EXPECT_EQ(ndbg.cells.back().cell_dimension, 2);
+  ExpectConsistent(assembly, config, ndbg);
+}
+
+// Two walls and no floor: the normals x and y lie in one plane, so both
+// circles pass through ±z, two vertices with the same (zero) sign vector.
+// 2 vertices, 4 arcs, 4 lunes; the box leaves where d_x ≥ 0 and d_y ≥ 0.
+TEST(Ndbg3d, CoplanarNormalsTwoVertices) {
+  AssemblyDef def;
+  def.gravity = Vector3(0, 0, -9.81);
+  def.parts = {Box3("wall_x", {-1, 0, 0}, {0, 3, 3}, true),
+               Box3("wall_y", {0, -1, 0}, {3, 0, 3}, true), Box3("box", {0, 0, 1}, {1, 1, 2})};
+  const Assembly assembly = Assembly::Create(def);
+  const Configuration config = Configuration::Assembled(assembly);
+  const Ndbg ndbg = ComputeNdbg(assembly, config);
+  ASSERT_EQ(ndbg.normals.size(), 2u);
+  ASSERT_EQ(ndbg.cells.size(), 10u);
+  EXPECT_EQ(ndbg.cells[0].direction, Vector3(0, 0, -1));
+  EXPECT_EQ(ndbg.cells[1].direction, Vector3(0, 0, 1));
+  int count[3] = {0, 0, 0}, free_cells = 0;
+  for (const NdbgCell& cell : ndbg.cells) {
+    ++count[cell.cell_dimension];
+    const bool free = cell.direction.x() > -1e-9 && cell.direction.y() > -1e-9;
+    EXPECT_EQ(cell.removable == std::vector<int>{2}, free);
+    free_cells += free ? 1 : 0;
+  }
+  EXPECT_EQ(count[0], 2);
+  EXPECT_EQ(count[1], 4);
+  EXPECT_EQ(count[2], 4);
+  EXPECT_EQ(free_cells, 5);
   ExpectConsistent(assembly, config, ndbg);
 }
 
@@ -370,6 +401,31 @@ TEST(Ndbg3d, JengaTopLayerLeavesUpward) {
   EXPECT_EQ(up.infinitesimal.blockers[l1].size(), 3u);  // layer 2 only
 }
 
+// Nothing to run into: one cell, the whole circle (2-D) or sphere (3-D),
+// represented by "up".
+TEST(Ndbg, LonePartIsOneCell) {
+  AssemblyDef def2;
+  def2.parts = {Box("A", 0, 0, 1, 1)};
+  const Assembly a2 = Assembly::Create(def2);
+  const Ndbg n2 = ComputeNdbg(a2, Configuration::Assembled(a2));
+  ASSERT_EQ(n2.cells.size(), 1u);
+  EXPECT_EQ(n2.cells[0].cell_dimension, 1);
+  EXPECT_EQ(n2.cells[0].angle_from, 0);
+  EXPECT_NEAR(n2.cells[0].angle_to, 2 * std::numbers::pi, 1e-15);
+  EXPECT_EQ(n2.cells[0].direction, Vector3(0, 1, 0));
+  EXPECT_EQ(n2.cells[0].removable, std::vector<int>{0});
+  AssemblyDef def3;
+  def3.gravity = Vector3(0, 0, -9.81);
+  def3.parts = {Box3("A", {0, 0, 0}, {1, 1, 1})};
+  const Assembly a3 = Assembly::Create(def3);
+  const Ndbg n3 = ComputeNdbg(a3, Configuration::Assembled(a3));
+  ASSERT_EQ(n3.cells.size(), 1u);
+  EXPECT_EQ(n3.cells[0].cell_dimension, 2);
+  EXPECT_TRUE(n3.cells[0].signs.empty());
+  EXPECT_EQ(n3.cells[0].direction, Vector3(0, 0, 1));
+  EXPECT_EQ(n3.cells[0].removable, std::vector<int>{0});
+}
+
 TEST(GraphAlgorithms, ClosureComponentsAndCanLeave) {
   BlockingGraph g;
   g.blockers = {{1}, {0}, {0}, {}, {4}};  // 0 ⇄ 1, 2 → 0, 3 alone, a self-loop on 4
@@ -445,8 +501,7 @@ TEST(Ndbg, PostconditionsOnExamples) {
     for (const NdbgCell& cell : ndbg.cells) {
       for (int i = 0; i < assembly.num_parts(); ++i) {
         const Part& p = assembly.part(i);
-        const bool removable =
-            std::binary_search(cell.removable.begin(), cell.removable.end(), i);
+        const bool removable = std::binary_search(cell.removable.begin(), cell.removable.end(), i);
         EXPECT_EQ(removable, !p.fixed && !p.tool && cell.infinity.blockers[i].empty());
       }
     }

@@ -4,6 +4,8 @@
 // every sequence found replays stably in SimulatePlan, both ways; the output
 // does not depend on the number of threads.
 
+#include "cairn/planning/planner.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -14,7 +16,6 @@
 #include "cairn/io/paths_reader.h"
 #include "cairn/io/scene_reader.h"
 #include "cairn/motion/simulate.h"
-#include "cairn/planning/planner.h"
 #include "cairn/report/plan_report.h"
 #include "test_paths.h"
 
@@ -147,7 +148,8 @@ class PlannerFig6 : public ::testing::Test {
   void SetUp() override {
     PlannerOptions opt;
     opt.keep = {scene_.Part("D"), scene_.Part("E")};
-    opt.given_paths = ReadCandidatePaths(ExamplePath("paper_fig6_exits.paths.json"), scene_.assembly);
+    opt.given_paths =
+        ReadCandidatePaths(ExamplePath("paths/paper_fig6_exits.paths.json"), scene_.assembly);
     r_ = PlanDisassembly(scene_.def, scene_.assembly, opt);
   }
   // The verdict of taking `part` out through `exit` with `present` in place.
@@ -289,8 +291,10 @@ TEST(PlannerDeterminism, SameOutputOnOneAndTwoThreads) {
   PlannerOptions one, two;
   one.threads = 1;
   two.threads = 2;
-  nlohmann::json a = PlannerToJson(scene.assembly, PlanDisassembly(scene.def, scene.assembly, one), "s");
-  nlohmann::json b = PlannerToJson(scene.assembly, PlanDisassembly(scene.def, scene.assembly, two), "s");
+  nlohmann::json a =
+      PlannerToJson(scene.assembly, PlanDisassembly(scene.def, scene.assembly, one), "s");
+  nlohmann::json b =
+      PlannerToJson(scene.assembly, PlanDisassembly(scene.def, scene.assembly, two), "s");
   for (nlohmann::json* j : {&a, &b}) {
     (*j)["stats"].erase("time");
     (*j)["stats"].erase("threads");

@@ -102,14 +102,14 @@ struct PathTrial {
   /// How it was decided: "nodes" (Corollary 2: node checks), "proposition 1"
   /// (T \ S unstable), "simulation" (along the path).
   std::string decided_by;
-  std::string failure;  ///< the first failure, in words (disassembly, else assembly)
+  std::string failure;             ///< the first failure, in words (disassembly, else assembly)
   std::vector<FixtureDef> fixels;  ///< with allow_fixtures: the fixels that make it stable
 };
 
 /// An edge of the graph: S out of node `from`, leaving node `to`.
 struct PlanEdge {
-  int from = -1, to = -1;        ///< indices into PlannerResult::nodes
-  std::vector<int> remove;       ///< S, ascending part indices
+  int from = -1, to = -1;         ///< indices into PlannerResult::nodes
+  std::vector<int> remove;        ///< S, ascending part indices
   std::vector<PathTrial> trials;  ///< the candidates tried, in the order tried
   /// Index into `trials` of the path the sequences use (stable both ways if
   /// any is, else stable in disassembly), or -1 when none is stable.
@@ -126,9 +126,9 @@ struct PlanNode {
 
 /// One step of a sequence: the plan step and what was found about it.
 struct PlannedStep {
-  PlanStepDef step;        ///< in plan format (names, path, support)
-  int edge = -1;           ///< index into PlannerResult::edges
-  int trial = -1;          ///< index into the edge's trials
+  PlanStepDef step;  ///< in plan format (names, path, support)
+  int edge = -1;     ///< index into PlannerResult::edges
+  int trial = -1;    ///< index into the edge's trials
   bool assembly_stable = false;
 };
 
@@ -142,11 +142,11 @@ struct PlannedSequence {
 
 /// Work done.
 struct PlannerStats {
-  int nodes = 0;             ///< nodes reached
-  int edges = 0;             ///< edges generated
-  int node_checks = 0;       ///< AnalyzeConfiguration of a node (memoised: once per node)
-  int path_simulations = 0;  ///< simulations along a path (each direction counts)
-  int decided_by_nodes = 0;  ///< path trials decided by node checks (Corollary 2)
+  int nodes = 0;                    ///< nodes reached
+  int edges = 0;                    ///< edges generated
+  int node_checks = 0;              ///< AnalyzeConfiguration of a node (memoised: once per node)
+  int path_simulations = 0;         ///< simulations along a path (each direction counts)
+  int decided_by_nodes = 0;         ///< path trials decided by node checks (Corollary 2)
   int pruned_by_proposition_1 = 0;  ///< path trials decided because T \ S is unstable
   int memo_hits = 0;                ///< node results reused
   double seconds = 0;               ///< wall clock

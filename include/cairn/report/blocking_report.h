@@ -21,8 +21,7 @@ namespace cairn {
 /// "infinitesimal" and "infinity" (arcs as [blocked part, blocker] names, in
 /// part order), "removable" (names). Uses `options.scene_file` and
 /// `options.without`.
-nlohmann::json NdbgToJson(const Assembly& assembly, const Ndbg& ndbg,
-                          const ReportOptions& options);
+nlohmann::json NdbgToJson(const Assembly& assembly, const Ndbg& ndbg, const ReportOptions& options);
 
 /// The human-readable summary: a headline, then one line per cell: its
 /// angles (2-D) or kind and signs (3-D), its direction, the parts that can
