@@ -197,6 +197,8 @@ std::string PlannerToText(const Assembly& assembly, const PlannerResult& r,
   else if (r.complete)
     os << Num(s.sequences_total) << " stable disassembly sequence"
        << (s.sequences_total == 1 ? "" : "s") << " (the AND/OR graph enumerated completely)\n";
+  else if (r.sequences.empty())
+    os << "0 stable disassembly sequences\n";
   else
     os << r.sequences.size() << " stable disassembly sequence"
        << (r.sequences.size() == 1 ? "" : "s") << " found (best-first search)\n";
