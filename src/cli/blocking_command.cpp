@@ -15,14 +15,8 @@ int RunBlocking(const BlockingArgs& args, std::ostream& out, std::ostream& err) 
     const Assembly assembly = LoadModel(args.scene, args.model).assembly;
     ReportOptions report;
     report.scene_file = args.scene;
-    Configuration config = Configuration::Assembled(assembly);
     // Parts taken away first, by name, as `cairn check --without` does.
-    for (const std::string& name : args.without) {
-      const int i = assembly.FindPart(name);
-      if (i < 0) throw InputError("", "--without", "no part named '" + name + "' in " + args.scene);
-      config.present[i] = false;
-      report.without.push_back(i);
-    }
+    const Configuration config = WithoutParts(assembly, args.without, args.scene, report.without);
     const Ndbg ndbg = ComputeNdbg(assembly, config);
     if (args.json)
       out << NdbgToJson(assembly, ndbg, report).dump(2) << '\n';

@@ -28,23 +28,8 @@ int RunCheck(const CheckArgs& args, std::ostream& out, std::ostream& err) {
     const Assembly assembly = LoadModel(args.scene, args.model).assembly;
     ReportOptions report;
     report.scene_file = args.scene;
-    // Resolve part names given on the command line.
-    const auto resolve = [&](const std::string& name, const std::string& flag) {
-      const int i = assembly.FindPart(name);
-      if (i < 0) throw InputError("", flag, "no part named '" + name + "' in " + args.scene);
-      return i;
-    };
-    if (!args.normalize.empty()) {
-      report.normalize_part = resolve(args.normalize, "--normalize");
-      if (assembly.part(*report.normalize_part).mass <= 0)
-        throw InputError("", "--normalize", "part '" + args.normalize + "' has no weight");
-    }
-    Configuration config = Configuration::Assembled(assembly);
-    for (const std::string& name : args.without) {
-      const int i = resolve(name, "--without");
-      config.present[i] = false;
-      report.without.push_back(i);
-    }
+    report.normalize_part = ResolveNormalize(assembly, args.normalize, args.scene);
+    const Configuration config = WithoutParts(assembly, args.without, args.scene, report.without);
     StabilityOptions analysis;
     analysis.check_equilibrium = true;  // report jamming (weak stability) too
     const StabilityResult result = AnalyzeConfiguration(assembly, config, analysis);
@@ -64,21 +49,13 @@ int RunSimulate(const SimulateArgs& args, std::ostream& out, std::ostream& err) 
     // The definition too: a fixel suggestion adds fixtures to it.
     const Model model = LoadModel(args.scene, args.model);
     const Assembly& assembly = model.assembly;
-    if (assembly.has_interfaces())
-      throw InputError(args.scene, "interfaces",
-                       "the contacts are given as interfaces of the assembled configuration: "
-                       "parts cannot be moved along a plan (check it, with --without for "
-                       "subassemblies, or let Cairn find the contacts from the shapes)");
+    RefuseGivenInterfaces(assembly, args.scene,
+                          "parts cannot be moved along a plan (check it, with --without for "
+                          "subassemblies, or let Cairn find the contacts from the shapes)");
     const Plan plan = ReadPlan(args.plan, assembly);
     ReportOptions report;
     report.scene_file = args.scene;
-    if (!args.normalize.empty()) {
-      const int i = assembly.FindPart(args.normalize);
-      if (i < 0)
-        throw InputError("", "--normalize",
-                         "no part named '" + args.normalize + "' in " + args.scene);
-      report.normalize_part = i;
-    }
+    report.normalize_part = ResolveNormalize(assembly, args.normalize, args.scene);
     SimulationOptions options;
     options.continue_after_failure = args.continue_after_failure;
     options.record_timeline = !args.timeline.empty();

@@ -32,6 +32,21 @@ void AddModelOptions(CLI::App* cmd, cairn::cli::ModelArgs& model) {
       ->check(CLI::IsMember({"detect", "stored"}));
 }
 
+// A subcommand that reads one scene (the positional `scene`) and prints a
+// summary, or with --json a document.
+CLI::App* AddSceneCommand(CLI::App& app, const char* name, const char* description,
+                          std::string& scene, bool& json) {
+  CLI::App* cmd = app.add_subcommand(name, description);
+  cmd->add_option("scene", scene, "Scene file (JSON: format 1, or --format compas)")->required();
+  cmd->add_flag("--json", json, "Print a JSON document instead of a summary");
+  return cmd;
+}
+
+// --without: parts taken away before the command's work.
+void AddWithout(CLI::App* cmd, std::vector<std::string>& without, const char* description) {
+  cmd->add_option("--without", without, description)->delimiter(',');
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -41,24 +56,17 @@ int main(int argc, char** argv) {
 
   cairn::cli::CheckArgs check;
   CLI::App* check_cmd =
-      app.add_subcommand("check", "Is one configuration of a scene stable under gravity?");
-  check_cmd->add_option("scene", check.scene, "Scene file (JSON: format 1, or --format compas)")
-      ->required();
-  check_cmd->add_flag("--json", check.json, "Print a JSON document instead of a summary");
+      AddSceneCommand(app, "check", "Is one configuration of a scene stable under gravity?",
+                      check.scene, check.json);
   check_cmd->add_option("--normalize", check.normalize, "Divide forces by the weight of this part");
-  check_cmd
-      ->add_option("--without", check.without,
-                   "Check with these parts taken away (comma-separated)")
-      ->delimiter(',');
+  AddWithout(check_cmd, check.without, "Check with these parts taken away (comma-separated)");
   AddModelOptions(check_cmd, check.model);
 
   cairn::cli::SimulateArgs sim;
-  CLI::App* sim_cmd = app.add_subcommand(
-      "simulate", "Run a disassembly or assembly plan: is every step stable along its path?");
-  sim_cmd->add_option("scene", sim.scene, "Scene file (JSON: format 1, or --format compas)")
-      ->required();
+  CLI::App* sim_cmd = AddSceneCommand(
+      app, "simulate", "Run a disassembly or assembly plan: is every step stable along its path?",
+      sim.scene, sim.json);
   sim_cmd->add_option("plan", sim.plan, "Plan file (JSON, plan format 1)")->required();
-  sim_cmd->add_flag("--json", sim.json, "Print a JSON document instead of a summary");
   sim_cmd->add_option("--timeline", sim.timeline,
                       "Write one CSV row per time step and contact to this file");
   sim_cmd->add_option("--normalize", sim.normalize, "Divide forces by the weight of this part");
@@ -83,24 +91,17 @@ int main(int argc, char** argv) {
   AddModelOptions(convert_cmd, convert.model);
 
   cairn::cli::BlockingArgs blocking;
-  CLI::App* blocking_cmd = app.add_subcommand(
-      "blocking", "Which parts can be taken out, and along which directions? (the NDBG)");
-  blocking_cmd
-      ->add_option("scene", blocking.scene, "Scene file (JSON: format 1, or --format compas)")
-      ->required();
-  blocking_cmd->add_flag("--json", blocking.json, "Print a JSON document instead of a summary");
-  blocking_cmd
-      ->add_option("--without", blocking.without,
-                   "Compute it with these parts taken away (comma-separated)")
-      ->delimiter(',');
+  CLI::App* blocking_cmd = AddSceneCommand(
+      app, "blocking", "Which parts can be taken out, and along which directions? (the NDBG)",
+      blocking.scene, blocking.json);
+  AddWithout(blocking_cmd, blocking.without,
+             "Compute it with these parts taken away (comma-separated)");
   AddModelOptions(blocking_cmd, blocking.model);
 
   cairn::cli::PlanArgs plan;
-  CLI::App* plan_cmd = app.add_subcommand(
-      "plan", "Find stable disassembly sequences (and their assembly plans) of a scene");
-  plan_cmd->add_option("scene", plan.scene, "Scene file (JSON: format 1, or --format compas)")
-      ->required();
-  plan_cmd->add_flag("--json", plan.json, "Print a JSON document instead of a summary");
+  CLI::App* plan_cmd = AddSceneCommand(
+      app, "plan", "Find stable disassembly sequences (and their assembly plans) of a scene",
+      plan.scene, plan.json);
   plan_cmd
       ->add_option("--max", plan.max,
                    "Stop after K stable sequences (best-first search); default: all")

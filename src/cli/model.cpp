@@ -117,4 +117,39 @@ void WriteAtomically(const std::string& path, const std::string& text, const std
   }
 }
 
+int ResolvePart(const Assembly& assembly, const std::string& name, const std::string& flag,
+                const std::string& file) {
+  const int i = assembly.FindPart(name);
+  if (i < 0) throw InputError("", flag, "no part named '" + name + "' in " + file);
+  return i;
+}
+
+std::optional<int> ResolveNormalize(const Assembly& assembly, const std::string& name,
+                                    const std::string& file) {
+  if (name.empty()) return std::nullopt;
+  const int i = ResolvePart(assembly, name, "--normalize", file);
+  if (assembly.part(i).mass <= 0)
+    throw InputError("", "--normalize", "part '" + name + "' has no weight");
+  return i;
+}
+
+Configuration WithoutParts(const Assembly& assembly, const std::vector<std::string>& names,
+                           const std::string& file, std::vector<int>& taken) {
+  Configuration config = Configuration::Assembled(assembly);
+  for (const std::string& name : names) {
+    const int i = ResolvePart(assembly, name, "--without", file);
+    config.present[i] = false;
+    taken.push_back(i);
+  }
+  return config;
+}
+
+void RefuseGivenInterfaces(const Assembly& assembly, const std::string& file,
+                           const std::string& consequence) {
+  if (assembly.has_interfaces())
+    throw InputError(
+        file, "interfaces",
+        "the contacts are given as interfaces of the assembled configuration: " + consequence);
+}
+
 }  // namespace cairn::cli

@@ -2,7 +2,9 @@
 // What every command does first: read the model with the command line's
 // changes (docs/cli.md, "Reading the model"); and writing output files whole.
 
+#include <optional>
 #include <string>
+#include <vector>
 
 #include "cairn/geometry/assembly.h"
 #include "cli/commands.h"
@@ -21,6 +23,27 @@ struct Model {
 /// --tolerance and --gravity. @throws InputError: of the file (with its JSON
 /// path), or of a flag (the flag as path).
 Model LoadModel(const std::string& file, const ModelArgs& args);
+
+/// The index of the part `name` given to `flag` (`--without`, `--keep`, ...).
+/// @throws InputError naming the flag when `file`'s model has no such part.
+int ResolvePart(const Assembly& assembly, const std::string& name, const std::string& flag,
+                const std::string& file);
+
+/// The part of `--normalize NAME` (empty: none). @throws InputError naming the
+/// flag: no such part, or one without weight.
+std::optional<int> ResolveNormalize(const Assembly& assembly, const std::string& name,
+                                    const std::string& file);
+
+/// The assembled configuration with the `--without` parts taken away; their
+/// indices are appended to `taken`. @throws InputError naming `--without`.
+Configuration WithoutParts(const Assembly& assembly, const std::vector<std::string>& names,
+                           const std::string& file, std::vector<int>& taken);
+
+/// Commands that move parts (simulate, plan) refuse a model whose contacts
+/// are given interfaces: they hold in the assembled configuration only.
+/// `consequence` says what cannot be done. @throws InputError naming `file`.
+void RefuseGivenInterfaces(const Assembly& assembly, const std::string& file,
+                           const std::string& consequence);
 
 /// Writes `text` to `path` whole or not at all: a temporary file beside it,
 /// renamed over it once complete. @throws InputError naming `flag`.

@@ -32,10 +32,8 @@ int RunPlan(const PlanArgs& args, std::ostream& out, std::ostream& err) {
   try {
     const Model model = LoadModel(args.scene, args.model);
     const Assembly& assembly = model.assembly;
-    if (assembly.has_interfaces())
-      throw InputError(args.scene, "interfaces",
-                       "the contacts are given as interfaces of the assembled configuration: "
-                       "parts cannot be moved, so no removal can be planned");
+    RefuseGivenInterfaces(assembly, args.scene,
+                          "parts cannot be moved, so no removal can be planned");
     PlannerOptions options;
     options.max_sequences = args.max;
     options.threads = args.threads;
@@ -46,11 +44,8 @@ int RunPlan(const PlanArgs& args, std::ostream& out, std::ostream& err) {
     options.support = args.support == "none"   ? SupportChoice::kNone
                       : args.support == "both" ? SupportChoice::kBoth
                                                : SupportChoice::kFull;
-    for (const std::string& name : args.keep) {
-      const int i = assembly.FindPart(name);
-      if (i < 0) throw InputError("", "--keep", "no part named '" + name + "' in " + args.scene);
-      options.keep.push_back(i);
-    }
+    for (const std::string& name : args.keep)
+      options.keep.push_back(ResolvePart(assembly, name, "--keep", args.scene));
     if (!args.paths.empty()) options.given_paths = ReadCandidatePaths(args.paths, assembly);
 
     const PlannerResult result = PlanDisassembly(model.def, assembly, options);

@@ -1,6 +1,5 @@
 #include "cairn/report/fixture_report.h"
 
-#include <cstdio>
 #include <sstream>
 
 #include "report/report_common.h"
@@ -9,18 +8,8 @@ namespace cairn {
 
 namespace {
 using report_internal::Clean;
+using report_internal::Num;
 using report_internal::Vec;
-
-std::string Num(double x) {
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.6g", Clean(x));
-  return buf;
-}
-
-// A fixel as a scene file's `fixtures` entry.
-nlohmann::json SceneEntry(const FixtureDef& f, int dim) {
-  return {{"part", f.part}, {"point", Vec(f.point, dim)}, {"normal", Vec(f.normal, dim)}};
-}
 }  // namespace
 
 nlohmann::json FixtureSuggestionToJson(const Assembly& assembly,
@@ -39,12 +28,12 @@ nlohmann::json FixtureSuggestionToJson(const Assembly& assembly,
   doc["force_unit"] = force_unit;
   json fixels = json::array(), entries = json::array();
   for (const SuggestedFixel& s : suggestion.fixels) {
-    json f = SceneEntry(s.fixture, dim);
+    json f = report_internal::FixtureToJson(s.fixture, dim);
     f["face"] = s.face;
     f["step"] = s.step;
     f["max_force"] = Clean(s.max_force / force_scale);
     fixels.push_back(f);
-    entries.push_back(SceneEntry(s.fixture, dim));
+    entries.push_back(report_internal::FixtureToJson(s.fixture, dim));
   }
   doc["fixels"] = fixels;
   doc["scene_fixtures"] = entries;
@@ -78,7 +67,8 @@ std::string FixtureSuggestionToText(const Assembly& assembly, const FixtureSugge
     if (v.failure) os << ": " << v.failure->description;
     os << '\n';
     nlohmann::json entries = nlohmann::json::array();
-    for (const SuggestedFixel& s : suggestion.fixels) entries.push_back(SceneEntry(s.fixture, dim));
+    for (const SuggestedFixel& s : suggestion.fixels)
+      entries.push_back(report_internal::FixtureToJson(s.fixture, dim));
     os << "  scene fixtures to add: " << entries.dump() << '\n';
   }
   os << "  (" << suggestion.candidates << " candidate points, " << suggestion.simulations

@@ -13,16 +13,9 @@ using report_internal::Clean;
 using report_internal::Tangential;
 using report_internal::Vec;
 std::string PartName(const Assembly& a, int i) { return i >= 0 ? a.part(i).name : "world"; }
-nlohmann::json Names(const Assembly& a, const std::vector<int>& parts) {
-  nlohmann::json out = nlohmann::json::array();
-  for (int p : parts) out.push_back(a.part(p).name);
-  return out;
-}
-std::string Num(double x) {
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.10g", Clean(x));
-  return buf;
-}
+using report_internal::Names;
+// The timeline CSV keeps 10 significant digits.
+std::string Num(double x) { return report_internal::Num(x, 10); }
 }  // namespace
 
 nlohmann::json SimulationToJson(const Assembly& assembly, const Plan& plan,

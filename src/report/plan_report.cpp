@@ -11,19 +11,9 @@ namespace {
 
 using nlohmann::json;
 using report_internal::Clean;
+using report_internal::Names;
+using report_internal::Num;
 using report_internal::Vec;
-
-std::string Num(double x) {
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.6g", Clean(x));
-  return buf;
-}
-
-json Names(const Assembly& a, const std::vector<int>& parts) {
-  json out = json::array();
-  for (int p : parts) out.push_back(a.part(p).name);
-  return out;
-}
 
 std::string Joined(const Assembly& a, const std::vector<int>& parts, const char* sep = "+") {
   std::string s;
@@ -53,9 +43,7 @@ json StepToJson(const PlanStepDef& s, int dim) {
 json FixelsToJson(const Assembly& a, const std::vector<FixtureDef>& fixels) {
   json out = json::array();
   for (const FixtureDef& f : fixels)
-    out.push_back({{"part", f.part},
-                   {"point", Vec(f.point, a.dimension())},
-                   {"normal", Vec(f.normal, a.dimension())}});
+    out.push_back(report_internal::FixtureToJson(f, a.dimension()));
   return out;
 }
 

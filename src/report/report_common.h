@@ -2,10 +2,14 @@
 // Helpers shared by the report writers: vectors written as [x, y] in 2-D and
 // [x, y, z] in 3-D, with floating-point dust cleaned away.
 #include <cmath>
+#include <cstdio>
 #include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
 
 #include "cairn/contact/contact.h"
 #include "cairn/core/types.h"
+#include "cairn/geometry/assembly.h"
 
 namespace cairn::report_internal {
 
@@ -28,6 +32,25 @@ inline nlohmann::json Angular(const Vector3& w, int dim, double scale = 1.0) {
 // A tangential quantity of a contact: signed along t_W in 2-D, a vector in 3-D.
 inline nlohmann::json Tangential(const Vector3& v, const Contact& c, int dim, double scale = 1.0) {
   return dim == 2 ? nlohmann::json(Clean(v.dot(c.t_W()), scale)) : Vec(v, 3, scale);
+}
+
+// A number for text and CSV: `digits` significant digits, dust cleaned.
+inline std::string Num(double x, int digits = 6) {
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.*g", digits, Clean(x));
+  return buf;
+}
+
+// Part names, in the order given.
+inline nlohmann::json Names(const Assembly& a, const std::vector<int>& parts) {
+  nlohmann::json out = nlohmann::json::array();
+  for (int p : parts) out.push_back(a.part(p).name);
+  return out;
+}
+
+// A fixel as a scene file's `fixtures` entry: part, point, normal.
+inline nlohmann::json FixtureToJson(const FixtureDef& f, int dim) {
+  return {{"part", f.part}, {"point", Vec(f.point, dim)}, {"normal", Vec(f.normal, dim)}};
 }
 
 }  // namespace cairn::report_internal

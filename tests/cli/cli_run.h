@@ -25,6 +25,22 @@ inline std::string Slurp(const std::string& path) {
   return ss.str();
 }
 
+/// Writes `text` to a file of that name in the temporary folder; its path.
+inline std::string TempFile(const std::string& name, const std::string& text) {
+  const auto path = std::filesystem::temp_directory_path() / name;
+  std::ofstream(path) << text;
+  return path.string();
+}
+
+/// A fresh, absent folder path in the temporary folder, unique to this
+/// process (the command under test creates it).
+inline std::string TempDir(const std::string& name) {
+  const auto dir = std::filesystem::temp_directory_path() /
+                   (name + "_" + std::to_string(::getpid()) + "_" + std::to_string(std::rand()));
+  std::filesystem::remove_all(dir);
+  return dir.string();
+}
+
 inline CliRun Cairn(const std::string& args) {
   const auto dir = std::filesystem::temp_directory_path();
   const std::string tag = std::to_string(::getpid()) + "_" + std::to_string(std::rand());

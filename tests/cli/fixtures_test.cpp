@@ -52,9 +52,8 @@ TEST(SuggestFixturesCli, PaperFig4_JsonHasFixelsOnBsRightFace) {
   // The scene_fixtures pasted into the scene: `cairn simulate` is stable.
   nlohmann::json scene = nlohmann::json::parse(testing::Slurp(kFig4));
   scene["fixtures"] = fx["scene_fixtures"];
-  const auto path = std::filesystem::temp_directory_path() / "cairn_fig4_suggested.json";
-  std::ofstream(path) << scene.dump(2);
-  const CliRun again = Cairn("simulate " + path.string() + " " + kLiftA + " --json");
+  const std::string path = testing::TempFile("cairn_fig4_suggested.json", scene.dump(2));
+  const CliRun again = Cairn("simulate " + path + " " + kLiftA + " --json");
   std::filesystem::remove(path);
   EXPECT_EQ(again.exit_code, 0) << again.out << again.err;
   EXPECT_EQ(nlohmann::json::parse(again.out)["verdict"], "stable");

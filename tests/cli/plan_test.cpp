@@ -17,19 +17,8 @@ using testing::Cairn;
 using testing::CliRun;
 using testing::ExamplePath;
 using testing::Slurp;
-
-std::string TempDir(const std::string& name) {
-  const auto dir = std::filesystem::temp_directory_path() /
-                   (name + "_" + std::to_string(::getpid()) + "_" + std::to_string(std::rand()));
-  std::filesystem::remove_all(dir);
-  return dir.string();
-}
-
-std::string TempFile(const std::string& name, const std::string& text) {
-  const auto path = std::filesystem::temp_directory_path() / name;
-  std::ofstream(path) << text;
-  return path.string();
-}
+using testing::TempDir;
+using testing::TempFile;
 
 TEST(PlanCli, PaperFig1_OneLinearSequenceWrittenAsPlansThatReplayStably) {
   const std::string dir = TempDir("cairn_plan_fig1");

@@ -12,6 +12,7 @@ using testing::Cairn;
 using testing::CliRun;
 using testing::ExamplePath;
 using testing::Slurp;
+using testing::TempFile;
 
 std::string Plan(const std::string& name) { return ExamplePath("plans/" + name + ".plan.json"); }
 
@@ -31,12 +32,6 @@ Csv ReadCsv(const std::string& path) {
     for (std::string cell; std::getline(ss, cell, ',');) f.push_back(cell);
   }
   return csv;
-}
-
-std::string TempFile(const std::string& name, const std::string& text) {
-  const auto path = std::filesystem::temp_directory_path() / name;
-  std::ofstream(path) << text;
-  return path.string();
 }
 
 TEST(Simulate, PaperFig1_DCBAStandsAndCFirstFailsWhenCLeaves) {

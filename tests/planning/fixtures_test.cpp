@@ -11,24 +11,13 @@
 
 #include "cairn/io/plan_reader.h"
 #include "cairn/io/scene_reader.h"
-#include "test_paths.h"
+#include "example_scene.h"
 
 namespace cairn {
 namespace {
 
+using Scene = testing::ExampleScene;
 using testing::ExamplePath;
-
-// A scene with its definition (the suggestion adds fixtures to it).
-struct Scene {
-  AssemblyDef def;
-  Assembly assembly;
-};
-
-Scene LoadScene(const std::string& name) {
-  AssemblyDef def = ReadSceneDef(ExamplePath(name));
-  Assembly a = Assembly::Create(def);
-  return {std::move(def), std::move(a)};
-}
 
 // The largest normal force of fixture `index` over a run's timeline, and
 // over its last tick only.
@@ -55,7 +44,7 @@ double LastFixtureForce(const SimulationResult& r, int index) {
 // right face (the edge x = 7 from (7, 0) to (7, 3)) pushing left hold it.
 
 TEST(SuggestFixtures, PaperFig4_FixelsOnBsRightFaceMakeTheLiftStable) {
-  const Scene s = LoadScene("paper_fig4.json");
+  const Scene s("paper_fig4.json");
   const Plan plan = ReadPlan(ExamplePath("plans/paper_fig4_lift_a.plan.json"), s.assembly);
   const SimulationResult failed = SimulatePlan(s.assembly, plan);
   ASSERT_EQ(failed.verdict, MotionVerdict::kUnstable);
@@ -100,7 +89,7 @@ TEST(SuggestFixtures, PaperFig4_FixelsOnBsRightFaceMakeTheLiftStable) {
 TEST(SuggestFixtures, PaperFig4_PapersOwnFixelsNeedNoMore) {
   // examples/paper_fig4_fixels.json has the paper's two fixels: stable, so
   // nothing is suggested and nothing simulated.
-  const Scene s = LoadScene("paper_fig4_fixels.json");
+  const Scene s("paper_fig4_fixels.json");
   const Plan plan = ReadPlan(ExamplePath("plans/paper_fig4_lift_a.plan.json"), s.assembly);
   const SimulationResult r = SimulatePlan(s.assembly, plan);
   ASSERT_TRUE(r.stable());
@@ -113,7 +102,7 @@ TEST(SuggestFixtures, PaperFig4_PapersOwnFixelsNeedNoMore) {
 }
 
 TEST(SuggestFixtures, PaperFig4_Deterministic) {
-  const Scene s = LoadScene("paper_fig4.json");
+  const Scene s("paper_fig4.json");
   const Plan plan = ReadPlan(ExamplePath("plans/paper_fig4_lift_a.plan.json"), s.assembly);
   const SimulationResult failed = SimulatePlan(s.assembly, plan);
   const FixtureSuggestion x = SuggestFixtures(s.def, s.assembly, plan, failed);
@@ -142,7 +131,7 @@ TEST(SuggestFixtures, PaperFig4_Deterministic) {
 TEST(SuggestFixtures, FixelsNeverGoOnPartsThePlanRemovesLater) {
   // Lift A, then lift B out: B is removed later, so a fixel on it would have
   // to leave with it. No fixel goes on B; C (which tips) may get some.
-  const Scene s = LoadScene("paper_fig4.json");
+  const Scene s("paper_fig4.json");
   PlanDef pd;
   pd.steps.resize(2);
   pd.steps[0].remove = {"A"};

@@ -17,20 +17,13 @@
 #include "cairn/io/scene_reader.h"
 #include "cairn/motion/simulate.h"
 #include "cairn/report/plan_report.h"
-#include "test_paths.h"
+#include "example_scene.h"
 
 namespace cairn {
 namespace {
 
+using Scene = testing::ExampleScene;
 using testing::ExamplePath;
-
-struct Scene {
-  AssemblyDef def;
-  Assembly assembly;
-  explicit Scene(const std::string& name)
-      : def(ReadSceneDef(ExamplePath(name))), assembly(Assembly::Create(def, name)) {}
-  int Part(const std::string& name) const { return assembly.FindPart(name); }
-};
 
 // The removal order of a sequence, as "D C B A" (subassemblies as "A+B").
 std::string Order(const PlannedSequence& s) {
