@@ -24,7 +24,7 @@ namespace {
 // The free velocity directions of a body, as orthonormal columns of B
 // (6 x k): all six for a free 3-D body, (v_x, v_y, ω_z) for a planar one; a
 // guided body loses the direction of its guide; a prescribed body has none.
-Eigen::Matrix<double, 6, Eigen::Dynamic> FreeBasis(const BodyDynamics& b) {
+Eigen::Matrix<double, 6, Eigen::Dynamic> FreeBasisOf(const BodyDynamics& b) {
   Eigen::Matrix<double, 6, Eigen::Dynamic> B(6, 0);
   if (b.motion == BodyMotion::kPrescribed) return B;
   // Linear directions: the plane's or all three, less the guide.
@@ -56,7 +56,7 @@ Eigen::Matrix<double, 6, Eigen::Dynamic> FreeBasis(const BodyDynamics& b) {
 }  // namespace
 
 Matrix6 BodyDynamics::InverseMass() const {
-  const auto B = FreeBasis(*this);
+  const auto B = FreeBasisOf(*this);
   if (B.cols() == 0) return Matrix6::Zero();
   Matrix6 M = Matrix6::Zero();
   M.topLeftCorner<3, 3>() = mass * Matrix3::Identity();
@@ -70,8 +70,12 @@ Matrix6 BodyDynamics::InverseMass() const {
   return B * reduced.llt().solve(B.transpose());
 }
 
+Eigen::Matrix<double, 6, Eigen::Dynamic> BodyDynamics::FreeBasis() const {
+  return FreeBasisOf(*this);
+}
+
 Matrix6 BodyDynamics::FreeProjector() const {
-  const auto B = FreeBasis(*this);
+  const auto B = FreeBasisOf(*this);
   return B.cols() ? Matrix6(B * B.transpose()) : Matrix6::Zero();
 }
 

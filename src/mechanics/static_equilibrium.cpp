@@ -3,121 +3,247 @@
 #include <algorithm>
 #include <cmath>
 #include <coin/ClpSimplex.hpp>
+#include <coin/ClpSolve.hpp>
 #include <coin/CoinPackedMatrix.hpp>
 #include <vector>
 
 namespace cairn {
 
-StaticEquilibrium FindStaticEquilibrium(const ContactLcp& lcp) {
-  StaticEquilibrium out;
-  const int nb = static_cast<int>(lcp.bodies.size());
+namespace {
+
+// Rounding leaves coefficients of ~1e-17 where the geometry says 0 (a rotated
+// face's normal, a moment arm along an axis). Kept, they make the simplex's
+// bases near-singular (GLPK failed on them with GLP_EFAIL); coefficients below
+// this fraction of the largest are dropped (dimensionless).
+constexpr double kDropRelative = 1e-13;
+
+// From this many generator columns on, the equilibrium LP goes to the
+// interior-point method first: below it the dual simplex is as fast and its
+// answer exact (measured: docs/benchmarks.md, "The equilibrium LP").
+constexpr int kBarrierColumns = 2000;
+
+// The interior-point method's iteration budget on the equilibrium LP: a
+// feasible one converges in 12–20 (Jenga, the vaults); an infeasible one
+// wanders for hundreds (9 s on the cross vault at μ 0.3) before it says so,
+// and the elastic LP decides it faster.
+constexpr int kBarrierIterations = 60;
+
+// The largest equilibrium residual accepted, relative to the largest external
+// wrench entry (dimensionless; the LP solvers' own feasibility tolerance is
+// 1e-7 of the row scale).
+constexpr double kEquilibriumResidual = 1e-7;
+
+// The largest negative generator power a mechanism may show and still count
+// as admissible, relative to the largest wrench entry for a unit-speed motion
+// (dimensionless): Clp's primal feasibility tolerance is 1e-7 on each row.
+constexpr double kMechanismSlack = 1e-6;
+
+// A body of a mechanism whose motion is below this fraction of the fastest
+// one's is at rest (dimensionless; interior-point duals leave ~1e-9 there).
+constexpr double kMechanismRest = 1e-6;
+
+// One column of the equilibrium LP: the normal of a contact (direction −1) or
+// the pyramid edge n + μ d_k of a frictional one.
+struct Generator {
+  int contact = -1;
+  int direction = -1;
+};
+
+// The generators of every contact: D pyramid edges where the LCP has friction
+// directions (and friction is wanted), else the normal alone.
+std::vector<Generator> MakeGenerators(const ContactLcp& lcp, bool frictionless) {
+  std::vector<Generator> out;
   const int nc = static_cast<int>(lcp.contacts.size());
-  const int D = lcp.num_directions;
-  out.normal_force = VectorX::Zero(nc);
-  out.friction_force.assign(nc, Vector3::Zero());
-
-  // The LCP's friction directions of every frictional contact (the Baraff
-  // formulation has none: it is frictionless).
-  std::vector<std::vector<JacobianRow>> dir_rows(nc);
-  std::vector<std::vector<Vector3>> dirs(nc);
   for (int c = 0; c < nc; ++c) {
-    const int f = lcp.friction_of[c];
-    if (f < 0) continue;
-    for (int k = 0; k < D; ++k) {
-      dir_rows[c].push_back(lcp.direction_rows[D * f + k]);
-      dirs[c].push_back(lcp.friction_directions[D * f + k]);
+    if (frictionless || lcp.friction_of[c] < 0) {
+      out.push_back({c, -1});
+      continue;
     }
+    for (int k = 0; k < lcp.num_directions; ++k) out.push_back({c, k});
   }
+  return out;
+}
 
-  // Columns (numbered from 1 here, from 0 for Clp): f_n of each contact, then the D friction
-  // components β_k ≥ 0 of each contact with directions.
-  std::vector<int> col_n(nc), col_d(nc, 0);
-  int ncols = 0;
-  for (int c = 0; c < nc; ++c) col_n[c] = ++ncols;
-  for (int c = 0; c < nc; ++c)
-    if (!dirs[c].empty()) col_d[c] = ncols + 1, ncols += static_cast<int>(dirs[c].size());
+// The wrench (f, τ) at the centroid of side s's body of a unit generator force.
+Vector6 GeneratorWrench(const ContactLcp& lcp, const Generator& g, int s) {
+  Vector6 w = lcp.normal_rows[g.contact].g[s];
+  if (g.direction >= 0) {
+    const int f = lcp.friction_of[g.contact];
+    w += lcp.contacts[g.contact].mu * lcp.direction_rows[lcp.num_directions * f + g.direction].g[s];
+  }
+  return w;
+}
 
-  // Rows: 6 equilibrium equations per body (projected on its free directions;
-  // a planar body's other three are identically zero), then one friction row
-  // per frictional contact.
-  std::vector<Matrix6> P(nb);
-  for (int b = 0; b < nb; ++b) P[b] = lcp.bodies[b].FreeProjector();
-  // Sparse triplets (row, col, value), 1-based.
-  std::vector<int> ia{0}, ja{0};
-  std::vector<double> ar{0.0};
-  const auto add = [&](int row, int col, double v) {
+// Sparse triplets (row, column, value), 0-based, with the dust dropped.
+struct Triplets {
+  std::vector<int> rows, cols;
+  std::vector<double> values;
+  void Add(int r, int c, double v) {
     if (v == 0.0) return;
-    ia.push_back(row);
-    ja.push_back(col);
-    ar.push_back(v);
-  };
-  // Rounding leaves coefficients of ~1e-17 where the geometry says 0 (a
-  // rotated face's normal, a moment arm along an axis). Kept, they make the
-  // simplex's bases near-singular (GLPK failed on them with GLP_EFAIL); they are
-  // dropped below kDropRelative times the largest coefficient.
-  constexpr double kDropRelative = 1e-13;
-  // Body b's equation k is row 6 b + k + 1: Σ (P g) f = −P F_ext.
-  for (int c = 0; c < nc; ++c) {
-    const JacobianRow& rn = lcp.normal_rows[c];
+    rows.push_back(r);
+    cols.push_back(c);
+    values.push_back(v);
+  }
+  void DropDust() {
+    double largest = 0;
+    for (double v : values) largest = std::max(largest, std::abs(v));
+    size_t kept = 0;
+    for (size_t k = 0; k < values.size(); ++k) {
+      if (std::abs(values[k]) <= kDropRelative * largest) continue;
+      rows[kept] = rows[k], cols[kept] = cols[k], values[kept] = values[k];
+      ++kept;
+    }
+    rows.resize(kept), cols.resize(kept), values.resize(kept);
+  }
+  CoinPackedMatrix Matrix(int nrows, int ncols) const {
+    CoinPackedMatrix m(/*colordered=*/true, rows.data(), cols.data(), values.data(),
+                       static_cast<CoinBigIndex>(values.size()));
+    // Empty trailing rows or columns (all dust) need the sizes given.
+    m.setDimensions(nrows, ncols);
+    return m;
+  }
+};
+
+// The equilibrium LP's data: body b's equation k is row 6 b + k, projected on
+// the body's free directions (a planar body's other three rows are empty).
+struct EquilibriumLp {
+  std::vector<Generator> generators;
+  std::vector<Matrix6> P;  // (nb) free projectors
+  Triplets a;
+  std::vector<double> rhs;  // (6 nb) −P F_ext
+  int nrows = 0;
+};
+
+EquilibriumLp MakeEquilibriumLp(const ContactLcp& lcp, bool frictionless) {
+  EquilibriumLp lp;
+  const int nb = static_cast<int>(lcp.bodies.size());
+  lp.generators = MakeGenerators(lcp, frictionless);
+  lp.nrows = 6 * nb;
+  for (int b = 0; b < nb; ++b) lp.P.push_back(lcp.bodies[b].FreeProjector());
+  for (int j = 0; j < static_cast<int>(lp.generators.size()); ++j) {
+    const JacobianRow& rn = lcp.normal_rows[lp.generators[j].contact];
     for (int s = 0; s < 2; ++s) {
       const int b = rn.body[s];
       if (b < 0) continue;
-      const Vector6 gn = P[b] * rn.g[s];
-      for (int k = 0; k < 6; ++k) add(6 * b + k + 1, col_n[c], gn[k]);
-      for (size_t d = 0; d < dir_rows[c].size(); ++d) {
-        const Vector6 gd = P[b] * dir_rows[c][d].g[s];
-        for (int k = 0; k < 6; ++k) add(6 * b + k + 1, col_d[c] + static_cast<int>(d), gd[k]);
+      const Vector6 w = lp.P[b] * GeneratorWrench(lcp, lp.generators[j], s);
+      for (int k = 0; k < 6; ++k) lp.a.Add(6 * b + k, j, w[k]);
+    }
+  }
+  lp.a.DropDust();
+  lp.rhs.resize(lp.nrows);
+  for (int b = 0; b < nb; ++b) {
+    const Vector6 r = -(lp.P[b] * lcp.bodies[b].F_ext);
+    for (int k = 0; k < 6; ++k) lp.rhs[6 * b + k] = r[k];
+  }
+  return lp;
+}
+
+// Loads the feasibility problem {A x = rhs, x ≥ 0} into a fresh Clp model.
+void Load(const EquilibriumLp& e, ClpSimplex& lp) {
+  const int ncols = static_cast<int>(e.generators.size());
+  const std::vector<double> col_lo(ncols, 0.0), col_hi(ncols, COIN_DBL_MAX), cost(ncols, 0.0);
+  lp.setLogLevel(0);  // the CLI's stdout may be a JSON document
+  lp.loadProblem(e.a.Matrix(e.nrows, ncols), col_lo.data(), col_hi.data(), cost.data(),
+                 e.rhs.data(), e.rhs.data());
+}
+
+// Reads the generator amounts into forces and the LCP's unknowns, and checks
+// the equilibrium from them. False when the residual is too large.
+bool ReadEquilibrium(const ContactLcp& lcp, const EquilibriumLp& e, const double* x,
+                     StaticEquilibrium& out) {
+  const int nb = static_cast<int>(lcp.bodies.size());
+  const int nc = static_cast<int>(lcp.contacts.size());
+  const int D = lcp.num_directions;
+  const bool impulses = lcp.formulation == Formulation::kStewartTrinkle;
+  const double scale_z = impulses ? lcp.dt : 1.0;
+  out.normal_force = VectorX::Zero(nc);
+  out.friction_force.assign(nc, Vector3::Zero());
+  out.lcp_z = VectorX::Zero(lcp.size());
+  std::vector<Vector6> net(nb);
+  double scale = 0;
+  for (int b = 0; b < nb; ++b) {
+    net[b] = e.P[b] * lcp.bodies[b].F_ext;
+    scale = std::max(scale, lcp.bodies[b].F_ext.cwiseAbs().maxCoeff());
+  }
+  for (int j = 0; j < static_cast<int>(e.generators.size()); ++j) {
+    const double amount = std::max(0.0, x[j]);
+    const Generator& g = e.generators[j];
+    const int c = g.contact;
+    out.normal_force[c] += amount;
+    out.lcp_z[c] += amount * scale_z;
+    if (g.direction >= 0) {
+      const int f = lcp.friction_of[c];
+      const double beta = lcp.contacts[c].mu * amount;
+      out.friction_force[c] += beta * lcp.friction_directions[D * f + g.direction];
+      out.lcp_z[nc + D * f + g.direction] += beta * scale_z;
+    }
+    const JacobianRow& rn = lcp.normal_rows[c];
+    for (int s = 0; s < 2; ++s)
+      if (rn.body[s] >= 0) net[rn.body[s]] += e.P[rn.body[s]] * GeneratorWrench(lcp, g, s) * amount;
+  }
+  out.residual = 0;
+  for (int b = 0; b < nb; ++b) out.residual = std::max(out.residual, net[b].cwiseAbs().maxCoeff());
+  return out.residual <= kEquilibriumResidual * std::max(1.0, scale);
+}
+
+}  // namespace
+
+StaticEquilibrium FindStaticEquilibrium(const ContactLcp& lcp, const EquilibriumOptions& options) {
+  StaticEquilibrium out;
+  const EquilibriumLp e = MakeEquilibriumLp(lcp, options.frictionless);
+  const int ncols = static_cast<int>(e.generators.size());
+
+  // 1. Large problems: the interior-point method, no crossover. Its answer is
+  // accepted only when it passes the re-check; anything else goes on to the
+  // simplex, which also proves infeasibility.
+  if (ncols >= kBarrierColumns && options.max_iterations <= 0) {
+    ClpSimplex lp;
+    Load(e, lp);
+    ClpSolve how;
+    how.setSolveType(ClpSolve::useBarrierNoCross);
+    how.setPresolveType(ClpSolve::presolveOff);
+    lp.setMaximumIterations(kBarrierIterations);
+    lp.initialSolve(how);
+    if (lp.status() == 0 && ReadEquilibrium(lcp, e, lp.primalColumnSolution(), out)) {
+      out.solved = out.exists = true;
+      out.method = "barrier";
+      out.iterations = lp.numberIterations();
+      return out;
+    }
+    // Not proven feasible. The dual simplex is slow to prove infeasibility
+    // here (minutes on the cross vault at μ 0.3); the elastic LP, whose dual
+    // is the mechanism, decides it in a barrier's time.
+    if (!options.frictionless) {
+      Mechanism m = FindMechanism(lcp);
+      if (m.found) {
+        out.solved = true;
+        out.method = "barrier, mechanism";
+        out.mechanism = std::move(m);
+        return out;
       }
     }
   }
-  int nrows = 6 * nb;
-  for (int c = 0; c < nc; ++c) {
-    if (dirs[c].empty()) continue;
-    ++nrows;
-    add(nrows, col_n[c], lcp.contacts[c].mu);
-    for (size_t d = 0; d < dirs[c].size(); ++d) add(nrows, col_d[c] + static_cast<int>(d), -1.0);
-  }
 
-  // Drop the dust (see kDropRelative), then hand the triplets to Clp (0-based).
-  double largest = 0;
-  for (size_t k = 1; k < ar.size(); ++k) largest = std::max(largest, std::abs(ar[k]));
-  std::vector<int> rows, cols;
-  std::vector<double> values;
-  for (size_t k = 1; k < ar.size(); ++k) {
-    if (std::abs(ar[k]) <= kDropRelative * largest) continue;
-    rows.push_back(ia[k] - 1);
-    cols.push_back(ja[k] - 1);
-    values.push_back(ar[k]);
-  }
-  std::vector<double> row_lo(nrows, 0.0), row_hi(nrows, COIN_DBL_MAX);
-  for (int b = 0; b < nb; ++b) {
-    const Vector6 rhs = -(P[b] * lcp.bodies[b].F_ext);
-    for (int k = 0; k < 6; ++k) row_lo[6 * b + k] = row_hi[6 * b + k] = rhs[k];
-  }
-  const std::vector<double> col_lo(ncols, 0.0), col_hi(ncols, COIN_DBL_MAX), cost(ncols, 0.0);
-  const CoinPackedMatrix matrix(/*colordered=*/true, rows.data(), cols.data(), values.data(),
-                                static_cast<CoinBigIndex>(values.size()));
+  // 2. The dual simplex from the slack basis (dual feasible: no costs), which
+  // searches for primal feasibility alone; on trouble, the primal simplex.
   ClpSimplex lp;
-  lp.setLogLevel(0);  // the CLI's stdout may be a JSON document
-  // The matrix may have empty trailing rows or columns (a contact whose
-  // coefficients were all dust): give the sizes explicitly.
-  CoinPackedMatrix sized(matrix);
-  sized.setDimensions(nrows, ncols);
-  lp.loadProblem(sized, col_lo.data(), col_hi.data(), cost.data(), row_lo.data(), row_hi.data());
-  // A feasibility problem (no costs): the slack basis is dual feasible and
-  // the dual simplex searches for primal feasibility alone. Clp's dual
-  // simplex perturbs the degenerate vertices such an LP is full of: 4 300
-  // iterations, 1.7 s on the 184-block cross vault, against 7 000 and 4–12 s
-  // for GLPK's and 95 s when Σ f_n was minimised (docs/benchmarks.md).
+  Load(e, lp);
+  if (options.max_iterations > 0) lp.setMaximumIterations(options.max_iterations);
   lp.dual();
-  if (lp.status() != 0 && lp.status() != 1) {
-    // Trouble on the way (a near-singular basis): once more by the primal
-    // simplex from the slack basis.
+  out.method = "dual simplex";
+  if (lp.status() != 0 && lp.status() != 1 && lp.status() != 3) {
     lp.allSlackBasis(true);
     lp.primal();
+    out.method = "primal simplex";
   }
+  out.iterations = lp.numberIterations();
   if (lp.status() == 1) {
     out.solved = true;  // primal infeasible: no equilibrium
+    return out;
+  }
+  if (lp.status() == 3) {
+    out.message =
+        "Clp: the iteration budget (" + std::to_string(options.max_iterations) + ") ran out";
     return out;
   }
   if (lp.status() != 0) {
@@ -125,48 +251,115 @@ StaticEquilibrium FindStaticEquilibrium(const ContactLcp& lcp) {
                   std::to_string(lp.secondaryStatus());
     return out;
   }
-  const double* x = lp.primalColumnSolution();
-  std::vector<std::vector<double>> beta(nc);
-  for (int c = 0; c < nc; ++c) {
-    out.normal_force[c] = std::max(0.0, x[col_n[c] - 1]);
-    for (size_t d = 0; d < dirs[c].size(); ++d) {
-      beta[c].push_back(std::max(0.0, x[col_d[c] + static_cast<int>(d) - 1]));
-      out.friction_force[c] += dirs[c][d] * beta[c].back();
-    }
-  }
-  // The LCP's unknowns (p_n, β by friction index, λ = 0).
-  {
-    const bool impulses = lcp.formulation == Formulation::kStewartTrinkle;
-    const double scale = impulses ? lcp.dt : 1.0;
-    out.lcp_z = VectorX::Zero(lcp.size());
-    for (int c = 0; c < nc; ++c) {
-      out.lcp_z[c] = out.normal_force[c] * scale;
-      const int f = lcp.friction_of[c];
-      for (int d = 0; f >= 0 && d < D; ++d) out.lcp_z[nc + D * f + d] = beta[c][d] * scale;
-    }
-  }
-  // Re-check the equilibrium from the forces, independently of Clp.
-  std::vector<Vector6> net(nb);
-  double scale = 0;
-  for (int b = 0; b < nb; ++b) {
-    net[b] = P[b] * lcp.bodies[b].F_ext;
-    scale = std::max(scale, lcp.bodies[b].F_ext.cwiseAbs().maxCoeff());
-  }
-  for (int c = 0; c < nc; ++c)
-    for (int s = 0; s < 2; ++s) {
-      const int b = lcp.normal_rows[c].body[s];
-      if (b < 0) continue;
-      Vector6 w = lcp.normal_rows[c].g[s] * out.normal_force[c];
-      for (size_t d = 0; d < dirs[c].size(); ++d) w += dir_rows[c][d].g[s] * beta[c][d];
-      net[b] += P[b] * w;
-    }
-  for (int b = 0; b < nb; ++b) out.residual = std::max(out.residual, net[b].cwiseAbs().maxCoeff());
-  out.solved = true;
-  out.exists = out.residual <= 1e-7 * std::max(1.0, scale);
-  if (!out.exists) {
-    out.solved = false;
+  if (!ReadEquilibrium(lcp, e, lp.primalColumnSolution(), out)) {
     out.message = "Clp's equilibrium fails the re-check: residual " + std::to_string(out.residual);
+    return out;
   }
+  out.solved = out.exists = true;
+  return out;
+}
+
+namespace {
+
+// A body's size for the mechanism's box: its radius of gyration about its
+// stiffest axis (length), so that |v| and r|ω| compare.
+double BodyRadius(const BodyDynamics& b) {
+  if (b.mass <= 0) return 1.0;
+  const double r = std::sqrt(b.inertia.diagonal().maxCoeff() / b.mass);
+  return r > 0 ? r : 1.0;
+}
+
+}  // namespace
+
+Mechanism FindMechanism(const ContactLcp& lcp) {
+  Mechanism out;
+  const int nb = static_cast<int>(lcp.bodies.size());
+  const EquilibriumLp e = MakeEquilibriumLp(lcp, /*frictionless=*/false);
+  const int ng = static_cast<int>(e.generators.size());
+  std::vector<double> radius(nb);
+  for (int b = 0; b < nb; ++b) radius[b] = BodyRadius(lcp.bodies[b]);
+
+  // The elastic equilibrium LP: min Σ w_i (s⁺_i + s⁻_i) with A x + s⁺ − s⁻ = rhs,
+  // x, s ≥ 0; w = 1 on force rows, 1/r on torque rows. Its dual is the
+  // mechanism LP of the file comment: max F·ν with W_jᵀν ≥ 0 and |ν_i| ≤ w_i,
+  // where ν = −y (y the row duals). The optimum is the least unbalanced load.
+  Triplets a = e.a;
+  const int ncols = ng + 2 * e.nrows;
+  std::vector<double> cost(ncols, 0.0);
+  for (int i = 0; i < e.nrows; ++i) {
+    const double w = (i % 6) < 3 ? 1.0 : 1.0 / radius[i / 6];
+    a.Add(i, ng + 2 * i, 1.0);
+    a.Add(i, ng + 2 * i + 1, -1.0);
+    cost[ng + 2 * i] = cost[ng + 2 * i + 1] = w;
+  }
+  const std::vector<double> col_lo(ncols, 0.0), col_hi(ncols, COIN_DBL_MAX);
+  ClpSimplex lp;
+  lp.setLogLevel(0);
+  lp.loadProblem(a.Matrix(e.nrows, ncols), col_lo.data(), col_hi.data(), cost.data(), e.rhs.data(),
+                 e.rhs.data());
+  if (ncols >= kBarrierColumns) {
+    // With crossover: a vertex of the dual, so that bodies that need not
+    // move are exactly at rest.
+    ClpSolve how;
+    how.setSolveType(ClpSolve::useBarrier);
+    how.setPresolveType(ClpSolve::presolveOff);
+    lp.initialSolve(how);
+  } else {
+    lp.dual();
+  }
+  if (lp.status() != 0) {
+    out.message = "Clp (elastic equilibrium LP): status " + std::to_string(lp.status());
+    return out;
+  }
+
+  // ν = −P y per body, normalised; then checked independently of Clp.
+  const double* y = lp.dualRowSolution();
+  out.nu.assign(nb, Vector6::Zero());
+  double largest = 0;
+  for (int b = 0; b < nb; ++b) {
+    Vector6 yb;
+    for (int k = 0; k < 6; ++k) yb[k] = y[6 * b + k];
+    out.nu[b] = -(e.P[b] * yb);
+    largest =
+        std::max(largest, out.nu[b].head<3>().norm() + radius[b] * out.nu[b].tail<3>().norm());
+  }
+  if (!(largest > 0)) {
+    out.message = "no motion along which gravity does work is admissible";
+    return out;
+  }
+  // Interior-point duals leave dust where a body is at rest.
+  for (int b = 0; b < nb; ++b)
+    if (out.nu[b].head<3>().norm() + radius[b] * out.nu[b].tail<3>().norm() <=
+        kMechanismRest * largest)
+      out.nu[b].setZero();
+  for (Vector6& n : out.nu) n /= largest;
+  double least = 0, wrench_scale = 0;
+  for (int j = 0; j < ng; ++j) {
+    const JacobianRow& rn = lcp.normal_rows[e.generators[j].contact];
+    double pj = 0;
+    for (int s = 0; s < 2; ++s) {
+      const int b = rn.body[s];
+      if (b < 0) continue;
+      const Vector6 w = GeneratorWrench(lcp, e.generators[j], s);
+      pj += w.dot(out.nu[b]);
+      wrench_scale = std::max(wrench_scale, w.cwiseAbs().maxCoeff());
+    }
+    least = std::min(least, pj);
+  }
+  out.power = 0;
+  for (int b = 0; b < nb; ++b) {
+    out.power += lcp.bodies[b].F_ext.dot(out.nu[b]);
+    if (out.nu[b].head<3>().norm() + radius[b] * out.nu[b].tail<3>().norm() > 0)
+      out.moving.push_back(b);
+  }
+  out.least_generator_power = least;
+  const double slack = kMechanismSlack * std::max(1.0, wrench_scale);
+  out.found = out.power > slack && least >= -slack;
+  if (!out.found)
+    out.message = out.power <= slack
+                      ? "no motion along which gravity does work is admissible"
+                      : "the mechanism failed its check (power " + std::to_string(out.power) +
+                            ", least generator power " + std::to_string(least) + ")";
   return out;
 }
 

@@ -45,6 +45,10 @@ nlohmann::json StabilityToJson(const Assembly& assembly, const Configuration& co
   doc["static_equilibrium"] =
       result.static_equilibrium ? json(*result.static_equilibrium) : json(nullptr);
   doc["weakly_stable"] = result.weakly_stable;
+  // What is proved about rest: "strong" | "weak" | "not certified"; null when
+  // no rest is possible (unstable without an equilibrium) or not examined.
+  doc["stability"] =
+      result.stability == StabilityProof::kNone ? json(nullptr) : json(to_string(result.stability));
   doc["force_unit"] = force_unit;
 
   // Parts: every present part; movable ones carry their motion.
@@ -103,6 +107,23 @@ nlohmann::json StabilityToJson(const Assembly& assembly, const Configuration& co
     jr["parts"] = names;
     jr["contacts"] = r.num_contacts;
     jr["lcp_size"] = r.lcp_size;
+    jr["decided_by"] = to_string(r.decided_by);
+    jr["stability"] =
+        r.stability == StabilityProof::kNone ? json(nullptr) : json(to_string(r.stability));
+    jr["static_equilibrium"] = r.static_equilibrium ? json(*r.static_equilibrium) : json(nullptr);
+    jr["frictionless_equilibrium"] =
+        r.frictionless_equilibrium ? json(*r.frictionless_equilibrium) : json(nullptr);
+    if (!r.equilibrium_method.empty()) jr["equilibrium_method"] = r.equilibrium_method;
+    if (r.decided_by == DecidedBy::kMechanism) {
+      json mech;
+      json mparts = json::array(), held = json::array();
+      for (int i : r.mechanism_parts) mparts.push_back(assembly.part(i).name);
+      for (int i : r.held) held.push_back(assembly.part(i).name);
+      mech["parts"] = mparts;
+      mech["power"] = r.mechanism_power;
+      mech["held"] = held;
+      jr["mechanism"] = mech;
+    }
     jr["status"] = to_string(r.status);
     jr["pivots"] = r.pivots;
     // Decided by a linear program's solution at rest rather than by Lemke's

@@ -49,15 +49,30 @@ std::string StabilityToText(const Assembly& assembly, const Configuration& confi
      << result.contacts.size() << " contacts, " << result.components.size() << " component"
      << (result.components.size() == 1 ? "" : "s") << "; LCP " << lcp_vars << " variables, "
      << pivots << " pivots\n";
-  for (const ComponentReport& c : result.components)
+  for (const ComponentReport& c : result.components) {
     if (c.rest_solution)
       os << "  component of " << c.parts.size()
          << " parts decided by a solution at rest: " << c.message << '\n';
+    if (c.decided_by == DecidedBy::kMechanism) {
+      os << "  component of " << c.parts.size()
+         << " parts: no static equilibrium exists; a mechanism (a motion no contact resists and "
+            "gravity drives) moves";
+      for (int i : c.mechanism_parts) os << ' ' << assembly.part(i).name;
+      if (!c.held.empty()) os << ", the others held to find how";
+      os << '\n';
+    }
+  }
   if (result.weakly_stable)
     os << "  WEAKLY STABLE: a static equilibrium exists, but only with forces nothing produces\n"
           "  from rest (a squeeze between faces: jamming); the contact dynamics move\n";
   else if (result.static_equilibrium)
     os << "  static equilibrium: " << (*result.static_equilibrium ? "exists" : "none") << '\n';
+  if (result.stability == StabilityProof::kStrong)
+    os << "  strongly stable: a frictionless equilibrium exists, so every solution of the contact\n"
+          "  problem is at rest\n";
+  else if (result.stability == StabilityProof::kNotCertified)
+    os << "  stability not certified as strong: rest is possible and no motion was found, but\n"
+          "  motion from rest is not ruled out\n";
 
   // What moves, and how.
   for (const PartMotion& m : result.parts) {

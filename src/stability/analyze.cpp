@@ -10,6 +10,7 @@
 
 #include "cairn/contact/detect_contacts.h"
 #include "cairn/mechanics/static_equilibrium.h"
+#include "cairn/stability/solve_component.h"
 
 namespace cairn {
 
@@ -280,6 +281,85 @@ std::vector<ContactLcp> BuildComponentLcps(const Assembly& assembly, const Confi
   return out;
 }
 
+namespace {
+
+// The fastest point of a body moving with ν = (v, ω) about its centroid c:
+// max |v + ω × (x − c)| over its vertices x.
+double LargestPointMotion(const Vector6& nu, const Vector3& c,
+                          const std::vector<Vector3>& vertices) {
+  double out = 0;
+  for (const Vector3& x : vertices)
+    out = std::max(out, (nu.head<3>() + nu.tail<3>().cross(x - c)).norm());
+  return out;
+}
+
+// The contact motions of a mechanism (no forces: a virtual motion).
+ContactSolution MechanismMotion(const ContactLcp& lcp, const Mechanism& m) {
+  ContactSolution s;
+  const int nc = static_cast<int>(lcp.contacts.size());
+  s.body_motion = m.nu;
+  s.normal_force = VectorX::Zero(nc);
+  s.friction_force.assign(nc, Vector3::Zero());
+  s.normal_motion = VectorX::Zero(nc);
+  s.tangent_motion.assign(nc, Vector3::Zero());
+  for (int c = 0; c < nc; ++c) {
+    const Contact& ct = lcp.contacts[c];
+    s.normal_motion[c] = lcp.normal_rows[c].Dot(m.nu);
+    if (lcp.tangent2_rows.empty()) {
+      s.tangent_motion[c] = ct.t_W() * lcp.tangent_rows[c].Dot(m.nu);
+    } else {
+      const auto [t1, t2] = TangentBasis(ct.n_W);
+      s.tangent_motion[c] =
+          t1 * lcp.tangent_rows[c].Dot(m.nu) + t2 * lcp.tangent2_rows[c].Dot(m.nu);
+    }
+  }
+  return s;
+}
+
+// The per-component report of a solve (ComponentReport's solver fields).
+ComponentReport ReportSolve(const Component& comp, const ContactLcp& lcp,
+                            const ComponentSolution& s) {
+  ComponentReport report;
+  report.parts = comp.parts;
+  report.num_contacts = static_cast<int>(comp.contacts.size());
+  report.lcp_size = lcp.size();
+  report.decided_by = s.decided_by;
+  report.stability = s.stability;
+  report.status = s.lemke_tried ? s.lemke.status : LcpStatus::kSolved;
+  if (s.decided_by == DecidedBy::kEquilibrium || s.decided_by == DecidedBy::kRestHypothesis)
+    report.status = LcpStatus::kSolved;
+  report.pivots = s.lemke.pivots;
+  report.residual = s.residual;
+  report.warm_start_used = s.lemke.warm_start_used;
+  report.rest_solution =
+      s.decided_by == DecidedBy::kEquilibrium || s.decided_by == DecidedBy::kRestHypothesis;
+  report.lp_iterations = s.lp_iterations;
+  if (s.equilibrium && s.equilibrium->solved) report.static_equilibrium = s.equilibrium->exists;
+  report.frictionless_equilibrium = s.frictionless_equilibrium;
+  if (s.equilibrium) report.equilibrium_method = s.equilibrium->method;
+  for (int b : s.held) report.held.push_back(lcp.bodies[b].part);
+  if (s.mechanism && s.mechanism->found) {
+    report.mechanism_power = s.mechanism->power;
+    for (int b : s.mechanism->moving) report.mechanism_parts.push_back(lcp.bodies[b].part);
+  }
+  for (size_t i = 0; i < s.notes.size(); ++i) report.message += (i ? "; " : "") + s.notes[i];
+  return report;
+}
+
+// What the components prove about rest, for the whole configuration: none
+// when something moves that no equilibrium could hold, weak when it moves
+// although one could (jamming), else the weakest of the components' proofs.
+StabilityProof Summarize(const StabilityResult& r) {
+  if (r.verdict == Verdict::kUnstable)
+    return r.weakly_stable ? StabilityProof::kWeak : StabilityProof::kNone;
+  if (r.verdict != Verdict::kStable) return StabilityProof::kNone;
+  for (const ComponentReport& c : r.components)
+    if (c.stability != StabilityProof::kStrong) return StabilityProof::kNotCertified;
+  return StabilityProof::kStrong;
+}
+
+}  // namespace
+
 StabilityResult AnalyzeConfiguration(const Assembly& assembly, const Configuration& config,
                                      const StabilityOptions& options, const DriveInputs* drive,
                                      StabilityWorkspace* workspace) {
@@ -291,6 +371,7 @@ StabilityResult AnalyzeConfiguration(const Assembly& assembly, const Configurati
   const Tolerances& tol = result.tolerances;
   const bool st = result.formulation == Formulation::kStewartTrinkle;
   const double motion_tol = st ? tol.velocity : tol.acceleration;
+  const bool static_check = drive == nullptr;
 
   // DetectContacts.
   auto t0 = Clock::now();
@@ -302,7 +383,23 @@ StabilityResult AnalyzeConfiguration(const Assembly& assembly, const Configurati
   result.contacts.resize(contacts.size());
   for (size_t c = 0; c < contacts.size(); ++c) result.contacts[c].contact = contacts[c];
 
-  bool any_moving = false, any_failure = false;
+  // Each part's vertices, once: the point motions are measured at them.
+  std::vector<std::vector<Vector3>> vertices(assembly.num_parts());
+  for (const Component& comp : components)
+    for (int p : comp.parts) vertices[p] = config.WorldVertices(assembly, p);
+  // Whether an LCP solution moves a part that must stay put.
+  const auto judged_moves = [&](const ContactLcp& l, const VectorX& z) {
+    const ContactSolution s = RecoverSolution(l, z);
+    for (size_t b = 0; b < l.bodies.size(); ++b) {
+      const int p = l.bodies[b].part;
+      if (RoleOf(drive, p) != PartRole::kJudged) continue;
+      if (LargestPointMotion(s.body_motion[b], l.bodies[b].p_WBcm, vertices[p]) > motion_tol)
+        return true;
+    }
+    return false;
+  };
+
+  bool any_moving = false, any_undecided = false;
   for (int ci = 0; ci < static_cast<int>(components.size()); ++ci) {
     const Component& comp = components[ci];
 
@@ -311,177 +408,97 @@ StabilityResult AnalyzeConfiguration(const Assembly& assembly, const Configurati
     const ContactLcp lcp = BuildComponent(assembly, config, contacts, comp, result.formulation,
                                           options.dt, drive, options.lcp_storage);
     result.profile.build += Seconds(t0);
-    std::optional<bool> equilibrium;
-    std::optional<StaticEquilibrium> eq;
-    if (options.check_equilibrium) {
-      eq = FindStaticEquilibrium(lcp);
-      if (eq->solved)
-        equilibrium = eq->exists;
-      else
-        result.diagnostics += "component " + std::to_string(ci) + ": " + eq->message + "; ";
-    }
 
-    // SolveLemke, then re-check the answer independently of the status.
+    // SolveComponent: the policy of stability/solve_component.h.
     t0 = Clock::now();
-    LcpBasis* basis = nullptr;
+    SolveContext ctx;
+    ctx.lemke = options.lemke;
+    ctx.static_check = static_check;
+    ctx.moves = judged_moves;
+    bool carried = false;
+    for (int p : comp.parts) {
+      const PartRole role = RoleOf(drive, p);
+      ctx.has_guided |= role == PartRole::kGuided;
+      ctx.has_driven |= role == PartRole::kGuided || role == PartRole::kPrescribed;
+      carried |= role == PartRole::kCarried;
+    }
+    // The rest hypothesis (StabilityOptions::rest_first): a driven 3-D
+    // component with friction whose every part is judged or driven (a carried
+    // part's motion is what the LCP must find).
+    ctx.rest_first = options.rest_first && !static_check && assembly.is_3d() && st &&
+                     lcp.num_friction > 0 && ctx.has_driven && !carried;
     std::uint64_t hash = 0;
+    LcpBasis* basis = nullptr;
     if (workspace) {
       hash = KeyHash(lcp);
       basis = FindBasis(*workspace, hash, lcp);
+      ctx.warm_start = basis;
+      if (ctx.rest_first) ctx.rest_warm = &workspace->rest_bases[hash];
     }
-    const double check_tol =
-        options.lemke.solution_tolerance * std::max(1.0, lcp.q.lpNorm<Eigen::Infinity>());
-    // The rest hypothesis first, where it applies (StabilityOptions::rest_first):
-    // a driven 3-D component with friction whose every part is judged or driven
-    // (a carried part's motion is what the LCP must find).
-    LcpResult sol;
-    bool rest = false, no_rest = false;
-    int lp_iterations = 0;
-    if (options.rest_first && drive && assembly.is_3d() && st && lcp.num_friction > 0) {
-      bool driven = false, carried = false;
-      for (int p : comp.parts) {
-        const PartRole role = RoleOf(drive, p);
-        driven |= role == PartRole::kGuided || role == PartRole::kPrescribed;
-        carried |= role == PartRole::kCarried;
-      }
-      if (driven && !carried) {
-        RestSolution r = FindRestSolution(lcp, workspace ? &workspace->rest_bases[hash] : nullptr);
-        lp_iterations = r.iterations;
-        // No rest for all: perhaps for all but a guided part (which then
-        // leaves its path: unsupported, with the assembly at rest).
-        if (r.outcome == RestSolution::Outcome::kNone) {
-          no_rest = true;
-          bool guided = false;
-          for (int p : comp.parts) guided |= RoleOf(drive, p) == PartRole::kGuided;
-          if (guided) {
-            r = FindRestSolution(lcp, nullptr, RestHypothesis::kGuidedFree);
-            lp_iterations += r.iterations;
-          }
-        }
-        if (r.outcome == RestSolution::Outcome::kFound &&
-            IsContactLcpSolution(lcp, r.z, check_tol)) {
-          rest = true;
-          sol.status = LcpStatus::kSolved;
-          sol.w = lcp.Multiply(r.z) + lcp.q;
-          for (Eigen::Index i = 0; i < r.z.size(); ++i)
-            sol.residual = std::max(sol.residual, std::abs(std::min(r.z[i], sol.w[i])));
-          sol.z = std::move(r.z);
-        }
-      }
-    }
-    if (!rest) sol = SolveContactLcp(lcp, options.lemke, basis);
-    if (workspace && !rest &&
-        (sol.status == LcpStatus::kSolved || sol.status == LcpStatus::kTrivial)) {
+    ComponentSolution s = SolveComponent(lcp, ctx);
+    if (workspace && s.decided_by == DecidedBy::kLemke) {
       // A warm start returns the basis it was given: nothing to store.
       if (!basis)
         workspace->bases.emplace(hash,
-                                 StabilityWorkspace::Entry{MakeKey(lcp), std::move(sol.basis)});
-      else if (!sol.warm_start_used)
-        *basis = std::move(sol.basis);
-      if (sol.warm_start_used) ++workspace->warm_starts;
+                                 StabilityWorkspace::Entry{MakeKey(lcp), std::move(s.lemke.basis)});
+      else if (!s.lemke.warm_start_used)
+        *basis = std::move(s.lemke.basis);
+      if (s.lemke.warm_start_used) ++workspace->warm_starts;
+    }
+    if (options.check_equilibrium && !static_check) {
+      const StaticEquilibrium eq = FindStaticEquilibrium(lcp);
+      if (eq.solved) s.equilibrium = eq;
     }
     result.profile.solve += Seconds(t0);
-    ComponentReport report;
-    report.static_equilibrium = equilibrium;
-    report.parts = comp.parts;
-    report.num_contacts = static_cast<int>(comp.contacts.size());
-    report.lcp_size = lcp.size();
-    report.status = sol.status;
-    report.pivots = sol.pivots;
-    report.residual = sol.residual;
-    report.warm_start_used = sol.warm_start_used;
-    report.rest_solution = rest;
-    report.lp_iterations = lp_iterations;
-    bool solved = sol.status == LcpStatus::kSolved || sol.status == LcpStatus::kTrivial;
-    if (solved && !rest && !IsContactLcpSolution(lcp, sol.z, check_tol)) {
-      solved = false;
-      report.status = LcpStatus::kNumericalFailure;
-      report.message = "the solver's answer failed the independent LCP check";
-    }
-    // Lemke's method failed (on a large statically indeterminate component
-    // its path can end on a secondary ray among near-singular bases, as on
-    // the 184-block cross vault). A static equilibrium, where one exists, is
-    // itself a solution of the LCP with every part at rest (from rest, no
-    // gaps, nothing driven: checked, not assumed). The verdict is then
-    // decided by it: weak stability, as along paths (rest_solution.h); the
-    // report says so.
-    if (!solved && !rest) {
-      if (!eq) eq = FindStaticEquilibrium(lcp);
-      if (eq->solved && eq->exists && IsContactLcpSolution(lcp, eq->lcp_z, check_tol)) {
-        solved = true;
-        rest = true;
-        report.rest_solution = true;
-        report.status = LcpStatus::kSolved;
-        report.message = std::string("Lemke's method failed (") + to_string(sol.status) +
-                         (sol.message.empty() ? "" : ": " + sol.message) +
-                         "); the static equilibrium solves the LCP with every part at rest";
-        result.diagnostics += "component " + std::to_string(ci) + ": " + report.message + "; ";
-        sol.z = eq->lcp_z;
-        sol.w = lcp.Multiply(sol.z) + lcp.q;
-        sol.residual = 0;
-        for (Eigen::Index i = 0; i < sol.z.size(); ++i)
-          sol.residual = std::max(sol.residual, std::abs(std::min(sol.z[i], sol.w[i])));
-        report.residual = sol.residual;
-      }
-    }
-    // A driven part whose prescribed motion no contact forces allow (the LCP
-    // has no solution, Lemke ends on a ray) is jammed: the path drives it into
-    // something that cannot give way.
-    bool has_driven = false;
-    for (int p : comp.parts) {
-      const PartRole role = RoleOf(drive, p);
-      has_driven |= role == PartRole::kGuided || role == PartRole::kPrescribed;
-    }
-    if (!solved && has_driven && sol.status == LcpStatus::kRayTermination) {
+    ComponentReport report = ReportSolve(comp, lcp, s);
+
+    // A driven part whose prescribed motion no contact forces allow is
+    // jammed: the path drives it into something that cannot give way.
+    if (s.decided_by == DecidedBy::kJammed) {
       report.message = "the gripper's motion is blocked (no contact forces allow it)";
       for (int p : comp.parts) {
         const PartRole role = RoleOf(drive, p);
         if (role == PartRole::kGuided || role == PartRole::kPrescribed) result.jammed.push_back(p);
       }
-    } else if (!solved) {
-      any_failure = true;
     }
-    if (!solved) {
-      if (report.message.empty()) report.message = sol.message;
-      // The rest LP's infeasibility proves that some part must move even when
-      // Lemke's method cannot say which or how: say so.
-      if (!no_rest && eq && eq->solved && !eq->exists)
-        report.message +=
-            " (no static equilibrium exists either: some part must move, which and how is "
-            "unknown)";
-      if (no_rest)
-        report.message +=
-            " (no contact forces hold the judged parts at rest with the driven ones on their "
-            "path: something must move)";
-      result.diagnostics +=
-          "component " + std::to_string(ci) + " (" + std::to_string(comp.parts.size()) +
-          " parts, " + std::to_string(lcp.size()) + " LCP variables): " + to_string(report.status) +
-          (report.message.empty() ? "" : ": " + report.message) + "; ";
+    if (!report.message.empty())
+      result.diagnostics += "component " + std::to_string(ci) + " (" +
+                            std::to_string(comp.parts.size()) + " parts, " +
+                            std::to_string(lcp.size()) + " LCP variables): decided by " +
+                            to_string(s.decided_by) + ": " + report.message + "; ";
+    for (int c : comp.contacts) result.contacts[c].component = ci;
+
+    // RecoverSolution: from the verified LCP solution, or the mechanism's
+    // virtual motion.
+    t0 = Clock::now();
+    std::optional<ContactSolution> phys;
+    const ContactLcp& solved = s.held_lcp ? *s.held_lcp : lcp;
+    if (s.has_solution)
+      phys = RecoverSolution(solved, s.z);
+    else if (s.mechanism && s.mechanism->found)
+      phys = MechanismMotion(lcp, *s.mechanism);
+    if (!phys) {
+      if (s.decided_by != DecidedBy::kJammed) any_undecided = true;
       for (int p : comp.parts) {
         PartMotion m;
         m.part = p;
         m.component = ci;
+        m.role = RoleOf(drive, p);
         result.parts.push_back(m);
       }
-      for (int c : comp.contacts) result.contacts[c].component = ci;
       result.components.push_back(report);
       continue;
     }
-
-    // RecoverSolution.
-    t0 = Clock::now();
-    const ContactSolution phys = RecoverSolution(lcp, sol.z);
-    report.consistency_residual = phys.consistency_residual;
+    report.consistency_residual = phys->consistency_residual;
 
     // ClassifyMotion: contacts first, then parts.
     std::vector<bool> keeps_contact(comp.parts.size(), false);
     for (size_t k = 0; k < comp.contacts.size(); ++k) {
       ContactReport& cr = result.contacts[comp.contacts[k]];
-      cr.component = ci;
-      cr.normal_force = phys.normal_force(k);
-      cr.friction_force = phys.friction_force[k];
-      cr.normal_motion = phys.normal_motion(k);
-      cr.tangent_motion = phys.tangent_motion[k];
+      cr.normal_force = phys->normal_force(k);
+      cr.friction_force = phys->friction_force[k];
+      cr.normal_motion = phys->normal_motion(k);
+      cr.tangent_motion = phys->tangent_motion[k];
       cr.breaking = cr.normal_motion > motion_tol;
       cr.sliding = !cr.breaking && cr.tangent_motion.norm() > motion_tol;
       if (!cr.breaking) {
@@ -495,16 +512,12 @@ StabilityResult AnalyzeConfiguration(const Assembly& assembly, const Configurati
       PartMotion m;
       m.part = p;
       m.component = ci;
-      m.linear = phys.body_motion[b].head<3>();
-      m.angular = phys.body_motion[b].tail<3>();
-      // The fastest point of the part: |lin + ang × r| over its vertices.
+      m.linear = phys->body_motion[b].head<3>();
+      m.angular = phys->body_motion[b].tail<3>();
       const Vector3 c = lcp.bodies[b].p_WBcm;
       double radius = 0;
-      const std::vector<Vector3> vertices = config.WorldVertices(assembly, p);
-      for (const Vector3& v : vertices) {
-        m.point_motion = std::max(m.point_motion, (m.linear + m.angular.cross(v - c)).norm());
-        radius = std::max(radius, (v - c).norm());
-      }
+      for (const Vector3& v : vertices[p]) radius = std::max(radius, (v - c).norm());
+      m.point_motion = LargestPointMotion(phys->body_motion[b], c, vertices[p]);
       m.role = RoleOf(drive, p);
       m.moving = m.point_motion > motion_tol;
       ClassifyMotion(m, keeps_contact[b], radius, assembly.scene_size());
@@ -517,7 +530,7 @@ StabilityResult AnalyzeConfiguration(const Assembly& assembly, const Configurati
           // Off-path motion: everything but the gripper's own velocity.
           const Vector3 v_g = drive->velocity[p];
           double off = 0;
-          for (const Vector3& v : vertices)
+          for (const Vector3& v : vertices[p])
             off = std::max(off, (m.linear - v_g + m.angular.cross(v - c)).norm());
           if (off > motion_tol) result.unsupported.push_back(p);
           break;
@@ -532,6 +545,7 @@ StabilityResult AnalyzeConfiguration(const Assembly& assembly, const Configurati
     result.components.push_back(report);
   }
 
+  // The verdict, and what is proved about rest.
   std::sort(result.parts.begin(), result.parts.end(),
             [](const PartMotion& x, const PartMotion& y) { return x.part < y.part; });
   for (const PartMotion& m : result.parts)
@@ -539,21 +553,21 @@ StabilityResult AnalyzeConfiguration(const Assembly& assembly, const Configurati
   std::sort(result.unsupported.begin(), result.unsupported.end());
   std::sort(result.jammed.begin(), result.jammed.end());
   // Unstable when a part that should stay put moves, or a driven part cannot
-  // move as the gripper says; undecided when a solve failed; else stable. (A
+  // move as the gripper says; undecided only when no solve, equilibrium or
+  // mechanism could decide a component (a defect, reported); else stable. (A
   // guided part off its path is the caller's concern: see `unsupported`.)
   result.verdict = (any_moving || !result.jammed.empty())
                        ? Verdict::kUnstable
-                       : (any_failure ? Verdict::kSolverFailure : Verdict::kStable);
-  if (options.check_equilibrium) {
-    bool all = true, known = true;
-    for (const ComponentReport& c : result.components) {
-      known = known && c.static_equilibrium.has_value();
-      all = all && c.static_equilibrium.value_or(false);
-    }
-    if (known) result.static_equilibrium = all;
-    result.weakly_stable =
-        result.verdict == Verdict::kUnstable && result.jammed.empty() && known && all;
+                       : (any_undecided ? Verdict::kSolverFailure : Verdict::kStable);
+  bool all = true, known = true;
+  for (const ComponentReport& c : result.components) {
+    known = known && c.static_equilibrium.has_value();
+    all = all && c.static_equilibrium.value_or(false);
   }
+  if (known && (static_check || options.check_equilibrium)) result.static_equilibrium = all;
+  result.weakly_stable = result.verdict == Verdict::kUnstable && result.jammed.empty() &&
+                         result.static_equilibrium.value_or(false);
+  if (static_check) result.stability = Summarize(result);
   return result;
 }
 

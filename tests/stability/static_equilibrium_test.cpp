@@ -113,5 +113,94 @@ TEST(StaticEquilibrium, TheWallHasOneAndLosesItWithoutItsSupport) {
   EXPECT_FALSE(gap.weakly_stable);
 }
 
+// ---- What is proved about rest (stability/solve_component.h) ---------------
+
+// Strong: a box on a table, with friction. The frictionless equilibrium (each
+// corner carries part of the weight straight up) exists, so every solution of
+// the Stewart–Trinkle LCP from rest is at rest (static_equilibrium.h).
+TEST(StabilityProof, ABoxOnATableIsStronglyStable) {
+  AssemblyDef def;
+  def.friction = 0.5;
+  def.parts = {Box("table", -3, -1, 3, 0, true), Box("box", -0.5, 0, 0.5, 1)};
+  const StabilityResult r = Check(def);
+  EXPECT_EQ(r.verdict, Verdict::kStable) << r.diagnostics;
+  EXPECT_EQ(r.stability, StabilityProof::kStrong);
+  ASSERT_EQ(r.components.size(), 1u);
+  EXPECT_EQ(r.components[0].frictionless_equilibrium, std::optional<bool>(true));
+  // Frictionless (Baraff) too: the equilibrium LP is then the certificate.
+  def.friction = 0;
+  const StabilityResult f = Check(def);
+  EXPECT_EQ(f.formulation, Formulation::kBaraff);
+  EXPECT_EQ(f.stability, StabilityProof::kStrong);
+}
+
+// Not certified: a block on a 20° incline with μ = 0.5 > tan 20° = 0.364
+// stands (Lemke's method finds it at rest, and an equilibrium exists), but
+// only friction holds it: without friction the normal forces cannot balance
+// the weight's component m g sin 20° along the slope, so the certificate does
+// not apply. Rest is possible; that it is guaranteed is not proved.
+TEST(StabilityProof, ABlockHeldByFrictionIsNotCertified) {
+  const StabilityResult r = Check(BlockOnIncline(20 * kDeg, 0.5));
+  EXPECT_EQ(r.verdict, Verdict::kStable) << r.diagnostics;
+  EXPECT_EQ(r.stability, StabilityProof::kNotCertified);
+  ASSERT_EQ(r.components.size(), 1u);
+  EXPECT_EQ(r.components[0].frictionless_equilibrium, std::optional<bool>(false));
+  EXPECT_EQ(r.components[0].decided_by, DecidedBy::kLemke);
+}
+
+// Weak: the block jammed between two walls (above) has an equilibrium and
+// also falls. With no friction there is no equilibrium at all: none.
+TEST(StabilityProof, JammingIsWeakAndNoEquilibriumIsNone) {
+  const StabilityResult jammed = Check(JammedBlock(0.5));
+  EXPECT_EQ(jammed.stability, StabilityProof::kWeak);
+  EXPECT_EQ(jammed.components.at(0).stability, StabilityProof::kWeak);
+  const StabilityResult falls = Check(JammedBlock(0.0));
+  EXPECT_EQ(falls.stability, StabilityProof::kNone);
+  EXPECT_EQ(falls.moving, std::vector<int>{2});
+}
+
+// The mechanism of a frictionless block on a 20° incline: the virtual motion
+// of largest gravity power within |v_x|, |v_y| ≤ 1 that no contact resists
+// (v_n ≥ 0) slides it straight down the slope (lifting off costs power,
+// tipping about either lower corner raises the centroid), without turning.
+TEST(Mechanism, AFrictionlessBlockOnAnInclineSlidesDownIt) {
+  const double theta = 20 * kDeg;
+  const Assembly a = Assembly::Create(BlockOnIncline(theta, 0.0), "incline");
+  const auto lcps = BuildComponentLcps(a, Configuration::Assembled(a));
+  ASSERT_EQ(lcps.size(), 1u);
+  EXPECT_FALSE(FindStaticEquilibrium(lcps[0]).exists);
+  const Mechanism m = FindMechanism(lcps[0]);
+  ASSERT_TRUE(m.found) << m.message;
+  ASSERT_EQ(m.moving, std::vector<int>{0});
+  const Vector3 v = m.nu[0].head<3>();
+  const Vector3 down(std::cos(theta), -std::sin(theta), 0);
+  EXPECT_NEAR(v.normalized().dot(down), 1.0, 1e-9) << v.transpose();
+  EXPECT_NEAR(m.nu[0].tail<3>().norm(), 0.0, 1e-9);
+  // Gravity's power along it: m g |v| sin θ.
+  EXPECT_NEAR(m.power, a.part(1).mass * a.gravity().norm() * v.norm() * std::sin(theta), 1e-9);
+  // With friction above the friction angle nothing is left to find.
+  const Assembly held = Assembly::Create(BlockOnIncline(theta, 0.5), "incline");
+  EXPECT_FALSE(FindMechanism(BuildComponentLcps(held, Configuration::Assembled(held))[0]).found);
+}
+
+// The frictionless equilibrium LP (the certificate) on the same block: none
+// on the incline, one on the level.
+TEST(StaticEquilibrium, FrictionlessOptionDropsTheFrictionColumns) {
+  const Assembly a = Assembly::Create(BlockOnIncline(20 * kDeg, 0.5), "incline");
+  const auto lcps = BuildComponentLcps(a, Configuration::Assembled(a));
+  EXPECT_TRUE(FindStaticEquilibrium(lcps[0]).exists);
+  const StaticEquilibrium fl = FindStaticEquilibrium(lcps[0], {.frictionless = true});
+  EXPECT_TRUE(fl.solved);
+  EXPECT_FALSE(fl.exists);
+  AssemblyDef table;
+  table.friction = 0.5;
+  table.parts = {Box("table", -3, -1, 3, 0, true), Box("box", -0.5, 0, 0.5, 1)};
+  const Assembly level = Assembly::Create(table, "level");
+  const StaticEquilibrium on_level = FindStaticEquilibrium(
+      BuildComponentLcps(level, Configuration::Assembled(level))[0], {.frictionless = true});
+  ASSERT_TRUE(on_level.exists);
+  for (const Vector3& f : on_level.friction_force) EXPECT_EQ(f.norm(), 0.0);
+}
+
 }  // namespace
 }  // namespace cairn

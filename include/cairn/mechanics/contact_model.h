@@ -83,6 +83,9 @@ struct BodyDynamics {
   Matrix6 InverseMass() const;
   /// The projector B Bᵀ onto the free velocity directions.
   Matrix6 FreeProjector() const;
+  /// B: orthonormal columns spanning the free velocity directions (none for a
+  /// prescribed body; v_x, v_y, ω_z for a free planar one).
+  Eigen::Matrix<double, 6, Eigen::Dynamic> FreeBasis() const;
 };
 
 /// How the LCP matrix of a component is stored.

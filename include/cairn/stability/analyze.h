@@ -27,6 +27,7 @@
 #include "cairn/lcp/lemke.h"
 #include "cairn/mechanics/contact_model.h"
 #include "cairn/mechanics/rest_solution.h"
+#include "cairn/stability/solve_component.h"
 
 namespace cairn {
 
@@ -103,6 +104,11 @@ struct ComponentReport {
   std::vector<int> parts;  ///< movable parts (indices into Assembly::parts())
   int num_contacts = 0;
   int lcp_size = 0;
+  /// What decided the component (stability/solve_component.h).
+  DecidedBy decided_by = DecidedBy::kLemke;
+  /// What is proved about rest (static checks; kNone along paths).
+  StabilityProof stability = StabilityProof::kNone;
+  /// Lemke's method's status (kSolved when another solver decided).
   LcpStatus status = LcpStatus::kTrivial;
   int pivots = 0;
   double residual = 0;              ///< natural-map residual of the LCP solution
@@ -117,13 +123,25 @@ struct ComponentReport {
   /// stand in static equilibrium (mechanics/static_equilibrium.h); empty when
   /// not asked for or when the LP solver failed.
   std::optional<bool> static_equilibrium;
+  /// The strong-stability certificate (a frictionless equilibrium), when tried
+  /// and decided within its budget.
+  std::optional<bool> frictionless_equilibrium;
+  std::string equilibrium_method;  ///< the LP method that decided the equilibrium
+  /// Parts held at rest to find how the mechanism's parts move (decided_by
+  /// kMechanism), part indices.
+  std::vector<int> held;
+  /// The mechanism (decided_by kMechanism): the parts it moves and gravity's
+  /// power along it (force · length/s for a unit-speed motion).
+  std::vector<int> mechanism_parts;
+  double mechanism_power = 0;
 };
 
 /// The overall answer.
 enum class Verdict {
   kStable,         ///< no movable part moves
   kUnstable,       ///< some movable part moves
-  kSolverFailure,  ///< a component's LCP could not be solved reliably (see diagnostics)
+  kSolverFailure,  ///< no solver, equilibrium or mechanism decided a component (a defect;
+                   ///< see diagnostics)
 };
 
 /// "stable", "unstable", "solver failure".
@@ -157,6 +175,12 @@ struct StabilityResult {
   /// produces, such as a squeeze between faces (jamming; Pang and Trinkle's
   /// weak stability).
   bool weakly_stable = false;
+  /// Static checks: what is proved about rest (SolveComponent): kStrong, every
+  /// LCP solution is at rest; kWeak, an equilibrium exists but the parts move
+  /// (weakly_stable); kNotCertified, stable, rest possible and no motion found
+  /// but not proved impossible; kNone, unstable with no equilibrium (or along
+  /// paths, where it is not examined).
+  StabilityProof stability = StabilityProof::kNone;
 };
 
 /// How the gripper drives the parts of one configuration (motion stage). Every

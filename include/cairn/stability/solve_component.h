@@ -1,0 +1,126 @@
+#pragma once
+/// @file
+/// The solve policy of one contact-graph component: which solvers run, in
+/// which order, and what each proves. AnalyzeConfiguration calls it once per
+/// component; its answer is always a verified LCP solution (of the component,
+/// or of the component with some parts held), or a verified mechanism, never
+/// "the solver failed" alone.
+///
+/// From rest (the static check, no driven parts):
+///  1. The static-equilibrium LP (mechanics/static_equilibrium.h). Can the
+///     parts stand at all?
+///  2. If an equilibrium exists: the strong-stability certificate (a
+///     frictionless equilibrium: every LCP solution is then at rest; the proof
+///     is in static_equilibrium.h), under a work budget; then Lemke's method as
+///     a probe for a moving solution, under a work budget:
+///       - it moves: jamming, `stability` "weak" (rest possible, not
+///         guaranteed; verdict unstable, as Pang and Trinkle's weak stability);
+///       - it rests: its forces are reported; "strong" with the certificate,
+///         else "not certified";
+///       - it fails or runs out of budget: the equilibrium's forces (checked as
+///         an LCP solution at rest) are reported, "strong" or "not certified".
+///  3. If no equilibrium exists, some part must move: Lemke's method gives how.
+///     If it fails, the mechanism LP names the parts that must move (a virtual
+///     motion along which gravity does work and no contact resists, checked);
+///     the component's LCP is then solved again with every other part held at
+///     rest, which gives their motion (a verified solution of that LCP). If
+///     even that fails, the mechanism itself is the motion reported.
+///
+/// With a drive (a step of a motion path): in 3-D with friction the rest
+/// hypothesis LP first (mechanics/rest_solution.h), then Lemke's method; a
+/// driven part whose motion no forces allow is jammed (Lemke's ray); when
+/// Lemke's method fails, a static equilibrium with every part at rest is tried
+/// as an LCP solution, then the mechanism as above (with the driven parts
+/// stopped).
+///
+/// The work budgets are deterministic (pivots and simplex iterations scaled by
+/// the component's size), so the answers do not depend on the machine.
+
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "cairn/lcp/lemke.h"
+#include "cairn/mechanics/contact_model.h"
+#include "cairn/mechanics/rest_solution.h"
+#include "cairn/mechanics/static_equilibrium.h"
+
+namespace cairn {
+
+/// What decided a component.
+enum class DecidedBy {
+  kLemke,           ///< Lemke's method's solution of the component's LCP
+  kEquilibrium,     ///< the static equilibrium, as an LCP solution with every part at rest
+  kRestHypothesis,  ///< the rest-hypothesis LP (along paths: judged parts at rest, driven ones
+                    ///< on their path)
+  kMechanism,       ///< the mechanism LP (parts named), refined by an LCP with the others held
+  kJammed,          ///< the driven motion is blocked: no contact forces allow it (Lemke's ray)
+  kUndecided,       ///< nothing above could decide (a defect: reported with its reasons)
+};
+
+/// "lemke", "equilibrium", "rest hypothesis", "mechanism", "jammed", "undecided".
+const char* to_string(DecidedBy d);
+
+/// What is proved about rest.
+enum class StabilityProof {
+  kNone,          ///< no rest possible (no equilibrium), or not examined (along paths)
+  kStrong,        ///< every solution of the LCP is at rest (certificate)
+  kWeak,          ///< rest is possible (an equilibrium) but a moving solution exists (found)
+  kNotCertified,  ///< rest is possible; no moving solution found, none ruled out
+};
+
+/// "none", "strong", "weak", "not certified".
+const char* to_string(StabilityProof s);
+
+/// What the caller knows of the component's bodies.
+struct SolveContext {
+  LemkeParameters lemke;
+  /// From rest, nothing driven: the static policy (equilibrium first).
+  bool static_check = true;
+  /// Along paths: try the rest hypothesis LP first (3-D, friction, a driven
+  /// part, no carried one).
+  bool rest_first = false;
+  /// Along paths: whether a body is guided (pushed along its path only), and
+  /// whether any is driven (guided or prescribed).
+  bool has_guided = false;
+  bool has_driven = false;
+  /// Whether an LCP solution moves a part that must stay put (judged), by the
+  /// caller's own test (point motions over the tolerance).
+  std::function<bool(const ContactLcp&, const VectorX&)> moves;
+  /// Warm starts (may be null).
+  const LcpBasis* warm_start = nullptr;
+  RestLpBasis* rest_warm = nullptr;
+};
+
+/// The answer for one component.
+struct ComponentSolution {
+  DecidedBy decided_by = DecidedBy::kUndecided;
+  StabilityProof stability = StabilityProof::kNone;
+  /// The LCP whose solution `z` is: the component's, or (mechanism) the same
+  /// with the bodies outside the mechanism held at rest. Absent when the
+  /// mechanism alone is reported (or undecided).
+  std::optional<ContactLcp> held_lcp;  ///< set when the LCP solved is not the component's own
+  bool has_solution = false;           ///< z solves the LCP (verified)
+  VectorX z;
+  double residual = 0;  ///< natural-map residual of z
+  /// Lemke's method on the component (status, pivots, message; z not used
+  /// unless decided_by is kLemke).
+  LcpResult lemke;
+  bool lemke_tried = false;
+  bool lemke_budgeted = false;  ///< run as a probe with a work budget
+  std::optional<StaticEquilibrium> equilibrium;
+  std::optional<bool> frictionless_equilibrium;  ///< the certificate, when tried and decided
+  std::optional<Mechanism> mechanism;
+  std::vector<int> held;   ///< local body indices held at rest (mechanism refinement)
+  int lp_iterations = 0;   ///< rest-hypothesis LP iterations
+  bool rest_none = false;  ///< the rest hypothesis proved no rest exists
+  /// Human-readable notes in order (what was tried, what failed), for the
+  /// report's message; the structured fields above are the contract.
+  std::vector<std::string> notes;
+};
+
+/// Runs the policy of the file comment on one component's LCP.
+ComponentSolution SolveComponent(const ContactLcp& lcp, const SolveContext& context);
+
+}  // namespace cairn

@@ -1,0 +1,278 @@
+#include "cairn/stability/solve_component.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace cairn {
+
+const char* to_string(DecidedBy d) {
+  switch (d) {
+    case DecidedBy::kLemke:
+      return "lemke";
+    case DecidedBy::kEquilibrium:
+      return "equilibrium";
+    case DecidedBy::kRestHypothesis:
+      return "rest hypothesis";
+    case DecidedBy::kMechanism:
+      return "mechanism";
+    case DecidedBy::kJammed:
+      return "jammed";
+    case DecidedBy::kUndecided:
+      return "undecided";
+  }
+  return "unknown";
+}
+
+const char* to_string(StabilityProof s) {
+  switch (s) {
+    case StabilityProof::kNone:
+      return "none";
+    case StabilityProof::kStrong:
+      return "strong";
+    case StabilityProof::kWeak:
+      return "weak";
+    case StabilityProof::kNotCertified:
+      return "not certified";
+  }
+  return "unknown";
+}
+
+namespace {
+
+// Work budgets (dimensionless operation counts), so that a certificate or a
+// probe costs about as much on every machine and its answer never depends on
+// the clock. r is the rank bound of the LCP matrix, six times the free bodies
+// (W M⁻¹ Wᵀ has the rank of the bodies).
+//  - The Lemke probe: a pivot of the factored solver costs O(r²); at most
+//    kProbeWork / r² pivots (Jenga, r = 324: 1 900 pivots, it needs 375; the
+//    399-block Armadillo vault, r = 2 196: 41, about 0.1 s).
+//  - The strong-stability certificate: a dual simplex iteration costs O(rows);
+//    at most kCertificateWork / rows iterations (Jenga: 617, it needs 164;
+//    Armadillo: 91, where proving infeasibility takes 3 935, 4 s).
+constexpr double kProbeWork = 2e8;
+constexpr double kCertificateWork = 2e5;
+constexpr int kLeastProbePivots = 100;
+constexpr int kLeastCertificateIterations = 50;
+
+int RankBound(const ContactLcp& lcp);
+
+// The Lemke probe's pivot budget: kProbeWork / r² (0: no budget, for dense
+// LCPs, whose pivots are cheap). −1: not worth starting, because Lemke's
+// method brings one basic variable in per pivot and a component whose loads
+// span r directions needs about r of them: a budget below r cannot finish.
+int ProbePivots(const ContactLcp& lcp) {
+  if (lcp.has_dense()) return 0;
+  const double r = RankBound(lcp);
+  const int budget = std::max(kLeastProbePivots, static_cast<int>(kProbeWork / (r * r)));
+  return budget < r ? -1 : budget;
+}
+
+int RankBound(const ContactLcp& lcp) {
+  int free = 0;
+  for (const BodyDynamics& b : lcp.bodies) free += static_cast<int>(b.FreeBasis().cols());
+  return std::max(1, std::min(lcp.size(), free));
+}
+
+double CheckTolerance(const ContactLcp& lcp, const LemkeParameters& p) {
+  return p.solution_tolerance * std::max(1.0, lcp.q.lpNorm<Eigen::Infinity>());
+}
+
+double NaturalResidual(const ContactLcp& lcp, const VectorX& z) {
+  const VectorX w = lcp.Multiply(z) + lcp.q;
+  double r = 0;
+  for (Eigen::Index i = 0; i < z.size(); ++i) r = std::max(r, std::abs(std::min(z[i], w[i])));
+  return r;
+}
+
+bool Solved(const LcpResult& r) {
+  return r.status == LcpStatus::kSolved || r.status == LcpStatus::kTrivial;
+}
+
+// Accepts z as the component's answer when it passes the independent check.
+bool Accept(const ContactLcp& lcp, const VectorX& z, const LemkeParameters& p, DecidedBy by,
+            ComponentSolution& out) {
+  if (!IsContactLcpSolution(lcp, z, CheckTolerance(lcp, p))) return false;
+  out.decided_by = by;
+  out.has_solution = true;
+  out.z = z;
+  out.residual = NaturalResidual(lcp, z);
+  return true;
+}
+
+// Lemke's method on the component; its answer only counts once re-checked.
+void RunLemke(const ContactLcp& lcp, const SolveContext& ctx, int max_pivots,
+              ComponentSolution& out) {
+  if (max_pivots < 0) {
+    out.notes.push_back("Lemke's method not run: its work budget (" +
+                        std::to_string(static_cast<long long>(kProbeWork)) +
+                        " / r², r the rank bound " + std::to_string(RankBound(lcp)) +
+                        ") is fewer pivots than the basis needs");
+    return;
+  }
+  LemkeParameters p = ctx.lemke;
+  if (max_pivots > 0 && (p.max_pivots <= 0 || max_pivots < p.max_pivots)) {
+    p.max_pivots = max_pivots;
+    out.lemke_budgeted = true;
+  }
+  out.lemke = SolveContactLcp(lcp, p, ctx.warm_start);
+  out.lemke_tried = true;
+  if (Solved(out.lemke) && !IsContactLcpSolution(lcp, out.lemke.z, CheckTolerance(lcp, p))) {
+    out.lemke.status = LcpStatus::kNumericalFailure;
+    out.lemke.message = "the solver's answer failed the independent LCP check";
+  }
+  if (!Solved(out.lemke))
+    out.notes.push_back(
+        std::string("Lemke's method failed (") + to_string(out.lemke.status) +
+        (out.lemke.message.empty() ? "" : ": " + out.lemke.message) +
+        (out.lemke_budgeted ? "; probe budget " + std::to_string(p.max_pivots) + " pivots" : "") +
+        ")");
+}
+
+// The equilibrium's forces as the LCP's solution with every part at rest.
+bool AcceptEquilibrium(const ContactLcp& lcp, const SolveContext& ctx, ComponentSolution& out) {
+  if (!out.equilibrium) out.equilibrium = FindStaticEquilibrium(lcp);
+  const StaticEquilibrium& eq = *out.equilibrium;
+  if (!eq.solved || !eq.exists) return false;
+  if (Accept(lcp, eq.lcp_z, ctx.lemke, DecidedBy::kEquilibrium, out)) {
+    out.notes.push_back(std::string("the static equilibrium (") + eq.method +
+                        ") solves the LCP with every part at rest");
+    return true;
+  }
+  out.notes.push_back("the equilibrium's forces fail the LCP check at rest");
+  return false;
+}
+
+// The strong-stability certificate: a frictionless equilibrium (proof in
+// static_equilibrium.h), within its work budget.
+bool StrongCertificate(const ContactLcp& lcp, const StaticEquilibrium& eq) {
+  if (lcp.formulation == Formulation::kBaraff || lcp.num_friction == 0) return eq.exists;
+  EquilibriumOptions o;
+  o.frictionless = true;
+  const double rows = 6.0 * static_cast<double>(lcp.bodies.size());
+  o.max_iterations =
+      std::max(kLeastCertificateIterations, static_cast<int>(kCertificateWork / rows));
+  const StaticEquilibrium fl = FindStaticEquilibrium(lcp, o);
+  return fl.solved && fl.exists;
+}
+
+// No equilibrium, no LCP solution: the mechanism names the parts that must
+// move; the LCP with every other part held at rest says how they move.
+void ExplainByMechanism(const ContactLcp& lcp, const SolveContext& ctx, ComponentSolution& out) {
+  out.mechanism = out.equilibrium && out.equilibrium->mechanism ? *out.equilibrium->mechanism
+                                                                : FindMechanism(lcp);
+  if (!out.mechanism->found) {
+    out.notes.push_back("mechanism LP: " + out.mechanism->message);
+    return;
+  }
+  out.decided_by = DecidedBy::kMechanism;
+  std::vector<char> in(lcp.bodies.size(), 0);
+  for (int b : out.mechanism->moving) in[b] = 1;
+  std::vector<BodyDynamics> bodies = lcp.bodies;
+  for (size_t b = 0; b < bodies.size(); ++b) {
+    if (in[b] || bodies[b].motion != BodyMotion::kFree) continue;
+    bodies[b].motion = BodyMotion::kPrescribed;
+    bodies[b].nu_prescribed.setZero();
+    out.held.push_back(static_cast<int>(b));
+  }
+  if (out.held.empty()) return;  // nothing to hold: the mechanism is the answer
+  const int dimension = lcp.bodies.front().planar ? 2 : 3;
+  ContactLcp held =
+      BuildContactLcp(std::move(bodies), lcp.contacts, lcp.formulation, lcp.dt,
+                      /*use_gaps=*/false, LcpStorage::kAuto, dimension, lcp.num_directions);
+  LemkeParameters p = ctx.lemke;
+  const int budget = ProbePivots(held);
+  if (budget < 0) {
+    out.notes.push_back("the LCP with the other parts held is beyond Lemke's work budget");
+    return;
+  }
+  if (budget > 0) p.max_pivots = budget;
+  const LcpResult r = SolveContactLcp(held, p);
+  if (Solved(r) && IsContactLcpSolution(held, r.z, CheckTolerance(held, ctx.lemke))) {
+    out.has_solution = true;
+    out.z = r.z;
+    out.residual = NaturalResidual(held, r.z);
+    out.held_lcp = std::move(held);
+  } else {
+    out.notes.push_back(std::string("the LCP with the other parts held: ") + to_string(r.status));
+  }
+}
+
+// The static policy (file comment of the header, "From rest").
+void SolveFromRest(const ContactLcp& lcp, const SolveContext& ctx, ComponentSolution& out) {
+  // 1. Can the parts stand at all?
+  out.equilibrium = FindStaticEquilibrium(lcp);
+  const StaticEquilibrium& eq = *out.equilibrium;
+  if (!eq.solved) out.notes.push_back("equilibrium LP: " + eq.message);
+
+  if (eq.solved && eq.exists) {
+    // 2. Rest is possible. Guaranteed? Then probe for a moving solution.
+    const bool strong = StrongCertificate(lcp, eq);
+    out.frictionless_equilibrium = strong;
+    RunLemke(lcp, ctx, ProbePivots(lcp), out);
+    const bool lemke = Solved(out.lemke);
+    const bool moves = lemke && ctx.moves && ctx.moves(lcp, out.lemke.z);
+    if (lemke && moves && strong)
+      out.notes.push_back(
+          "Lemke's method found motion below the certificate's resolution; rest is guaranteed");
+    if (lemke && (!moves || !strong)) {
+      Accept(lcp, out.lemke.z, ctx.lemke, DecidedBy::kLemke, out);
+      out.stability = moves ? StabilityProof::kWeak
+                            : (strong ? StabilityProof::kStrong : StabilityProof::kNotCertified);
+      return;
+    }
+    if (AcceptEquilibrium(lcp, ctx, out))
+      out.stability = strong ? StabilityProof::kStrong : StabilityProof::kNotCertified;
+    return;
+  }
+
+  // 3. Something must move (or the LP could not tell): Lemke's method says
+  // how, within the same budget (the mechanism below always answers);
+  // failing that, the mechanism.
+  RunLemke(lcp, ctx, ProbePivots(lcp), out);
+  if (Solved(out.lemke) && Accept(lcp, out.lemke.z, ctx.lemke, DecidedBy::kLemke, out)) return;
+  if (eq.solved) ExplainByMechanism(lcp, ctx, out);
+}
+
+// Along a path (file comment of the header, "With a drive").
+void SolveDriven(const ContactLcp& lcp, const SolveContext& ctx, ComponentSolution& out) {
+  if (ctx.rest_first) {
+    RestSolution r = FindRestSolution(lcp, ctx.rest_warm);
+    out.lp_iterations = r.iterations;
+    // No rest for all: perhaps for all but a guided part (which then leaves
+    // its path: unsupported, with the assembly at rest).
+    if (r.outcome == RestSolution::Outcome::kNone) {
+      out.rest_none = true;
+      if (ctx.has_guided) {
+        r = FindRestSolution(lcp, nullptr, RestHypothesis::kGuidedFree);
+        out.lp_iterations += r.iterations;
+      }
+    }
+    if (r.outcome == RestSolution::Outcome::kFound &&
+        Accept(lcp, r.z, ctx.lemke, DecidedBy::kRestHypothesis, out))
+      return;
+  }
+  RunLemke(lcp, ctx, 0, out);
+  if (Solved(out.lemke) && Accept(lcp, out.lemke.z, ctx.lemke, DecidedBy::kLemke, out)) return;
+  // A static equilibrium, where one exists, solves the LCP with every part at
+  // rest when nothing is driven into a contact (checked, not assumed).
+  if (AcceptEquilibrium(lcp, ctx, out)) return;
+  // A driven part whose prescribed motion no contact forces allow.
+  if (ctx.has_driven && out.lemke.status == LcpStatus::kRayTermination) {
+    out.decided_by = DecidedBy::kJammed;
+    return;
+  }
+  ExplainByMechanism(lcp, ctx, out);
+}
+
+}  // namespace
+
+ComponentSolution SolveComponent(const ContactLcp& lcp, const SolveContext& context) {
+  ComponentSolution out;
+  if (context.static_check)
+    SolveFromRest(lcp, context, out);
+  else
+    SolveDriven(lcp, context, out);
+  return out;
+}
+
+}  // namespace cairn
