@@ -96,6 +96,21 @@ TEST(FlushJoint, TheExampleSlideIsStableInBothModes) {
   EXPECT_EQ(back.verdict, MotionVerdict::kStable) << Why(back);
 }
 
+// examples/flush_joint_wall.json is the non-invertible variant below (2-D):
+// pulling B out drags S into the gap at the first move; putting B in drags
+// S against the wall W, which holds it.
+TEST(FlushJoint, TheExampleWithTheWallIsStableOnlyInAssembleMode) {
+  const Assembly a = ReadScene(ExamplePath("flush_joint_wall.json"));
+  const SimulationResult out =
+      SimulatePlan(a, ReadPlan(ExamplePath("plans/flush_joint_wall_slide.plan.json"), a));
+  ASSERT_EQ(out.verdict, MotionVerdict::kUnstable) << Why(out);
+  EXPECT_EQ(out.failure->parts, std::vector<int>{a.FindPart("S")});
+  EXPECT_EQ(out.failure->tick, 1);
+  const SimulationResult in =
+      SimulatePlan(a, ReadPlan(ExamplePath("plans/flush_joint_wall_insert.plan.json"), a));
+  EXPECT_EQ(in.verdict, MotionVerdict::kStable) << Why(in);
+}
+
 class FlushJointIn : public ::testing::TestWithParam<int> {};
 
 // With and without the gap (without it, B's corner meets S's and L's at a
