@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "cairn/contact/polyhedron_contact.h"
+#include "corner_touches.h"
 
 namespace cairn {
 
@@ -155,6 +156,95 @@ ContactFeature FeatureOf(ContactKind3 kind) {
 
 using Box3 = std::pair<Vector3, Vector3>;
 
+// 2-D: whether an edge of the (ccw) polygon with outward normal m contains p.
+bool PolygonHasEdge(const Polygon& poly, const Vector2& p, const Vector2& m, double tol,
+                    double cos_tol) {
+  const int ne = static_cast<int>(poly.size());
+  for (int e = 0; e < ne; ++e) {
+    const Vector2 d = poly[(e + 1) % ne] - poly[e];
+    const double len = d.norm();
+    if (len <= 0) continue;
+    const Vector2 dir = d / len;
+    if (Vector2(dir.y(), -dir.x()).dot(m) < cos_tol) continue;
+    const double u = std::clamp((p - poly[e]).dot(dir), 0.0, len);
+    if ((poly[e] + u * dir - p).norm() <= tol) return true;
+  }
+  return false;
+}
+
+bool PolyhedronHasFace(const Polyhedron& poly, const Eigen::Isometry3d& X, const Vector3& p,
+                       const Vector3& m, double tol, double cos_tol);
+
+// 2-D: whether the polygon's material near p lies on the side m·(x − p) ≥ 0:
+// every edge through p has both ends on that side, and p is no reflex vertex.
+bool PolygonOnSide(const Polygon& poly, const Vector2& p, const Vector2& m, double tol,
+                   double angle_tol) {
+  const int ne = static_cast<int>(poly.size());
+  for (int e = 0; e < ne; ++e) {
+    const Vector2& q0 = poly[e];
+    const Vector2& q1 = poly[(e + 1) % ne];
+    const Vector2 d = q1 - q0;
+    const double len = d.norm();
+    if (len <= 0) continue;
+    const double u = std::clamp((p - q0).dot(d) / len, 0.0, len);
+    if ((q0 + u * d / len - p).norm() > tol) continue;
+    for (const Vector2& q : {q0, q1})
+      if (m.dot(q - p) < -(tol + angle_tol * (q - p).norm())) return false;
+  }
+  for (int k = 0; k < ne; ++k) {
+    if ((poly[k] - p).norm() > tol) continue;
+    const Vector2 to_prev = poly[(k + ne - 1) % ne] - poly[k];
+    const Vector2 to_next = poly[(k + 1) % ne] - poly[k];
+    if (Cross2(-to_prev, to_next) < -angle_tol * to_prev.norm() * to_next.norm()) return false;
+  }
+  return true;
+}
+
+// 3-D: whether the polyhedron's material near p lies on the side
+// m·(x − p) ≥ 0: every face through p has all its vertices on that side.
+bool PolyhedronOnSide(const Polyhedron& poly, const Eigen::Isometry3d& X, const Vector3& p,
+                      const Vector3& m, double tol, double angle_tol) {
+  for (size_t f = 0; f < poly.faces().size(); ++f) {
+    const Vector3 n = X.linear() * poly.face_normals()[f];
+    if (!PolyhedronHasFace(poly, X, p, n, tol, 1.0 - 1e-12)) continue;
+    for (int i : poly.faces()[f]) {
+      const Vector3 v = X * poly.vertices()[i];
+      if (m.dot(v - p) < -(tol + angle_tol * (v - p).norm())) return false;
+    }
+  }
+  return true;
+}
+
+// 3-D: whether a face of the polyhedron placed by X, with outward normal m,
+// contains p (on its plane within tol, inside its polygon or within tol of it).
+bool PolyhedronHasFace(const Polyhedron& poly, const Eigen::Isometry3d& X, const Vector3& p,
+                       const Vector3& m, double tol, double cos_tol) {
+  for (size_t f = 0; f < poly.faces().size(); ++f) {
+    const Vector3 n = X.linear() * poly.face_normals()[f];
+    if (n.dot(m) < cos_tol) continue;
+    const auto& face = poly.faces()[f];
+    std::vector<Vector3> v;
+    for (int i : face) v.push_back(X * poly.vertices()[i]);
+    if (std::abs(n.dot(p - v[0])) > tol) continue;
+    // Within tol of an edge, or inside (crossing number in the face's plane).
+    const auto [u, w] = TangentBasis(n);
+    const Vector2 q((p - v[0]).dot(u), (p - v[0]).dot(w));
+    bool inside = false;
+    for (size_t i = 0, j = v.size() - 1; i < v.size(); j = i++) {
+      const Vector2 a((v[j] - v[0]).dot(u), (v[j] - v[0]).dot(w));
+      const Vector2 b((v[i] - v[0]).dot(u), (v[i] - v[0]).dot(w));
+      const Vector2 d = b - a;
+      const double s =
+          d.squaredNorm() > 0 ? std::clamp((q - a).dot(d) / d.squaredNorm(), 0.0, 1.0) : 0.0;
+      if ((a + s * d - q).norm() <= tol) return true;
+      if ((a.y() > q.y()) != (b.y() > q.y()) && q.x() < a.x() + (q.y() - a.y()) * d.x() / d.y())
+        inside = !inside;
+    }
+    if (inside) return true;
+  }
+  return false;
+}
+
 bool BoxesTouch3(const Box3& x, const Box3& y, double tol) {
   return ((x.first.array() <= y.second.array() + tol) &&
           (y.first.array() <= x.second.array() + tol))
@@ -268,6 +358,22 @@ std::vector<Contact> DetectContacts(const Assembly& assembly, const Configuratio
     }
     if (contacts.size() > before) ++local.pairs_touching;
   }
+  // Corner touches and flush joints (docs/contacts.md): one normal, or the
+  // flush ones the configuration supports, where a corner touches a corner.
+  const double cos_tol = std::cos(angle_tol);
+  CornerQueries queries;
+  queries.has_face = [&](int part, const Vector3& p_W, const Vector3& m_W) {
+    if (is3)
+      return PolyhedronHasFace(*assembly.part(part).polyhedron, X[part], p_W, m_W, tol, cos_tol);
+    return PolygonHasEdge(polys[part], p_W.head<2>(), m_W.head<2>(), tol, cos_tol);
+  };
+  queries.on_side = [&](int part, const Vector3& p_W, const Vector3& m_W) {
+    if (is3)
+      return PolyhedronOnSide(*assembly.part(part).polyhedron, X[part], p_W, m_W, tol, angle_tol);
+    return PolygonOnSide(polys[part], p_W.head<2>(), m_W.head<2>(), tol, angle_tol);
+  };
+  ApplyCornerRule(contacts, queries, assembly.gravity(), tol, angle_tol);
+
   // Fixtures: frictionless contacts with the fixed world, moving with their part.
   const auto& fixtures = assembly.fixtures();
   for (int f = 0; f < static_cast<int>(fixtures.size()); ++f) {

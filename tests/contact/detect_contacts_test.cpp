@@ -111,8 +111,10 @@ TEST(NonConvex, AReflexVertexNeverRestsOnALine) {
 }
 
 TEST(CornerCorner, DiagonalCornersKeepBothNormals) {
-  // a's lower-left corner on b's upper-right corner: ambiguous; both the
-  // horizontal and the vertical normal are kept (documented, conservative).
+  // a's lower-left corner on b's upper-right corner: ambiguous; the pair
+  // detector returns both the horizontal and the vertical normal as
+  // candidates (DetectContacts then applies the corner rule to them:
+  // corner_touches_test.cpp).
   const auto cs = Touch(Rect(1, 1, 2, 2), Rect(0, 0, 1, 1));
   ASSERT_FALSE(cs.empty());
   for (const Contact& c : cs) EXPECT_EQ(c.p_WC, Vector3(1, 1, 0));

@@ -17,10 +17,34 @@
 ///    paper's models want;
 ///  - duplicates (the same point with the same normal, e.g. where two vertices
 ///    coincide) are merged.
-/// A vertex touching a vertex gives one contact per edge it lies on
-/// (conservative: both normals are kept).
+/// A vertex touching a vertex gives one candidate contact per edge it lies on
+/// (DetectPairContacts returns them all). DetectContacts then applies the
+/// *corner rule* (docs/contacts.md) to every touch with several normals,
+/// because the exact condition there (the motion is admissible if SOME
+/// line/plane through the point separates the two parts) is a disjunction
+/// one LCP row cannot express, and keeping every normal forbids sliding along
+/// either face:
+///  0. if some candidate does not separate the two parts locally (a block in
+///     an inner corner), the candidates hold together: all are kept;
+///  1. a *flush* normal (both parts have a face through the point in the
+///     plane normal to it: a face–face contact of zero or positive length) is
+///     kept, and the other normals of the touch are dropped: a part slides
+///     over a flush joint;
+///  2. with no flush normal every candidate is kept (a wedge's apex on a
+///     corner);
+///  3. with several flush normals (complementary corners), the one whose plane
+///     carries another contact of either part with the same orientation (the
+///     flush surface continues: a block slid from its support onto a ledge
+///     flush with it; a load on a vertex shared by three parts) is kept;
+///  4. otherwise, among the continued ones or else all flush ones, those most
+///     opposed to gravity are kept if the weight pushes into the forbidden
+///     cone (a tip on a tip), none if it does not (a lone corner-to-corner
+///     touch: the part may slide off along either face), all without gravity.
+/// The same rule applies to 3-D contacts (faces for edges). "The same point"
+/// and "on the plane" use `tol`, "the same normal" `angle_tol`.
 /// Contacts between two fixed parts, and with absent parts, are not made.
-/// Fixtures become contacts with the fixed world (frictionless).
+/// Fixtures become contacts with the fixed world (frictionless), and are
+/// never changed by the corner rule, nor are given interfaces.
 
 #include <vector>
 
@@ -35,14 +59,16 @@ struct ContactStats {
   int pairs_touching = 0;  ///< part pairs with at least one contact
 };
 
-/// All contacts of `config`, sorted by (part_a, part_b, feature): deterministic.
+/// All contacts of `config`, after the corner rule, in a deterministic order
+/// (part pairs in (i, j) order, then fixtures).
 /// `tol` is the contact distance tolerance (length), `angle_tol` the angle
 /// tolerance (rad).
 std::vector<Contact> DetectContacts(const Assembly& assembly, const Configuration& config,
                                     double tol, double angle_tol, ContactStats* stats = nullptr);
 
-/// Contacts between the polygons of parts i and j (both present, not both
-/// fixed), appended to `out`. Part i is `a`, part j is `b`.
+/// The candidate contacts between the polygons of parts i and j (both present,
+/// not both fixed), appended to `out`. Part i is `a`, part j is `b`. The
+/// corner rule is not applied (it needs the whole configuration).
 void DetectPairContacts(const Polygon& poly_i, const Polygon& poly_j, int i, int j, double mu,
                         double tol, double angle_tol, std::vector<Contact>& out);
 

@@ -22,7 +22,10 @@
 ///    parallel; n_W = ± e_a × e_b, signed so that it points into a's material
 ///    (against the sum of the outward normals of a's two faces at the edge).
 ///
-/// Points closer than `length_tol` with the same normal are merged. Every point
+/// Points closer than `length_tol` with the same normal are merged. These are
+/// the candidates of one pair: where a corner or an edge of one touches a
+/// corner or an edge of the other, the same point comes with several normals,
+/// and DetectContacts applies the corner rule to them (docs/contacts.md). Every point
 /// carries the id of its patch, so outputs can group the points of one face
 /// contact as the paper's figures do.
 
