@@ -455,7 +455,8 @@ StabilityResult AnalyzeConfiguration(const Assembly& assembly, const Configurati
     // A driven part whose prescribed motion no contact forces allow is
     // jammed: the path drives it into something that cannot give way.
     if (s.decided_by == DecidedBy::kJammed) {
-      report.message = "the gripper's motion is blocked (no contact forces allow it)";
+      report.message = "the gripper's motion is blocked (no contact forces allow it)" +
+                       (report.message.empty() ? "" : "; " + report.message);
       for (int p : comp.parts) {
         const PartRole role = RoleOf(drive, p);
         if (role == PartRole::kGuided || role == PartRole::kPrescribed) result.jammed.push_back(p);

@@ -15,6 +15,8 @@ const char* to_string(DecidedBy d) {
       return "rest hypothesis";
     case DecidedBy::kMechanism:
       return "mechanism";
+    case DecidedBy::kDrag:
+      return "drag";
     case DecidedBy::kJammed:
       return "jammed";
     case DecidedBy::kUndecided:
@@ -155,26 +157,20 @@ bool StrongCertificate(const ContactLcp& lcp, const StaticEquilibrium& eq) {
   return fl.solved && fl.exists;
 }
 
-// No equilibrium, no LCP solution: the mechanism names the parts that must
-// move; the LCP with every other part held at rest says how they move.
-void ExplainByMechanism(const ContactLcp& lcp, const SolveContext& ctx, ComponentSolution& out) {
-  out.mechanism = out.equilibrium && out.equilibrium->mechanism ? *out.equilibrium->mechanism
-                                                                : FindMechanism(lcp);
-  if (!out.mechanism->found) {
-    out.notes.push_back("mechanism LP: " + out.mechanism->message);
-    return;
-  }
-  out.decided_by = DecidedBy::kMechanism;
-  std::vector<char> in(lcp.bodies.size(), 0);
-  for (int b : out.mechanism->moving) in[b] = 1;
+// Solves the component's LCP with every free body outside `free` held at
+// rest (prescribed zero velocity): how the bodies of `free` move when nothing
+// else gives way. A verified solution of that LCP, or a note.
+void SolveWithOthersHeld(const ContactLcp& lcp, const SolveContext& ctx,
+                         const std::vector<char>& free, ComponentSolution& out) {
   std::vector<BodyDynamics> bodies = lcp.bodies;
+  out.held.clear();
   for (size_t b = 0; b < bodies.size(); ++b) {
-    if (in[b] || bodies[b].motion != BodyMotion::kFree) continue;
+    if (free[b] || bodies[b].motion != BodyMotion::kFree) continue;
     bodies[b].motion = BodyMotion::kPrescribed;
     bodies[b].nu_prescribed.setZero();
     out.held.push_back(static_cast<int>(b));
   }
-  if (out.held.empty()) return;  // nothing to hold: the mechanism is the answer
+  if (out.held.empty()) return;  // nothing to hold: the component's own LCP failed
   const int dimension = lcp.bodies.front().planar ? 2 : 3;
   ContactLcp held =
       BuildContactLcp(std::move(bodies), lcp.contacts, lcp.formulation, lcp.dt,
@@ -195,6 +191,38 @@ void ExplainByMechanism(const ContactLcp& lcp, const SolveContext& ctx, Componen
   } else {
     out.notes.push_back(std::string("the LCP with the other parts held: ") + to_string(r.status));
   }
+}
+
+// No equilibrium, no LCP solution: the mechanism names the parts that must
+// move; the LCP with every other part held at rest says how they move.
+void ExplainByMechanism(const ContactLcp& lcp, const SolveContext& ctx, ComponentSolution& out) {
+  out.mechanism = out.equilibrium && out.equilibrium->mechanism ? *out.equilibrium->mechanism
+                                                                : FindMechanism(lcp);
+  if (!out.mechanism->found) {
+    out.notes.push_back("mechanism LP: " + out.mechanism->message);
+    return;
+  }
+  out.decided_by = DecidedBy::kMechanism;
+  std::vector<char> moving(lcp.bodies.size(), 0);
+  for (int b : out.mechanism->moving) moving[b] = 1;
+  SolveWithOthersHeld(lcp, ctx, moving, out);
+}
+
+// Along a path where the judged parts cannot rest (the rest hypothesis) and
+// gravity alone moves none of them (no mechanism): the driven parts drag or
+// push their neighbours. The LCP of those neighbours, with every other part
+// held at rest, says how they move.
+void ExplainByDrag(const ContactLcp& lcp, const SolveContext& ctx, ComponentSolution& out) {
+  std::vector<char> driven(lcp.bodies.size(), 0), neighbour(lcp.bodies.size(), 0);
+  for (size_t b = 0; b < lcp.bodies.size(); ++b)
+    driven[b] = lcp.bodies[b].motion != BodyMotion::kFree;
+  for (const JacobianRow& row : lcp.normal_rows) {
+    const int a = row.body[0], b = row.body[1];
+    if (a >= 0 && b >= 0 && driven[a] && !driven[b]) neighbour[b] = 1;
+    if (a >= 0 && b >= 0 && driven[b] && !driven[a]) neighbour[a] = 1;
+  }
+  SolveWithOthersHeld(lcp, ctx, neighbour, out);
+  if (out.has_solution) out.decided_by = DecidedBy::kDrag;
 }
 
 // The static policy (file comment of the header, "From rest").
@@ -256,12 +284,20 @@ void SolveDriven(const ContactLcp& lcp, const SolveContext& ctx, ComponentSoluti
   // A static equilibrium, where one exists, solves the LCP with every part at
   // rest when nothing is driven into a contact (checked, not assumed).
   if (AcceptEquilibrium(lcp, ctx, out)) return;
+  // The rest hypothesis proved that judged parts must move: the mechanism
+  // (with the driven parts stopped) says which, if gravity alone moves them.
+  if (out.rest_none) {
+    ExplainByMechanism(lcp, ctx, out);
+    if (out.decided_by == DecidedBy::kMechanism) return;
+    ExplainByDrag(lcp, ctx, out);
+    if (out.decided_by == DecidedBy::kDrag) return;
+  }
   // A driven part whose prescribed motion no contact forces allow.
   if (ctx.has_driven && out.lemke.status == LcpStatus::kRayTermination) {
     out.decided_by = DecidedBy::kJammed;
     return;
   }
-  ExplainByMechanism(lcp, ctx, out);
+  if (!out.rest_none) ExplainByMechanism(lcp, ctx, out);
 }
 
 }  // namespace

@@ -30,8 +30,10 @@
 /// hypothesis LP first (mechanics/rest_solution.h), then Lemke's method; a
 /// driven part whose motion no forces allow is jammed (Lemke's ray); when
 /// Lemke's method fails, a static equilibrium with every part at rest is tried
-/// as an LCP solution, then the mechanism as above (with the driven parts
-/// stopped).
+/// as an LCP solution; where the rest hypothesis proved that judged parts must
+/// move, the mechanism as above (with the driven parts stopped), else the
+/// LCP of the driven parts' neighbours with every other part held (they are
+/// dragged or pushed: "drag"); a Lemke ray with a driven part is a jam.
 ///
 /// The work budgets are deterministic (pivots and simplex iterations scaled by
 /// the component's size), so the answers do not depend on the machine.
@@ -55,11 +57,14 @@ enum class DecidedBy {
   kRestHypothesis,  ///< the rest-hypothesis LP (along paths: judged parts at rest, driven ones
                     ///< on their path)
   kMechanism,       ///< the mechanism LP (parts named), refined by an LCP with the others held
+  kDrag,            ///< along a path, no rest and no mechanism: the driven parts' neighbours
+                    ///< move (their LCP with every other part held at rest)
   kJammed,          ///< the driven motion is blocked: no contact forces allow it (Lemke's ray)
   kUndecided,       ///< nothing above could decide (a defect: reported with its reasons)
 };
 
-/// "lemke", "equilibrium", "rest hypothesis", "mechanism", "jammed", "undecided".
+/// "lemke", "equilibrium", "rest hypothesis", "mechanism", "drag", "jammed",
+/// "undecided".
 const char* to_string(DecidedBy d);
 
 /// What is proved about rest.
