@@ -25,9 +25,16 @@
 //   z enters, z_l leaves   column of z_l replaced by a      (Sherman–Morrison)
 //   w_c enters, w_i leaves row c replaced by row i          (Sherman–Morrison)
 //   w_c enters, z_l leaves row c and column z_l removed     (Schur complement)
-// Every kRevalueEvery pivots the values are recomputed from H and q, and every
-// kRefactorEvery pivots H itself from C by LU, which bounds the drift of the
-// updates.
+// Every kRevalueEvery pivots the values are recomputed from H and q; the
+// tight rows' residual |q_R + C x| then measures the drift of H, and H is
+// refactored from C by LU when that exceeds a tenth of the tie-breaking
+// perturbation or k/4 pivots have passed since the last factorisation (k the
+// basis order), and after a zero pivot element, before that pivot is retried
+// once. (Before: blindly every 400 pivots, whatever k.)
+//
+// Ratio test: Harris's two passes with the pivot tolerance as the value
+// slack: of the candidates tied within roundoff, the largest pivot element
+// leaves (see Follow).
 //
 // Scale. The data are divided by s = max(|q|∞, M's magnitude bound): z is
 // unchanged, w and z₀ scale by 1/s, so the tolerances are relative.
@@ -146,10 +153,22 @@ bool IsLcpSolution(const FactoredLcpMatrix& M, const VectorX& q, const VectorX& 
 namespace {
 
 constexpr double kEps = std::numeric_limits<double>::epsilon();
-// Pivots between recomputations of the values from H (O(k² + nnz)), and
-// between refactorisations of H itself (O(k³): LU and inverse).
+// Pivots between recomputations of the values from H (O(k² + nnz)), at
+// which H is also checked for drift.
 constexpr int kRevalueEvery = 25;
-constexpr int kRefactorEvery = 400;
+// H is refactored (O(k³)) when the tight rows' residual exceeds this fraction
+// of the perturbation δ: drift that large could reorder the ties the
+// perturbation breaks.
+constexpr double kDriftFraction = 0.1;
+// ... and at the latest after kRefactorPerOrder · k pivots (k the basis
+// order): the updates' error in directions the tight-row residual does not
+// see still reorders near ties. Measured on the 9 COMPAS shelf, snake, bridge
+// and cube-curve components (docs/benchmarks.md, "Degenerate contact LCPs"):
+// on drift alone 4 solved, every k pivots 6, every k/4 pivots 7. An LU and
+// inverse cost ≈ 8k³/3 flops against ≈ 3k² per pivot's updates, so the
+// refactor takes about three quarters of the path's time: still O(k²) per
+// pivot, amortised.
+constexpr double kRefactorPerOrder = 0.25;
 
 enum class Role : unsigned char { kW, kZ, kNone };
 
@@ -158,12 +177,14 @@ enum class PathEnd { kSolution, kRay, kPivotLimit, kSingular };
 
 class Path {
  public:
-  Path(const FactoredLcpMatrix& M, const VectorX& q_scaled, double inv_scale, double tol)
+  Path(const FactoredLcpMatrix& M, const VectorX& q_scaled, double inv_scale, double tol,
+       double drift_tol)
       : M_(M),
         n_(M.size()),
         q_(q_scaled),
         inv_s_(inv_scale),
         tol_(tol),
+        drift_tol_(drift_tol),
         role_(n_, Role::kW),
         row_pos_(n_, -1),
         col_pos_(n_, -1),
@@ -280,13 +301,19 @@ class Path {
     }
     ++pivots_;
 
+    bool retried = false;
     while (true) {
       if (pivots_ >= max_pivots) return PathEnd::kPivotLimit;
-      if (pivots_ % kRefactorEvery == 0) {
-        if (!Refactor()) return PathEnd::kSingular;
+      // Every kRevalueEvery pivots: the values afresh from H, and H afresh
+      // from C when it has drifted (the tight rows' residual).
+      if (pivots_ % kRevalueEvery == 0 && pivots_ != last_revalue_) {
+        last_revalue_ = pivots_;
         RecomputeValues();
-      } else if (pivots_ % kRevalueEvery == 0) {
-        RecomputeValues();
+        if (TightResidual() > drift_tol_ ||
+            pivots_ - last_refactor_ >= kRefactorPerOrder * std::max(k(), 1)) {
+          if (!Refactor()) return PathEnd::kSingular;
+          RecomputeValues();
+        }
       }
       // The entering variable: the complement of the last one to leave.
       const int c = none_;
@@ -311,38 +338,60 @@ class Path {
         omega_ += scratch_ * inv_s_;
         if (z0_pos_ >= 0) omega_ += delta_[z0_pos_] * d_;
       }
-      // Ratio test: basic values decrease where Δ_p < 0 or ω_i < 0.
-      double theta = std::numeric_limits<double>::infinity();
-      double best_rate = 0;
-      int leave_row = -1, leave_col = -1;
-      const auto consider = [&](double value, double rate, int row, int col) {
-        // rate > tol: decreasing. Smaller ratio wins; ties go to the larger rate.
-        const double ratio = std::max(value, 0.0) / rate;
-        if (ratio < theta || (ratio == theta && rate > best_rate)) {
-          theta = ratio, best_rate = rate, leave_row = row, leave_col = col;
-        }
-      };
-      double col_scale = std::max(1.0, delta_.head(k()).cwiseAbs().maxCoeff());
-      for (int p = 0; p < k(); ++p)
-        if (-delta_[p] > tol_ * col_scale) consider(x_[p], -delta_[p], -1, p);
+      // Ratio test (Harris's two passes): basic values decrease where
+      // Δ_p < 0 or ω_i < 0. Pass 1 finds the largest step θ_max that keeps
+      // every value ≥ −τ (τ = tol_, the roundoff of a value); pass 2 takes,
+      // of the candidates whose exact ratio is ≤ θ_max, the one with the
+      // largest pivot element relative to its column's scale. Values tied
+      // within roundoff thus never leave on a roundoff-sized pivot element
+      // (which made the basis numerically singular on the Jenga ticks); the
+      // ties the perturbation separates (by δ ≫ τ) are still told apart.
+      const double col_scale = std::max(1.0, delta_.head(k()).cwiseAbs().maxCoeff());
       double row_scale = 1.0;
       for (int i = 0; i < n_; ++i)
         if (role_[i] == Role::kW) row_scale = std::max(row_scale, std::abs(omega_[i]));
+      candidates_.clear();
+      for (int p = 0; p < k(); ++p)
+        if (-delta_[p] > tol_ * col_scale)
+          candidates_.push_back({x_[p], -delta_[p], -delta_[p] / col_scale, -1, p});
       for (int i = 0; i < n_; ++i)
         if (role_[i] == Role::kW && -omega_[i] > tol_ * row_scale)
-          consider(w_[i], -omega_[i], i, -1);
-      if (leave_row < 0 && leave_col < 0) return PathEnd::kRay;
-      // z₀ leaves whenever its ratio is within the tolerance of the minimum.
-      if (z0_pos_ >= 0 && -delta_[z0_pos_] > tol_ * col_scale) {
-        const double r0 = std::max(x_[z0_pos_], 0.0) / -delta_[z0_pos_];
-        if (r0 <= theta + tol_ * std::max(1.0, theta)) leave_row = -1, leave_col = z0_pos_;
-        if (leave_col == z0_pos_) theta = r0;
+          candidates_.push_back({w_[i], -omega_[i], -omega_[i] / row_scale, i, -1});
+      if (candidates_.empty()) return PathEnd::kRay;
+      double theta_max = std::numeric_limits<double>::infinity();
+      for (const Candidate& cd : candidates_)
+        theta_max = std::min(theta_max, (std::max(cd.value, 0.0) + tol_) / cd.rate);
+      double theta = 0, best = -1;
+      int leave_row = -1, leave_col = -1;
+      for (const Candidate& cd : candidates_) {
+        const double ratio = std::max(cd.value, 0.0) / cd.rate;
+        if (ratio > theta_max) continue;
+        // z₀ leaves whenever it can: the path ends.
+        const bool is_z0 = cd.col >= 0 && cd.col == z0_pos_;
+        const double key = is_z0 ? std::numeric_limits<double>::infinity() : cd.relative;
+        if (key > best) best = key, theta = ratio, leave_row = cd.row, leave_col = cd.col;
       }
-      if (!Exchange(enter_w ? -1 : c, enter_w ? c : -1, leave_row, leave_col, theta))
-        return PathEnd::kSingular;
+      if (!Exchange(enter_w ? -1 : c, enter_w ? c : -1, leave_row, leave_col, theta)) {
+        // A zero pivot element from a drifted H: refactor and redo the
+        // ratio test once (the basis is unchanged); twice is a real failure.
+        if (retried) return PathEnd::kSingular;
+        retried = true;
+        if (!Refactor()) return PathEnd::kSingular;
+        RecomputeValues();
+        continue;
+      }
+      retried = false;
       ++pivots_;
       if (z0_pos_ < 0) return PathEnd::kSolution;
     }
+  }
+
+  // max |q_R + M(R, Z) x| over the tight rows (scaled; their w, 0 exactly),
+  // after RecomputeValues: how far H = C⁻¹ has drifted.
+  double TightResidual() const {
+    double r = 0;
+    for (int s = 0; s < k(); ++s) r = std::max(r, std::abs(w_[rows_[s]]));
+    return r;
   }
 
   // The complementary basis and z of the current iterate (z₀ dropped).
@@ -408,6 +457,7 @@ class Path {
       }
     }
     lu_.compute(C_);
+    last_refactor_ = pivots_;
     const double u_min = lu_.matrixLU().diagonal().cwiseAbs().minCoeff();
     const double c_max = C_.cwiseAbs().maxCoeff();
     if (!(u_min > kk * kEps * c_max)) return false;
@@ -560,6 +610,9 @@ class Path {
   VectorX q_;  // scaled, perturbed
   double inv_s_;
   double tol_;
+  double drift_tol_;  // TightResidual above which H is refactored (scaled)
+  int last_revalue_ = -1;
+  int last_refactor_ = 0;  // pivots_ at the last factorisation of C
   std::vector<Role> role_;
   std::vector<int> row_pos_, col_pos_;
   std::vector<int> rows_, cols_;  // R and Z (−1 = z₀) by position
@@ -573,6 +626,14 @@ class Path {
   VectorX x_, w_, d_;
   VectorX a_, aR_, r_, delta_, omega_, scratch_, u_, delta_z_;
   std::vector<int> cols_z_;
+  // A basic variable that decreases along the entering direction.
+  struct Candidate {
+    double value;     // its value (scaled)
+    double rate;      // its rate of decrease (> 0)
+    double relative;  // rate over its column's scale: the pivot element's size
+    int row, col;     // a basic w (row) or position col of Z
+  };
+  std::vector<Candidate> candidates_;
 };
 
 struct Attempt {
@@ -621,6 +682,9 @@ LcpResult SolveLemkeFactored(const FactoredLcpMatrix& M, const VectorX& q,
   const double tol =
       params.pivot_tolerance > 0.0 ? params.pivot_tolerance : static_cast<double>(n) * kEps * 16.0;
   const int max_pivots = params.max_pivots > 0 ? params.max_pivots : std::max(1000, 50 * (n + 1));
+  // The tie-breaking perturbation (relative, like tol): between the pivot
+  // tolerance and the solution tolerance (perturbation.h).
+  const double delta = internal::PerturbationSize(tol, params.solution_tolerance);
 
   // The basis re-solved with the true q: z_α = −M_αα⁻¹ q_α by LU (no
   // inverse: this is the whole cost of a warm start that needs no pivot), one
@@ -653,10 +717,11 @@ LcpResult SolveLemkeFactored(const FactoredLcpMatrix& M, const VectorX& q,
   // The starting basis is factorised once: with the true q it may already
   // solve the problem (a warm start without pivots); otherwise the same
   // factorisation starts the path on the perturbed q.
-  const auto attempt = [&](const std::vector<bool>& start, uint64_t seed, int limit) {
+  const auto attempt = [&](const std::vector<bool>& start, uint64_t seed, double perturbation,
+                           int limit) {
     Attempt a;
     const VectorX q_true = q * inv_s;
-    Path path(M, q_true, inv_s, tol);
+    Path path(M, q_true, inv_s, tol, kDriftFraction * std::max(perturbation, tol));
     if (!path.SetBasis(start, /*with_inverse=*/false)) return a;
     if (std::find(start.begin(), start.end(), true) != start.end()) {
       VectorX z;
@@ -668,8 +733,7 @@ LcpResult SolveLemkeFactored(const FactoredLcpMatrix& M, const VectorX& q,
       }
     }
     VectorX qs = q_true;
-    for (int i = 0; i < n; ++i)
-      qs[i] += internal::kLcpPerturbation * internal::PerturbationWeight(seed, i);
+    for (int i = 0; i < n; ++i) qs[i] += perturbation * internal::PerturbationWeight(seed, i);
     if (!path.EnsureInverse()) return a;
     path.SetQ(qs);
     a.end = path.Feasible(0.0) ? PathEnd::kSolution : path.Follow(limit);
@@ -683,13 +747,17 @@ LcpResult SolveLemkeFactored(const FactoredLcpMatrix& M, const VectorX& q,
   const std::vector<bool> start = warm ? warm_start->basic_z : std::vector<bool>(n, false);
 
   std::ostringstream why;
-  for (int round = 0; round < 3; ++round) {
+  bool ray = false;  // a cold path ended on a secondary ray
+  for (int round = 0; round < 4; ++round) {
     // Round 0: from the warm basis (if any), else cold; then cold with two
-    // other perturbations.
+    // other perturbations; last, cold without perturbation (Harris's ratio
+    // test alone). On the degenerate 3-D LCPs which of these succeeds varies
+    // from problem to problem (docs/benchmarks.md, "Degenerate contact
+    // LCPs"): each is tried only when the ones before it failed.
     const bool from_warm = warm && round == 0;
     const std::vector<bool> from = from_warm ? start : std::vector<bool>(n, false);
     const int limit = from_warm ? std::min(max_pivots, 2 * n + 100) : max_pivots;
-    Attempt a = attempt(from, static_cast<uint64_t>(round), limit);
+    Attempt a = attempt(from, static_cast<uint64_t>(round), round < 3 ? delta : 0.0, limit);
     result.pivots += a.pivots;
     if (a.start_solves) {  // finish() has filled the result
       result.status = LcpStatus::kSolved;
@@ -727,9 +795,11 @@ LcpResult SolveLemkeFactored(const FactoredLcpMatrix& M, const VectorX& q,
         result.status = LcpStatus::kSolved;
         return result;
       }
-      result.status = LcpStatus::kRayTermination;
-      result.message = "secondary ray: the entering column has no positive entry";
-      return result;
+      // On the degenerate 3-D LCPs a perturbed path can also end on a ray
+      // when the LCP has a solution (the bridge of compas_cra): the other
+      // rounds are tried, and the ray is reported only if none solves it.
+      ray = true;
+      continue;
     }
     if (a.end == PathEnd::kPivotLimit) {
       result.status = LcpStatus::kPivotLimit;
@@ -739,6 +809,10 @@ LcpResult SolveLemkeFactored(const FactoredLcpMatrix& M, const VectorX& q,
     }
     result.status = LcpStatus::kNumericalFailure;
     result.message = "singular basis on the path";
+  }
+  if (ray) {
+    result.status = LcpStatus::kRayTermination;
+    result.message = "secondary ray: the entering column has no positive entry";
   }
   return result;
 }

@@ -532,7 +532,7 @@ LcpResult SolveLemke(const MatrixX& M, const VectorX& q, const LemkeParameters& 
       result.status == LcpStatus::kRayTermination) {
     VectorX q_pert = q;
     for (Eigen::Index i = 0; i < n; ++i)
-      q_pert[i] += internal::kLcpPerturbation * scale *
+      q_pert[i] += internal::PerturbationSize(tol, params.solution_tolerance) * scale *
                    internal::PerturbationWeight(0, static_cast<uint64_t>(i));
     LcpResult retry;
     solve(q_pert, &retry);

@@ -30,13 +30,20 @@
 /// the exact lexicographic rule of SolveLemke cannot see those ties (the zeros
 /// come out as ±1e-17 and the pivot columns' zeros as ±1e-14), picks pivots
 /// out of roundoff and ends on a wrong basis. Here the ties are broken by
-/// perturbing q by δ·ρ (δ = 1e-9 relative to the data, ρᵢ ∈ [½, 1) fixed
-/// pseudo-random numbers, the same on every run): the perturbed problem is
+/// perturbing q by δ·ρ (δ = √(τ ε) relative to the data, the geometric mean
+/// of the pivot tolerance τ and the solution tolerance ε, derived in
+/// src/lcp/perturbation.h; ρᵢ ∈ [½, 1) fixed pseudo-random numbers, the same
+/// on every run): the perturbed problem is
 /// nondegenerate, every degenerate w or z becomes a small positive number
 /// rather than a signed zero, and a pivot on a roundoff-sized entry would need
 /// a ratio ~δ/1e-14, which never wins. The final basis is then re-solved with
 /// the original q and accepted only when it passes the independent check, so
-/// the perturbation does not change the answer beyond roundoff.
+/// the perturbation does not change the answer beyond roundoff. Ties that
+/// roundoff still blurs (within τ) are settled by Harris's two-pass ratio
+/// test in favour of the largest pivot element, and the inverse is refactored
+/// when it drifts and every k/4 pivots. Three perturbed cold paths and one
+/// unperturbed path are tried in turn (docs/benchmarks.md, "Degenerate
+/// contact LCPs").
 ///
 /// Warm start. Lemke's method may start from any complementary basis: with
 /// the covering vector d = B·1 (B the basis matrix) every basic variable grows
