@@ -279,7 +279,7 @@ void SolveDriven(const ContactLcp& lcp, const SolveContext& ctx, ComponentSoluti
         Accept(lcp, r.z, ctx.lemke, DecidedBy::kRestHypothesis, out))
       return;
   }
-  RunLemke(lcp, ctx, 0, out);
+  RunLemke(lcp, ctx, ProbePivots(lcp), out);
   if (Solved(out.lemke) && Accept(lcp, out.lemke.z, ctx.lemke, DecidedBy::kLemke, out)) return;
   // A static equilibrium, where one exists, solves the LCP with every part at
   // rest when nothing is driven into a contact (checked, not assumed).
