@@ -1,5 +1,7 @@
 #include "cairn/mechanics/static_equilibrium.h"
 
+#include <Eigen/SparseCholesky>
+#include <Eigen/SparseCore>
 #include <algorithm>
 #include <cmath>
 #include <coin/ClpSimplex.hpp>
@@ -27,6 +29,17 @@ constexpr int kBarrierColumns = 2000;
 // wanders for hundreds (9 s on the cross vault at μ 0.3) before it says so,
 // and the elastic LP decides it faster.
 constexpr int kBarrierIterations = 60;
+
+// The simplex's primal feasibility tolerance (Clp's default is 1e-7 of the
+// scaled rows): the forces at rest must balance tightly enough for the LCP
+// check, which divides the unbalanced load by the parts' masses.
+constexpr double kSimplexPrimalTolerance = 1e-10;
+
+// Refinement of the LP's equilibrium (RefineEquilibrium): Newton steps, and
+// the regularisation of A_S A_Sᵀ relative to its largest diagonal entry
+// (dimensionless; a planar body's empty rows make it singular).
+constexpr int kRefinementSteps = 2;
+constexpr double kRefinementRegularisation = 1e-12;
 
 // The largest equilibrium residual accepted, relative to the largest external
 // wrench entry (dimensionless; the LP solvers' own feasibility tolerance is
@@ -147,10 +160,56 @@ void Load(const EquilibriumLp& e, ClpSimplex& lp) {
                  e.rhs.data(), e.rhs.data());
 }
 
+// Refines the LP's generator amounts x (≥ 0) so that the equilibrium holds
+// to roundoff rather than to the LP solver's feasibility tolerance (1e-7 of
+// the rows): the LCP check of the forces at rest divides the unbalanced load
+// by the masses, so light parts need it. Newton steps on A x = rhs over the
+// loaded generators S (x_j > 0): δ = −A_Sᵀ (A_S A_Sᵀ + εI)⁻¹ r, the least
+// change that removes the residual r, shortened to keep x ≥ 0.
+void RefineEquilibrium(const EquilibriumLp& e, std::vector<double>& x) {
+  const int ncols = static_cast<int>(x.size());
+  std::vector<Eigen::Triplet<double>> t;
+  for (size_t k = 0; k < e.a.values.size(); ++k)
+    t.emplace_back(e.a.rows[k], e.a.cols[k], e.a.values[k]);
+  SparseMatrixX A(e.nrows, ncols);
+  A.setFromTriplets(t.begin(), t.end());
+  for (int step = 0; step < kRefinementSteps; ++step) {
+    VectorX xv = Eigen::Map<const VectorX>(x.data(), ncols);
+    const VectorX r = A * xv - Eigen::Map<const VectorX>(e.rhs.data(), e.nrows);
+    const double rnorm = r.lpNorm<Eigen::Infinity>();
+    if (!(rnorm > 0)) return;
+    // A_S: the columns of loaded generators.
+    VectorX on = VectorX::Zero(ncols);
+    for (int j = 0; j < ncols; ++j) on[j] = x[j] > 0 ? 1.0 : 0.0;
+    const SparseMatrixX AS = A * on.asDiagonal();
+    SparseMatrixX N = AS * AS.transpose();
+    double diag = 0;
+    for (int i = 0; i < N.rows(); ++i) diag = std::max(diag, N.coeff(i, i));
+    SparseMatrixX reg(N.rows(), N.cols());
+    reg.setIdentity();
+    N += (kRefinementRegularisation * std::max(1.0, diag)) * reg;
+    const Eigen::SimplicialLDLT<SparseMatrixX> ldlt(N);
+    if (ldlt.info() != Eigen::Success) return;
+    const VectorX delta = -(AS.transpose() * ldlt.solve(r));
+    double step_length = 1.0;
+    for (int j = 0; j < ncols; ++j)
+      if (delta[j] < 0 && x[j] + delta[j] < 0)
+        step_length = std::min(step_length, -x[j] / delta[j]);
+    const VectorX next = xv + step_length * delta;
+    if (!((A * next - Eigen::Map<const VectorX>(e.rhs.data(), e.nrows)).lpNorm<Eigen::Infinity>() <
+          rnorm))
+      return;
+    for (int j = 0; j < ncols; ++j) x[j] = std::max(0.0, next[j]);
+  }
+}
+
 // Reads the generator amounts into forces and the LCP's unknowns, and checks
 // the equilibrium from them. False when the residual is too large.
-bool ReadEquilibrium(const ContactLcp& lcp, const EquilibriumLp& e, const double* x,
+bool ReadEquilibrium(const ContactLcp& lcp, const EquilibriumLp& e, const double* lp_x, int ncols,
                      StaticEquilibrium& out) {
+  std::vector<double> x(lp_x, lp_x + ncols);
+  for (double& v : x) v = std::max(0.0, v);
+  RefineEquilibrium(e, x);
   const int nb = static_cast<int>(lcp.bodies.size());
   const int nc = static_cast<int>(lcp.contacts.size());
   const int D = lcp.num_directions;
@@ -204,7 +263,7 @@ StaticEquilibrium FindStaticEquilibrium(const ContactLcp& lcp, const Equilibrium
     how.setPresolveType(ClpSolve::presolveOff);
     lp.setMaximumIterations(kBarrierIterations);
     lp.initialSolve(how);
-    if (lp.status() == 0 && ReadEquilibrium(lcp, e, lp.primalColumnSolution(), out)) {
+    if (lp.status() == 0 && ReadEquilibrium(lcp, e, lp.primalColumnSolution(), ncols, out)) {
       out.solved = out.exists = true;
       out.method = "barrier";
       out.iterations = lp.numberIterations();
@@ -228,6 +287,7 @@ StaticEquilibrium FindStaticEquilibrium(const ContactLcp& lcp, const Equilibrium
   // searches for primal feasibility alone; on trouble, the primal simplex.
   ClpSimplex lp;
   Load(e, lp);
+  lp.setPrimalTolerance(kSimplexPrimalTolerance);
   if (options.max_iterations > 0) lp.setMaximumIterations(options.max_iterations);
   lp.dual();
   out.method = "dual simplex";
@@ -251,7 +311,7 @@ StaticEquilibrium FindStaticEquilibrium(const ContactLcp& lcp, const Equilibrium
                   std::to_string(lp.secondaryStatus());
     return out;
   }
-  if (!ReadEquilibrium(lcp, e, lp.primalColumnSolution(), out)) {
+  if (!ReadEquilibrium(lcp, e, lp.primalColumnSolution(), ncols, out)) {
     out.message = "Clp's equilibrium fails the re-check: residual " + std::to_string(out.residual);
     return out;
   }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 namespace cairn {
 
@@ -140,7 +141,19 @@ bool AcceptEquilibrium(const ContactLcp& lcp, const SolveContext& ctx, Component
                         ") solves the LCP with every part at rest");
     return true;
   }
-  out.notes.push_back("the equilibrium's forces fail the LCP check at rest");
+  {
+    const VectorX w = lcp.Multiply(eq.lcp_z) + lcp.q;
+    out.notes.push_back(
+        "the equilibrium's forces fail the LCP check at rest (equilibrium residual " +
+        [&] {
+          char b[32];
+          std::snprintf(b, sizeof b, "%.3g", eq.residual);
+          return std::string(b);
+        }() +
+        ", min z " + std::to_string(eq.lcp_z.minCoeff()) + ", min w " +
+        std::to_string(w.minCoeff()) + ", tolerance " +
+        std::to_string(CheckTolerance(lcp, ctx.lemke)) + ")");
+  }
   return false;
 }
 
