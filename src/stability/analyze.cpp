@@ -5,9 +5,11 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <numeric>
 #include <sstream>
 
+#include "cairn/contact/contact_reduction.h"
 #include "cairn/contact/detect_contacts.h"
 #include "cairn/mechanics/static_equilibrium.h"
 #include "cairn/stability/solve_component.h"
@@ -136,7 +138,8 @@ PartRole RoleOf(const DriveInputs* drive, int part) {
 ContactLcp BuildComponent(const Assembly& assembly, const Configuration& config,
                           const std::vector<Contact>& contacts, const Component& comp,
                           Formulation formulation, double dt, const DriveInputs* drive,
-                          LcpStorage storage) {
+                          LcpStorage storage, double length_tol,
+                          std::vector<int>* lcp_index = nullptr) {
   std::vector<BodyDynamics> bodies;
   for (int p : comp.parts) {
     const Part& part = assembly.part(p);
@@ -167,9 +170,22 @@ ContactLcp BuildComponent(const Assembly& assembly, const Configuration& config,
     }
     bodies.push_back(b);
   }
+  // Only the corners of each planar contact patch: exact for the LCP and the
+  // equilibrium LP (contact/contact_reduction.h); `lcp_index` maps the
+  // component's contacts to the LCP's (−1: dropped, no force).
   std::vector<Contact> comp_contacts;
   for (int c : comp.contacts) comp_contacts.push_back(contacts[c]);
-  return BuildContactLcp(std::move(bodies), std::move(comp_contacts), formulation, dt,
+  ContactReductionTolerances reduction;
+  reduction.length = length_tol;
+  reduction.gap = std::numeric_limits<double>::infinity();  // use_gaps = false below
+  const std::vector<int> keep = HullContactSubset(comp_contacts, reduction);
+  std::vector<Contact> kept;
+  if (lcp_index) lcp_index->assign(comp_contacts.size(), -1);
+  for (int i : keep) {
+    if (lcp_index) (*lcp_index)[i] = static_cast<int>(kept.size());
+    kept.push_back(comp_contacts[i]);
+  }
+  return BuildContactLcp(std::move(bodies), std::move(kept), formulation, dt,
                          /*use_gaps=*/false, storage, assembly.dimension(),
                          assembly.friction_directions());
 }
@@ -277,7 +293,7 @@ std::vector<ContactLcp> BuildComponentLcps(const Assembly& assembly, const Confi
   for (const Component& comp : SplitComponents(assembly, config, contacts))
     out.push_back(BuildComponent(assembly, config, contacts, comp,
                                  ChooseFormulation(assembly, options, drive), options.dt, drive,
-                                 options.lcp_storage));
+                                 options.lcp_storage, tol.length));
   return out;
 }
 
@@ -291,6 +307,22 @@ double LargestPointMotion(const Vector6& nu, const Vector3& c,
   for (const Vector3& x : vertices)
     out = std::max(out, (nu.head<3>() + nu.tail<3>().cross(x - c)).norm());
   return out;
+}
+
+// The motion (velocity or acceleration) of a's material point at the
+// contact over b's, from the bodies' motions (a part outside the component,
+// fixed or the world, is at rest).
+Vector3 RelativeMotion(const ContactLcp& lcp, const ContactSolution& s, const Contact& c) {
+  Vector3 u = Vector3::Zero();
+  for (size_t b = 0; b < lcp.bodies.size(); ++b) {
+    const double sign = lcp.bodies[b].part == c.part_a   ? 1.0
+                        : lcp.bodies[b].part == c.part_b ? -1.0
+                                                         : 0.0;
+    if (sign == 0.0) continue;
+    const Vector6& nu = s.body_motion[b];
+    u += sign * (nu.head<3>() + nu.tail<3>().cross(c.p_WC - lcp.bodies[b].p_WBcm));
+  }
+  return u;
 }
 
 // The contact motions of a mechanism (no forces: a virtual motion).
@@ -405,8 +437,10 @@ StabilityResult AnalyzeConfiguration(const Assembly& assembly, const Configurati
 
     // BuildContactLcp.
     t0 = Clock::now();
-    const ContactLcp lcp = BuildComponent(assembly, config, contacts, comp, result.formulation,
-                                          options.dt, drive, options.lcp_storage);
+    std::vector<int> lcp_index;
+    const ContactLcp lcp =
+        BuildComponent(assembly, config, contacts, comp, result.formulation, options.dt, drive,
+                       options.lcp_storage, tol.length, &lcp_index);
     result.profile.build += Seconds(t0);
 
     // SolveComponent: the policy of stability/solve_component.h.
@@ -496,10 +530,18 @@ StabilityResult AnalyzeConfiguration(const Assembly& assembly, const Configurati
     std::vector<bool> keeps_contact(comp.parts.size(), false);
     for (size_t k = 0; k < comp.contacts.size(); ++k) {
       ContactReport& cr = result.contacts[comp.contacts[k]];
-      cr.normal_force = phys->normal_force(k);
-      cr.friction_force = phys->friction_force[k];
-      cr.normal_motion = phys->normal_motion(k);
-      cr.tangent_motion = phys->tangent_motion[k];
+      if (const int m = lcp_index[k]; m >= 0) {
+        cr.normal_force = phys->normal_force(m);
+        cr.friction_force = phys->friction_force[m];
+        cr.normal_motion = phys->normal_motion(m);
+        cr.tangent_motion = phys->tangent_motion[m];
+      } else {  // a dropped point of a patch: no force, the bodies' motion
+        const Vector3 u = RelativeMotion(lcp, *phys, cr.contact);
+        cr.normal_force = 0;
+        cr.friction_force.setZero();
+        cr.normal_motion = u.dot(cr.contact.n_W);
+        cr.tangent_motion = u - cr.normal_motion * cr.contact.n_W;
+      }
       cr.breaking = cr.normal_motion > motion_tol;
       cr.sliding = !cr.breaking && cr.tangent_motion.norm() > motion_tol;
       if (!cr.breaking) {
