@@ -249,6 +249,16 @@ void SolveFromRest(const ContactLcp& lcp, const SolveContext& ctx, ComponentSolu
     // 2. Rest is possible. Guaranteed? Then probe for a moving solution.
     const bool strong = StrongCertificate(lcp, eq);
     out.frictionless_equilibrium = strong;
+    // With the certificate there is no moving solution to find; Lemke's
+    // method still gives the forces of small components (its pivots are
+    // cheap there), the equilibrium those of large ones.
+    if (strong && !lcp.has_dense()) {
+      out.notes.push_back("rest is guaranteed (frictionless equilibrium): no probe needed");
+      if (AcceptEquilibrium(lcp, ctx, out)) {
+        out.stability = StabilityProof::kStrong;
+        return;
+      }
+    }
     RunLemke(lcp, ctx, ProbePivots(lcp), out);
     const bool lemke = Solved(out.lemke);
     const bool moves = lemke && ctx.moves && ctx.moves(lcp, out.lemke.z);
