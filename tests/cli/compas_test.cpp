@@ -91,6 +91,18 @@ Vector3 ForceOn(const json& doc, const std::string& a) {
   return f;
 }
 
+// Every free block balanced by the reported contact forces: their sum on it
+// is its weight, 9.81 × mass, straight up (COMPAS gravity is −z).
+void ExpectEveryBlockBalanced(const json& doc) {
+  for (const json& p : doc["parts"]) {
+    if (p["fixed"]) continue;
+    const Vector3 f = ForceOn(doc, p["name"]);
+    const double w = 9.81 * p["mass"].get<double>();
+    EXPECT_NEAR(f.z(), w, 1e-6 * w) << p["name"];
+    EXPECT_NEAR(f.head<2>().norm(), 0, 1e-6 * w) << p["name"];
+  }
+}
+
 double MassOf(const json& doc, const std::string& name) {
   for (const json& p : doc["parts"])
     if (p["name"] == name) return p["mass"].get<double>();
@@ -229,15 +241,7 @@ TEST(CompasCheck, CrossVaultStands) {
   EXPECT_EQ(doc["stability"], "not certified");
   EXPECT_THAT(c["message"].get<std::string>(), HasSubstr("Lemke's method not run"));
   EXPECT_LE(c["residual"].get<double>(), 1e-8);
-  // Every free block balanced by the reported contact forces (the weight is
-  // its volume times 9.81 at density 1).
-  for (const json& p : doc["parts"]) {
-    if (p["fixed"]) continue;
-    const Vector3 f = ForceOn(doc, p["name"]);
-    const double w = 9.81 * p["mass"].get<double>();
-    EXPECT_NEAR(f.z(), w, 1e-6 * w) << p["name"];
-    EXPECT_NEAR(f.head<2>().norm(), 0, 1e-6 * w) << p["name"];
-  }
+  ExpectEveryBlockBalanced(doc);
 }
 
 // The same through the library (what `cairn check` computes without the
@@ -804,13 +808,7 @@ TEST_P(EveryFriction, AVerdictWithItsEvidence) {
       EXPECT_TRUE(doc["stability"] == "strong" || doc["stability"] == "not certified")
           << doc["stability"];
       EXPECT_EQ(doc["moving"], json::array());
-      for (const json& p : doc["parts"]) {
-        if (p["fixed"]) continue;
-        const Vector3 f = ForceOn(doc, p["name"]);
-        const double w = 9.81 * p["mass"].get<double>();
-        EXPECT_NEAR(f.z(), w, 1e-6 * w) << p["name"];
-        EXPECT_NEAR(f.head<2>().norm(), 0, 1e-6 * w) << p["name"];
-      }
+      ExpectEveryBlockBalanced(doc);
       continue;
     }
     EXPECT_EQ(r.exit_code, 1);
