@@ -110,25 +110,32 @@ double FirstOverlap(const Assembly& a, Configuration config, const PlanStep& ste
   return u_hit;
 }
 
-// The judged parts that the moving group (`in_group`: gripped, carried,
-// tools) pushes in the solve `r` of `config`: a moving judged part j is
-// pushed by a part g of the group, or by a part already pushed, through a
-// contact that stays closed and carries force (not breaking, normal force
-// above `force_tol`) while g's contact point moves into j:
-//   v_g(p_WC) · n_j > vel_tol,   v_g(p) = v_g + ω_g × (p − c_g),
+// The judged parts that the gripper's motion pushes in the solve `r` of
+// `config`. A moving judged part j is pushed by a part g through a contact
+// that stays closed and carries force (not breaking, normal force above
+// `force_tol`) while g's contact point moves into j:
+//   v_g(p_WC) · n_j > vel_tol,
 // n_j the contact normal pointing into j (n_W when j is part a, −n_W when it
-// is b). A judged part that moves for another reason (a support or a
-// counterweight leaves; it leans on a part sliding past it) is not pushed.
+// is b). The pushers are the gripped parts, moving with the gripper's
+// velocity `v_drive` (only the driven motion: a guided part's own sinking
+// under its weight is not a push), and then, transitively, the carried parts
+// and the pushed ones, with their velocity in `r`,
+//   v_g(p) = v_g + ω_g × (p − c_g).
+// A judged part that moves for another reason (a support or a counterweight
+// leaves, a guided part's weight tips it, it leans on a part sliding past
+// it) is not pushed.
 std::vector<int> PushedParts(const Assembly& assembly, const Configuration& config,
-                             const StabilityResult& r, const std::vector<bool>& in_group,
+                             const StabilityResult& r, const std::vector<bool>& gripped,
+                             const std::vector<bool>& carried, const Vector3& v_drive,
                              double force_tol, double vel_tol) {
   const int n = assembly.num_parts();
-  std::vector<bool> moving(n, false), reached(in_group);
+  std::vector<bool> moving(n, false), reached(gripped);
   std::vector<const PartMotion*> motion(n, nullptr);
   for (int p : r.moving) moving[p] = true;
   for (const PartMotion& m : r.parts) motion[m.part] = &m;
   // The velocity of part g's material point at p (world frame).
   const auto point_velocity = [&](int g, const Vector3& p) -> Vector3 {
+    if (gripped[g]) return v_drive;
     if (motion[g] == nullptr) return Vector3::Zero();
     return motion[g]->linear + motion[g]->angular.cross(p - config.WorldCentroid(assembly, g));
   };
@@ -140,10 +147,10 @@ std::vector<int> PushedParts(const Assembly& assembly, const Configuration& conf
       if (b < 0 || c.breaking || !(c.normal_force > force_tol)) continue;
       for (const auto& [g, j, n_j] :
            {std::tuple{b, a, Vector3(c.contact.n_W)}, std::tuple{a, b, Vector3(-c.contact.n_W)}}) {
-        if (!reached[g] || reached[j] || !moving[j]) continue;
+        if (!reached[g] || reached[j] || !(moving[j] || carried[j])) continue;
         if (point_velocity(g, c.contact.p_WC).dot(n_j) <= vel_tol) continue;
         reached[j] = true;
-        pushed.push_back(j);
+        if (moving[j]) pushed.push_back(j);
         grew = true;
       }
     }
@@ -367,7 +374,8 @@ SimulationResult SimulatePlan(const Assembly& assembly, const Plan& plan,
         f.verdict = MotionVerdict::kUnstable;
         f.parts = r.moving;
         if (tick > 0)  // the gripper moves: some may be pushed
-          f.pushed = PushedParts(assembly, config, r, in_group, tol.force, tol.velocity);
+          f.pushed =
+              PushedParts(assembly, config, r, gripped, carried, v_g, tol.force, tol.velocity);
       }
       if (f.verdict == MotionVerdict::kStable && r.verdict == Verdict::kSolverFailure) {
         // Numerical trouble is never taken for stability.
@@ -385,7 +393,7 @@ SimulationResult SimulatePlan(const Assembly& assembly, const Plan& plan,
       if (f.verdict == MotionVerdict::kStable && motion == &moved && moved.jammed.empty() &&
           moved.verdict != Verdict::kSolverFailure) {
         const std::vector<int> pushed =
-            PushedParts(assembly, config, moved, in_group, tol.force, tol.velocity);
+            PushedParts(assembly, config, moved, gripped, carried, v_g, tol.force, tol.velocity);
         if (!pushed.empty()) {
           judged = &moved;
           f.verdict = MotionVerdict::kUnstable;

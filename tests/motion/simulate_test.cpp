@@ -60,6 +60,9 @@ TEST(Simulate, SlidingAPartOnANarrowBaseTipsItWhereEquationEightSays) {
   ASSERT_FALSE(r.failure->motions.empty());
   EXPECT_EQ(r.failure->motions[0].kind, MotionKind::kTips);
   EXPECT_LT(r.failure->motions[0].angular.z(), 0.0) << "B tips clockwise";
+  // C's weight tips B (Proposition 3), C sinking with it; the gripper's
+  // motion (along x, tangent to the contact) pushes nothing.
+  EXPECT_TRUE(r.failure->pushed.empty()) << r.failure->description;
 }
 
 TEST(Simulate, WithTheWeightCarriedEveryPathIsStable) {

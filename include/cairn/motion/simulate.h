@@ -28,8 +28,14 @@
 ///   or slides), or pushed by the moving parts (MotionFailure::pushed). A
 ///   push is seen from the first instant: tick 0 judges the node at rest,
 ///   then solves again with the gripper moving, and every judged part that
-///   this driven motion moves is pushed, at t = the step's start (paper
-///   Fig. 1 with B lifted before C: C and D ride up on B). A free part that
+///   this driven motion pushes (a closed, loaded contact whose point the
+///   gripper's velocity drives into the part, directly or through carried or
+///   other pushed parts) fails the step at t = its start (paper Fig. 1 with
+///   B lifted before C: C and D ride up on B). Parts that start to move for
+///   another reason (a support or counterweight leaves, a guided part's
+///   weight tips them) and a jam of that solve are judged at the next tick,
+///   as before. At later ticks the pushed ones among the moving parts are
+///   named the same way. A free part that
 ///   a gripped part reaches later along its path is pushed from the moment
 ///   they touch (found by bisection between ticks): the time reported, with
 ///   the pusher's velocity as its motion;
