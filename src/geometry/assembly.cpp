@@ -126,12 +126,15 @@ std::string DescribeSelfIntersection(const Polygon& poly, const SelfIntersection
 
 namespace {
 
-// The JSON path of a part's shape.
+// The JSON path of a part with its name: `parts[1] ("A")` (NamedPath).
+std::string PartPath(const PartDef& p, int i) { return NamedPath(Indexed("parts", i), p.name); }
+
+// The JSON path of a part's shape: `parts[1] ("A").polygon`.
 std::string ShapePath(const PartDef& p, int i) {
   const std::string key = !p.shape_key.empty() ? p.shape_key
                           : p.polyhedron       ? "polyhedron"
                                                : "polygon";
-  return Indexed("parts", i) + "." + key;
+  return PartPath(p, i) + "." + key;
 }
 
 // A 2-D part's validated polygon and mass properties.
@@ -231,20 +234,23 @@ Assembly Assembly::Create(const AssemblyDef& def, const std::string& source_file
   }
   out.friction_directions_ = is3 ? (def.friction_directions ? def.friction_directions : 4) : 2;
 
-  // Names, mass numbers and vertex counts of every part.
+  // Names, mass numbers and vertex counts of every part. A fault of the
+  // name is reported at the bare path; every other at the named one.
   std::unordered_map<std::string, int> index;
   for (int i = 0; i < num_parts; ++i) {
     const PartDef& p = def.parts[i];
-    const std::string path = Indexed("parts", i);
-    if (p.name.empty()) check.Fail(path + ".name", "must not be empty");
+    if (p.name.empty()) check.Fail(Indexed("parts", i) + ".name", "must not be empty");
     const auto [it, inserted] = index.emplace(p.name, i);
     if (!inserted) {
-      check.Fail(path + ".name", "duplicate part name '" + p.name + "' (also " +
-                                     Indexed("parts", it->second) + ")");
+      check.Fail(Indexed("parts", i) + ".name", "duplicate part name '" + EscapedName(p.name) +
+                                                    "' (also " + Indexed("parts", it->second) +
+                                                    ")");
     }
+    const std::string path = PartPath(p, i);
     // A tool travels with the gripper, which a fixed part never does.
     if (p.fixed && p.tool) {
-      check.Fail(path + ".tool", "part '" + p.name + "' cannot be both fixed and a tool");
+      check.Fail(path + ".tool",
+                 "part '" + EscapedName(p.name) + "' cannot be both fixed and a tool");
     }
     if (p.density) check.Positive(*p.density, path + ".density");
     if (p.mass) check.Positive(*p.mass, path + ".mass");
@@ -281,7 +287,7 @@ Assembly Assembly::Create(const AssemblyDef& def, const std::string& source_file
   for (int i = 0; i < num_parts; ++i) {
     const PartDef& p = def.parts[i];
     Part part = is3 ? Make3dPart(p, ShapePath(p, i), tol, check)
-                    : Make2dPart(p, Indexed("parts", i) + ".polygon", tol, check);
+                    : Make2dPart(p, PartPath(p, i) + ".polygon", tol, check);
     part.name = p.name;
     part.fixed = p.fixed;
     part.tool = p.tool;
@@ -333,10 +339,11 @@ Assembly Assembly::Create(const AssemblyDef& def, const std::string& source_file
   }
   if (worst) {
     const auto [later, earlier] = *worst;
-    check.Fail(Indexed("parts", later),
-               "part '" + out.parts_[later].name + "' overlaps part '" + out.parts_[earlier].name +
-                   "' (" + Indexed("parts", earlier) + ") by more than the tolerance " + Num(tol) +
-                   ", e.g. at " + (is3 ? Point(witness) : Point(Vector2(witness.head<2>()))));
+    check.Fail(PartPath(def.parts[later], later),
+               "part '" + EscapedName(out.parts_[later].name) + "' overlaps part '" +
+                   EscapedName(out.parts_[earlier].name) + "' (" + Indexed("parts", earlier) +
+                   ") by more than the tolerance " + Num(tol) + ", e.g. at " +
+                   (is3 ? Point(witness) : Point(Vector2(witness.head<2>()))));
   }
 
   // Friction pairs.
@@ -348,15 +355,15 @@ Assembly Assembly::Create(const AssemblyDef& def, const std::string& source_file
     const FrictionPairDef& fp = def.friction_pairs[k];
     const std::string path = Indexed("friction_pairs", k);
     const int a = find(fp.part_a), b = find(fp.part_b);
-    if (a < 0) check.Fail(path + ".parts[0]", "no part named '" + fp.part_a + "'");
-    if (b < 0) check.Fail(path + ".parts[1]", "no part named '" + fp.part_b + "'");
-    if (a == b) check.Fail(path + ".parts[1]", "names part '" + fp.part_a + "' twice");
+    if (a < 0) check.Fail(path + ".parts[0]", "no part named '" + EscapedName(fp.part_a) + "'");
+    if (b < 0) check.Fail(path + ".parts[1]", "no part named '" + EscapedName(fp.part_b) + "'");
+    if (a == b) check.Fail(path + ".parts[1]", "names part '" + EscapedName(fp.part_a) + "' twice");
     check.NonNegative(fp.mu, path + ".mu");
     const std::pair<int, int> key{std::min(a, b), std::max(a, b)};
     for (int l = 0; l < k; ++l) {
       if (out.pair_mu_[l].first == key) {
-        check.Fail(path, "repeats the pair '" + fp.part_a + "', '" + fp.part_b + "' of " +
-                             Indexed("friction_pairs", l));
+        check.Fail(path, "repeats the pair '" + EscapedName(fp.part_a) + "', '" +
+                             EscapedName(fp.part_b) + "' of " + Indexed("friction_pairs", l));
       }
     }
     out.pair_mu_.push_back({key, fp.mu});
@@ -368,7 +375,7 @@ Assembly Assembly::Create(const AssemblyDef& def, const std::string& source_file
     const FixtureDef& fd = def.fixtures[f];
     const std::string path = Indexed("fixtures", f);
     const int part = find(fd.part);
-    if (part < 0) check.Fail(path + ".part", "no part named '" + fd.part + "'");
+    if (part < 0) check.Fail(path + ".part", "no part named '" + EscapedName(fd.part) + "'");
     check.FinitePoint(fd.point, path + ".point");
     check.FinitePoint(fd.normal, path + ".normal");
     const double len = fd.normal.norm();
@@ -389,12 +396,13 @@ Assembly Assembly::Create(const AssemblyDef& def, const std::string& source_file
       into = dist <= tol && PointsInto(poly, fd.point.head<2>(), n.head<2>(), tol, angle_tol);
     }
     if (dist > tol) {
-      check.Fail(path + ".point", show(fd.point) + " is not on the boundary of part '" + fd.part +
-                                      "' (distance " + Num(dist) + " > tolerance " + Num(tol) +
-                                      ")");
+      check.Fail(path + ".point", show(fd.point) + " is not on the boundary of part '" +
+                                      EscapedName(fd.part) + "' (distance " + Num(dist) +
+                                      " > tolerance " + Num(tol) + ")");
     }
     if (!into) {
-      check.Fail(path + ".normal", show(fd.normal) + " points out of part '" + fd.part +
+      check.Fail(path + ".normal", show(fd.normal) + " points out of part '" +
+                                       EscapedName(fd.part) +
                                        "' (a fixel pushes: its normal must point into the part)");
     }
     out.fixtures_.push_back(Fixture{part, fd.point, n});
@@ -411,10 +419,12 @@ Assembly Assembly::Create(const AssemblyDef& def, const std::string& source_file
     Interface in;
     in.part_a = find(id.part_a);
     in.part_b = find(id.part_b);
-    if (in.part_a < 0) check.Fail(path + ".parts[0]", "no part named '" + id.part_a + "'");
-    if (in.part_b < 0) check.Fail(path + ".parts[1]", "no part named '" + id.part_b + "'");
+    if (in.part_a < 0)
+      check.Fail(path + ".parts[0]", "no part named '" + EscapedName(id.part_a) + "'");
+    if (in.part_b < 0)
+      check.Fail(path + ".parts[1]", "no part named '" + EscapedName(id.part_b) + "'");
     if (in.part_a == in.part_b)
-      check.Fail(path + ".parts[1]", "names part '" + id.part_a + "' twice");
+      check.Fail(path + ".parts[1]", "names part '" + EscapedName(id.part_a) + "' twice");
     if (id.points.size() < 3)
       check.Fail(path + ".points",
                  "needs at least 3 points (got " + std::to_string(id.points.size()) + ")");

@@ -158,12 +158,15 @@ class CompasParser : private io_internal::JsonChecker {
     return nullptr;
   }
 
-  CompasBlock ParseNode(const json& node, const std::string& key, const std::string& path,
+  // The node `key` at `node_path`. Faults inside it are reported at its path
+  // named by its key, the block's name: `data.graph.data.node.3 ("3").block`.
+  CompasBlock ParseNode(const json& node, const std::string& key, const std::string& node_path,
                         const json* defaults, const std::string& defaults_path) const {
+    const std::string path = NamedPath(node_path, key);
     Object(node, path);
     CompasBlock block;
     block.name = key;
-    block.path = path;
+    block.path = node_path;
 
     std::string where;
     if (const json* support =
@@ -180,7 +183,7 @@ class CompasParser : private io_internal::JsonChecker {
     const json& mesh_json = Require(node, "block", path);
     if (mesh_json.is_null()) Fail(mesh_path, "the node has no block (null)");
     const json& mesh = Unwrap(Object(mesh_json, mesh_path), &mesh_path);
-    block.mesh_path = mesh_path;
+    block.mesh_path = node_path + mesh_path.substr(path.size());  // the bare JSON path
     block.shape = ParseMesh(mesh, mesh_path, &block.face_keys);
     return block;
   }
@@ -217,11 +220,11 @@ class CompasParser : private io_internal::JsonChecker {
 
         for (const std::string& key : {u, v}) {
           if (!nodes.contains(key)) {
-            Fail(e_path,
-                 "block " + key + " does not exist (it is not a key of " + nodes_path + ")");
+            Fail(e_path, "block " + EscapedName(key) + " does not exist (it is not a key of " +
+                             nodes_path + ")");
           }
         }
-        if (u == v) Fail(e_path, "an interface between block " + u + " and itself");
+        if (u == v) Fail(e_path, "an interface between block " + EscapedName(u) + " and itself");
 
         if (listed != nullptr) {
           const std::string list_path = Child(e_path, "interfaces");
@@ -412,8 +415,8 @@ class CompasParser : private io_internal::JsonChecker {
         }
         const auto it = index.find(vkey);
         if (it == index.end()) {
-          Fail(i_path,
-               "vertex " + vkey + " does not exist (it is not a key of " + vertex_path + ")");
+          Fail(i_path, "vertex " + EscapedName(vkey) + " does not exist (it is not a key of " +
+                           vertex_path + ")");
         }
         polygon.push_back(it->second);
       }
@@ -529,8 +532,13 @@ std::vector<std::array<int, 3>> SplitFace(const std::vector<Vector3>& x,
   return out;
 }
 
+// The JSON path of a block's node named by its key: `data.graph.data.node.3 ("3")`.
+std::string BlockPath(const CompasBlock& block) { return NamedPath(block.path, block.name); }
+
+// The JSON path of a block's face f, from its named node: `...node.3 ("3").block.data.face.2`.
 std::string FacePath(const CompasBlock& block, size_t f) {
-  return Child(Child(block.mesh_path, "face"), block.face_keys.at(f));
+  const std::string mesh = BlockPath(block) + block.mesh_path.substr(block.path.size());
+  return Child(Child(mesh, "face"), block.face_keys.at(f));
 }
 
 // The diagonal of the bounding box of all blocks: the scene size.
@@ -622,8 +630,8 @@ CompasModel CompasToModel(const CompasAssembly& assembly, const CompasOptions& o
       const std::vector<std::array<int, 3>> triangles = SplitFace(shape.vertices, face, plane);
       if (triangles.empty()) {
         throw InputError(file, FacePath(block, f),
-                         "block '" + block.name + "': the face is not planar (a vertex is " +
-                             Num(plane.off) +
+                         "block '" + EscapedName(block.name) +
+                             "': the face is not planar (a vertex is " + Num(plane.off) +
                              " off its mean plane) and cannot be split into triangles: seen "
                              "along its normal it is not a simple polygon");
       }
@@ -638,9 +646,10 @@ CompasModel CompasToModel(const CompasAssembly& assembly, const CompasOptions& o
     if (const auto fault = Polyhedron::Check(shape, tol)) {
       const std::string where = fault->face >= 0
                                     ? FacePath(block, origin.at(static_cast<size_t>(fault->face)))
-                                    : block.mesh_path;
-      throw InputError(file, where,
-                       "block '" + block.name + "' is not a valid solid: " + fault->message);
+                                    : BlockPath(block) + block.mesh_path.substr(block.path.size());
+      throw InputError(
+          file, where,
+          "block '" + EscapedName(block.name) + "' is not a valid solid: " + fault->message);
     }
     PartDef part;
     part.name = block.name;
@@ -658,12 +667,16 @@ Assembly CreateCompasAssembly(const CompasModel& model, const std::string& file)
   try {
     return Assembly::Create(model.def, file);
   } catch (const InputError& e) {
-    // The model's paths (`parts[3].polyhedron`) mean nothing in a COMPAS
-    // file: name the block's node instead, keeping any scene-level path.
+    // The model's paths (`parts[3] ("7").polyhedron`) mean nothing in a
+    // COMPAS file: name the block's node instead (named by its key, the
+    // part's name), keeping any scene-level path.
     std::string path = e.json_path();
     if (path.rfind("parts[", 0) == 0) {
       const size_t close = path.find(']');
-      path = RenameParts(path.substr(0, close + 1), model.block_paths);
+      const size_t i = std::stoul(path.substr(6, close - 6));
+      path = i < model.block_paths.size()
+                 ? NamedPath(model.block_paths[i], model.def.parts.at(i).name)
+                 : path.substr(0, close + 1);
     } else if (path.rfind("interfaces[", 0) == 0) {
       const size_t close = path.find(']');
       const size_t k = std::stoul(path.substr(11, close - 11));

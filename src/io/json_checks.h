@@ -1,7 +1,9 @@
 #pragma once
 // Private to the io stage: the checks shared by the scene and plan readers.
-// JSON paths are written `parts[2].polygon[3]`; every fault is an InputError
-// naming the file, the JSON path and one short lowercase clause.
+// JSON paths are written `parts[2].polygon[3]`, and a part's path carries its
+// name (NamedPath in cairn/core/error.h): `parts[2] ("B").polygon[3]`; every
+// fault is an InputError naming the file, the JSON path and one short
+// lowercase clause.
 
 #include <algorithm>
 #include <cmath>
@@ -22,9 +24,11 @@ namespace cairn::io_internal {
 
 using nlohmann::json;
 
-// `path.key`, or `key` at the top level.
+// `path.key`, or `key` at the top level. The key is escaped as in JSON
+// (EscapedName): a key of the file with a quote or a newline cannot break the
+// one-line message.
 inline std::string Child(const std::string& path, const std::string& key) {
-  return path.empty() ? key : path + "." + key;
+  return path.empty() ? EscapedName(key) : path + "." + EscapedName(key);
 }
 
 // `path[i]`.

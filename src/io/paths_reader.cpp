@@ -25,15 +25,21 @@ std::map<int, std::vector<CandidatePath>> ReadCandidatePaths(const std::string& 
     throw InputError(file, "", "must be a JSON object from part name to a list of paths");
   std::map<int, std::vector<CandidatePath>> out;
   for (auto it = doc.begin(); it != doc.end(); ++it) {
+    // The key is the part's name: its path is the key (escaped), named when
+    // the part exists, `B ("B")`, and `B ("B")[k]` its k-th path.
     const std::string& name = it.key();
+    const std::string key = EscapedName(name);
     const int part = assembly.FindPart(name);
-    if (part < 0) throw InputError(file, name, "no part named '" + name + "' in the scene");
+    if (part < 0) throw InputError(file, key, "no part named '" + key + "' in the scene");
+    const std::string named = NamedPath(key, name);
     if (assembly.part(part).fixed)
-      throw InputError(file, name, "part '" + name + "' is fixed: it is never removed");
+      throw InputError(file, named, "part '" + key + "' is fixed: it is never removed");
+    if (assembly.part(part).tool)
+      throw InputError(file, named, "part '" + key + "' is a tool: it is never removed");
     if (!it.value().is_array() || it.value().empty())
-      throw InputError(file, name, "must be a non-empty list of paths");
+      throw InputError(file, named, "must be a non-empty list of paths");
     for (size_t k = 0; k < it.value().size(); ++k) {
-      const std::string where = name + "[" + std::to_string(k) + "]";
+      const std::string where = named + "[" + std::to_string(k) + "]";
       json step = it.value()[k];
       std::string label = "given path " + std::to_string(k + 1);
       if (step.is_array()) {
@@ -58,9 +64,15 @@ std::map<int, std::vector<CandidatePath>> ReadCandidatePaths(const std::string& 
       try {
         plan = Plan::Create(ParsePlanJson(plan_doc, file, assembly.dimension()), assembly, file);
       } catch (const InputError& e) {
+        // The plan's path of the step, `steps[0] ("B")` (or bare `steps[0]`),
+        // is this candidate's.
         std::string path = e.json_path();
-        const std::string prefix = "steps[0]";
-        if (path.rfind(prefix, 0) == 0) path = where + path.substr(prefix.size());
+        for (const std::string& prefix : {NamedPath("steps[0]", name), std::string("steps[0]")}) {
+          if (path.rfind(prefix, 0) == 0) {
+            path = where + path.substr(prefix.size());
+            break;
+          }
+        }
         throw InputError(file, path, e.message());
       }
       const PlanStep& s = plan.steps[0];

@@ -3,6 +3,7 @@
 #include <initializer_list>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 #include "io/json_checks.h"
 
@@ -53,11 +54,26 @@ class PlanParser : private io_internal::JsonChecker {
   }
 
  private:
-  PlanStepDef ParseStep(const json& j, const std::string& path) const {
-    Object(j, path);
+  // The names a step's `remove` lists, when it is an array of strings: the
+  // step is named by them (`steps[0] ("B")`). Empty otherwise.
+  static std::vector<std::string> RemovedNames(const json& step) {
+    std::vector<std::string> names;
+    if (!step.contains("remove") || !step["remove"].is_array()) return names;
+    for (const json& name : step["remove"]) {
+      if (!name.is_string()) return {};
+      names.push_back(name.get<std::string>());
+    }
+    return names;
+  }
+
+  // steps[i]. Faults of `remove` are reported at `steps[i].remove`; every
+  // other at the step's path named by the parts it removes (NamedPath).
+  PlanStepDef ParseStep(const json& j, const std::string& bare) const {
+    Object(j, bare);
+    const std::string path = NamedPath(bare, RemovedNames(j));
     CheckKeys(j, path, kStepKeys);
     PlanStepDef step;
-    step.remove = Strings(Require(j, "remove", path), Child(path, "remove"));
+    step.remove = Strings(Require(j, "remove", bare), Child(bare, "remove"));
     if (j.contains("grip")) {
       // An empty PlanStepDef::grip means "all of remove"; an empty array in
       // the file is a mistake, not that default.

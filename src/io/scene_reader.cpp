@@ -74,7 +74,7 @@ class SceneParser : private io_internal::JsonChecker {
     const json& parts = Array(Require(doc, "parts", ""), "parts");
     if (parts.empty()) Fail("parts", "must list at least one part");
     for (size_t i = 0; i < parts.size(); ++i) {
-      def.parts.push_back(ParsePart(parts[i], Index("parts", i)));
+      def.parts.push_back(ParsePart(parts[i], i));
     }
     if (doc.contains("friction_pairs")) {
       const json& pairs = Array(doc["friction_pairs"], "friction_pairs");
@@ -123,6 +123,13 @@ class SceneParser : private io_internal::JsonChecker {
     return count == 1 ? found : std::nullopt;
   }
 
+  // The JSON path of parts[i] with its name when it has a readable one
+  // (NamedPath): `parts[1] ("A")`.
+  static std::string PartPath(const json& part, size_t i) {
+    const bool named = part.is_object() && part.contains("name") && part["name"].is_string();
+    return NamedPath(Index("parts", i), named ? part["name"].get<std::string>() : "");
+  }
+
   // A scene is 2-D or 3-D as its shapes are (2 when none can be told yet).
   int CheckDimension(const json& doc) const {
     if (!doc.contains("parts") || !doc["parts"].is_array()) return 2;
@@ -136,19 +143,23 @@ class SceneParser : private io_internal::JsonChecker {
         first = i;
         dim = shape->first;
       } else if (shape->first != dim) {
-        Fail(Child(Index("parts", i), shape->second),
+        Fail(Child(PartPath(parts[i], i), shape->second),
              "mixes 2-D and 3-D shapes (this part is " + std::to_string(shape->first) + "-D, " +
-                 Index("parts", *first) + " is " + std::to_string(dim) + "-D)");
+                 PartPath(parts[*first], *first) + " is " + std::to_string(dim) + "-D)");
       }
     }
     return first ? dim : 2;
   }
 
-  PartDef ParsePart(const json& j, const std::string& path) const {
-    Object(j, path);
+  // parts[i]. Faults of the name are reported at `parts[i].name`; every
+  // other at the part's named path `parts[i] ("A")`.
+  PartDef ParsePart(const json& j, size_t i) const {
+    const std::string bare = Index("parts", i);
+    Object(j, bare);
+    const std::string path = PartPath(j, i);
     CheckKeys(j, path, kPartKeys);
     PartDef part;
-    part.name = String(Require(j, "name", path), Child(path, "name"));
+    part.name = String(Require(j, "name", bare), Child(bare, "name"));
     if (j.contains("fixed")) part.fixed = Bool(j["fixed"], Child(path, "fixed"));
     if (j.contains("tool")) part.tool = Bool(j["tool"], Child(path, "tool"));
     if (j.contains("density")) part.density = Number(j["density"], Child(path, "density"));

@@ -49,8 +49,9 @@ class PlanValidator {
   // The index of the part `name`, which must exist and not be fixed.
   int MovablePart(const std::string& name, const std::string& path) const {
     const int i = assembly_.FindPart(name);
-    if (i < 0) Fail(path, "no part named '" + name + "'");
-    if (assembly_.part(i).fixed) Fail(path, "part '" + name + "' is fixed: fixed parts never move");
+    if (i < 0) Fail(path, "no part named '" + EscapedName(name) + "'");
+    if (assembly_.part(i).fixed)
+      Fail(path, "part '" + EscapedName(name) + "' is fixed: fixed parts never move");
     return i;
   }
 
@@ -141,25 +142,29 @@ Plan Plan::Create(const PlanDef& def, const Assembly& assembly, const std::strin
   std::unordered_map<int, std::pair<size_t, std::string>> removed_at;
   for (size_t i = 0; i < def.steps.size(); ++i) {
     const PlanStepDef& sd = def.steps[i];
-    const std::string path = Indexed("steps", i);
+    // Faults of `remove` are reported at `steps[i].remove`; every other at
+    // the step's path named by the parts it removes: `steps[i] ("B")`.
+    const std::string bare = Indexed("steps", i);
+    const std::string path = NamedPath(bare, sd.remove);
     PlanStep step;
 
     // The parts leaving: movable, no tools, each once in the whole plan.
-    const std::string remove_path = path + ".remove";
+    const std::string remove_path = bare + ".remove";
     if (sd.remove.empty()) check.Fail(remove_path, "must name at least one part");
     for (size_t k = 0; k < sd.remove.size(); ++k) {
       const std::string entry = Indexed(remove_path, k);
       const int part = check.MovablePart(sd.remove[k], entry);
       if (assembly.part(part).tool) {
-        check.Fail(entry, "part '" + sd.remove[k] +
+        check.Fail(entry, "part '" + EscapedName(sd.remove[k]) +
                               "' is a tool, not part of the assembly: grip it, do not remove it");
       }
       const auto [it, inserted] = removed_at.emplace(part, std::make_pair(i, entry));
       if (!inserted) {
         const auto& [step_index, earlier] = it->second;
-        check.Fail(entry, step_index == i
-                              ? "names part '" + sd.remove[k] + "' twice (also " + earlier + ")"
-                              : "part '" + sd.remove[k] + "' is already removed by " + earlier);
+        check.Fail(entry, step_index == i ? "names part '" + EscapedName(sd.remove[k]) +
+                                                "' twice (also " + earlier + ")"
+                                          : "part '" + EscapedName(sd.remove[k]) +
+                                                "' is already removed by " + earlier);
       }
       step.remove.push_back(part);
     }
@@ -174,13 +179,13 @@ Plan Plan::Create(const PlanDef& def, const Assembly& assembly, const std::strin
         const int part = check.MovablePart(sd.grip[k], entry);
         const auto earlier = std::find(step.grip.begin(), step.grip.end(), part);
         if (earlier != step.grip.end()) {
-          check.Fail(entry, "names part '" + sd.grip[k] + "' twice (also " +
-                                Indexed(grip_path, earlier - step.grip.begin()) + ")");
+          check.Fail(entry, "names part '" + EscapedName(sd.grip[k]) + "' twice (also " +
+                                Indexed(bare + ".grip", earlier - step.grip.begin()) + ")");
         }
         const bool removed =
             std::find(step.remove.begin(), step.remove.end(), part) != step.remove.end();
         if (!removed && !assembly.part(part).tool) {
-          check.Fail(entry, "part '" + sd.grip[k] +
+          check.Fail(entry, "part '" + EscapedName(sd.grip[k]) +
                                 "' is neither in this step's remove nor a tool (\"tool\": true in "
                                 "the scene)");
         }

@@ -156,7 +156,7 @@ TEST(CheckErrors, BadSceneNamesFileAndJsonPath) {
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_TRUE(r.out.empty());
   EXPECT_NE(r.err.find(path.string()), std::string::npos) << r.err;
-  EXPECT_NE(r.err.find("parts[1].polygon"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("parts[1] (\"B\").polygon"), std::string::npos) << r.err;
   std::filesystem::remove(path);
 }
 

@@ -507,9 +507,10 @@ TEST(CompasConvert, BadInputWritesNothing) {
   const CliRun r = Cairn("convert " + in + " " + out + " --format compas --friction 0.5");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_EQ(r.out, "");
-  EXPECT_EQ(r.err, "cairn: error: " + in +
-                       ": data.graph.data.node.1.block.data.face.2[3]: vertex 99 does not exist "
-                       "(it is not a key of data.graph.data.node.1.block.data.vertex)\n");
+  EXPECT_EQ(r.err,
+            "cairn: error: " + in +
+                ": data.graph.data.node.1 (\"1\").block.data.face.2[3]: vertex 99 does not "
+                "exist (it is not a key of data.graph.data.node.1 (\"1\").block.data.vertex)\n");
   EXPECT_EQ(testing::Slurp(out), "keep me");
   EXPECT_FALSE(std::filesystem::exists(out + ".tmp"));
 
@@ -521,8 +522,9 @@ TEST(CompasConvert, BadInputWritesNothing) {
   const std::string out2 = TempPath("overlap.scene.json");
   const CliRun r2 = Cairn("convert " + in2 + " " + out2 + " --format compas --friction 0.5");
   EXPECT_EQ(r2.exit_code, 2);
-  EXPECT_THAT(r2.err, HasSubstr(in2 + ": data.graph.data.node.1: part '1' overlaps part '0' "
-                                      "(data.graph.data.node.0)"));
+  EXPECT_THAT(r2.err,
+              HasSubstr(in2 + ": data.graph.data.node.1 (\"1\"): part '1' overlaps part '0' "
+                              "(data.graph.data.node.0)"));
   EXPECT_FALSE(std::filesystem::exists(out2));
 
   // An output that cannot be written.

@@ -129,7 +129,7 @@ TEST(PlanCli, GivenPathsAreUsedAndBadOnesNamed) {
       TempFile("cairn_zero_paths.json", R"({"C": [{"direction": [0, 0], "distance": 1}]})");
   const CliRun r2 = Cairn("plan " + scene + " --paths " + zero);
   EXPECT_EQ(r2.exit_code, 2);
-  EXPECT_NE(r2.err.find("C[0].direction"), std::string::npos) << r2.err;
+  EXPECT_NE(r2.err.find("C (\"C\")[0].direction"), std::string::npos) << r2.err;
   const CliRun r3 = Cairn("plan " + scene + " --keep Z");
   EXPECT_EQ(r3.exit_code, 2);
   EXPECT_NE(r3.err.find("--keep"), std::string::npos) << r3.err;

@@ -55,6 +55,35 @@ TEST(Simulate, PaperFig1_DCBAStandsAndCFirstFailsWhenCLeaves) {
   EXPECT_EQ(doc["steps"][0]["time_steps"], 2);
 }
 
+// Issue 13: paper Fig. 1 with B lifted first. C rests on B and is free: B
+// pushes it up from the first instant, so the plan is unstable at t = 0 with
+// C named and moving up (exit 1), not infeasible ("B runs into C", exit 3).
+TEST(Simulate, PaperFig1_BFirstPushesCUpAtTimeZero) {
+  const CliRun r = Cairn("simulate " + ExamplePath("paper_fig1.json") + " " +
+                         Plan("paper_fig1_b_first") + " --json");
+  ASSERT_EQ(r.exit_code, 1) << r.out << r.err;
+  const auto doc = nlohmann::json::parse(r.out);
+  EXPECT_EQ(doc["verdict"], "unstable");
+  const auto& f = doc["failure"];
+  ASSERT_TRUE(f.is_object());
+  EXPECT_EQ(f["verdict"], "unstable");
+  EXPECT_EQ(f["step"], 0);
+  EXPECT_EQ(f["tick"], 0);
+  EXPECT_EQ(f["time"].get<double>(), 0.0);
+  EXPECT_NE(f["parts"].dump().find("\"C\""), std::string::npos) << f.dump();
+  bool c_moves_up = false;
+  for (const auto& m : f["motions"])
+    if (m["part"] == "C") c_moves_up = m["velocity"]["linear"][1].get<double>() > 0;
+  EXPECT_TRUE(c_moves_up) << f.dump();
+  EXPECT_NE(f["description"].get<std::string>().find("B pushes C"), std::string::npos);
+
+  const CliRun text =
+      Cairn("simulate " + ExamplePath("paper_fig1.json") + " " + Plan("paper_fig1_b_first"));
+  EXPECT_EQ(text.exit_code, 1);
+  EXPECT_NE(text.out.find("UNSTABLE"), std::string::npos) << text.out;
+  EXPECT_EQ(text.out.find("runs into"), std::string::npos) << text.out;
+}
+
 // The 105-part wall from the CLI: `check` stands, pulling an end brick out
 // fails at the first move with the bricks above it named.
 TEST(Simulate, WallChecksStableAndPullingAnEndBrickDragsTheBricksAbove) {

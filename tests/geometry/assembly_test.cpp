@@ -159,13 +159,13 @@ TEST(Assembly, NonFiniteNumbersAreRejected) {
   ExpectError(def, "tolerance", "finite");
   def = TwoBlocks();
   def.parts[1].polygon[2].x() = inf;
-  ExpectError(def, "parts[1].polygon[2]", "finite");
+  ExpectError(def, "parts[1] (\"A\").polygon[2]", "finite");
   def = TwoBlocks();
   def.parts[1].density = nan;
-  ExpectError(def, "parts[1].density", "finite");
+  ExpectError(def, "parts[1] (\"A\").density", "finite");
   def = TwoBlocks();
   def.parts[2].mass = inf;
-  ExpectError(def, "parts[2].mass", "finite");
+  ExpectError(def, "parts[2] (\"B\").mass", "finite");
   def = TwoBlocks();
   def.friction_pairs = {{"A", "B", nan}};
   ExpectError(def, "friction_pairs[0].mu", "finite");
@@ -180,26 +180,26 @@ TEST(Assembly, Overlaps) {
   // A vertex deep inside another part.
   AssemblyDef def = TwoBlocks();
   def.parts[2] = Box("B", 1, 0.5, 3, 2);
-  ExpectError(def, "parts[2]", "part 'B' overlaps part 'A' (parts[1])");
+  ExpectError(def, "parts[2] (\"B\")", "part 'B' overlaps part 'A' (parts[1])");
   // A cross: edges cross, no vertex of either inside the other.
   def = TwoBlocks();
   def.parts[1] = Box("A", 0, 1, 3, 2);
   def.parts[2] = Box("B", 1, 0.5, 2, 2.5);
-  ExpectError(def, "parts[2]", "overlaps part 'A'");
+  ExpectError(def, "parts[2] (\"B\")", "overlaps part 'A'");
   // Coincident shapes.
   def = TwoBlocks();
   def.parts[2] = Box("B", 0, 0, 2, 1);
-  ExpectError(def, "parts[2]", "overlaps part 'A'");
+  ExpectError(def, "parts[2] (\"B\")", "overlaps part 'A'");
   // Two fixed parts overlap too: a wall built into the table.
   def = TwoBlocks();
   def.parts.push_back(Box("wall", 4, -0.5, 5, 3, true));
-  ExpectError(def, "parts[3]", "part 'wall' overlaps part 'table' (parts[0])");
+  ExpectError(def, "parts[3] (\"wall\")", "part 'wall' overlaps part 'table' (parts[0])");
   // Within the tolerance is touching, not overlap.
   def = TwoBlocks();
   def.parts[2] = Box("B", 0, 1 - 1e-7, 1, 2);
   EXPECT_NO_THROW(Assembly::Create(def));
   def.parts[2] = Box("B", 0, 1 - 1e-4, 1, 2);
-  ExpectError(def, "parts[2]", "overlaps");
+  ExpectError(def, "parts[2] (\"B\")", "overlaps");
 }
 
 // A gripper pad G (a tool) beside block A on the table.
@@ -224,7 +224,7 @@ TEST(Assembly, ToolsAreKeptAndMarked) {
 TEST(Assembly, ToolCannotBeFixed) {
   AssemblyDef def = TwoBlocksAndPad();
   def.parts[3].fixed = true;
-  ExpectError(def, "parts[3].tool", "part 'G' cannot be both fixed and a tool");
+  ExpectError(def, "parts[3] (\"G\").tool", "part 'G' cannot be both fixed and a tool");
 }
 
 TEST(Assembly, ToolsAreCheckedForOverlap) {
@@ -232,7 +232,7 @@ TEST(Assembly, ToolsAreCheckedForOverlap) {
   AssemblyDef def = TwoBlocksAndPad();
   def.parts[3] = Box("G", 1.5, 0, 2.5, 0.5);
   def.parts[3].tool = true;
-  ExpectError(def, "parts[3]", "part 'G' overlaps part 'A' (parts[1])");
+  ExpectError(def, "parts[3] (\"G\")", "part 'G' overlaps part 'A' (parts[1])");
 }
 
 TEST(Configuration, AssembledLeavesToolsOut) {

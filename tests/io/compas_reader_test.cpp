@@ -188,7 +188,7 @@ TEST(ReadCompasAssembly, MissingFile) {
 // The mesh of node 1 and its path, for the bad cases below.
 #define NODE1(x) R"({"data": {"graph": {"data": {"node": {"1": )" x "}}}}}"
 #define MESH1(x) NODE1(R"({"block": {"data": )" x "}}")
-#define P1 "data.graph.data.node.1.block.data"
+#define P1 "data.graph.data.node.1 (\"1\").block.data"
 // The edges, the edge (0, 1) and its first interface (an Interface object with
 // the given points and frame data), for the stored-interface cases.
 #define EDGES(x) R"({"data": {"graph": {"data": {"edge": )" x "}}}}"
@@ -219,14 +219,14 @@ const BadCase kBadCases[] = {
   {"default_support_type", nullptr, R"({"data": {"graph": {"data": {"default_node_attributes": {"is_support": 1}}}}})",
    "data.graph.data.default_node_attributes.is_support", "must be true or false, not a number"},
   // Nodes.
-  {"node_type", nullptr, NODE1("5"), "data.graph.data.node.1", "must be an object, not a number"},
+  {"node_type", nullptr, NODE1("5"), "data.graph.data.node.1 (\"1\")", "must be an object, not a number"},
   {"support_type", nullptr, R"({"data": {"graph": {"data": {"node": {"0": {"is_support": "yes"}}}}}})",
-   "data.graph.data.node.0.is_support", "must be true or false, not a string"},
-  {"density_type", nullptr, NODE1(R"({"density": "heavy"})"), "data.graph.data.node.1.density", "must be a number, not a string"},
-  {"density_negative", nullptr, NODE1(R"({"density": -1})"), "data.graph.data.node.1.density", "must be positive"},
-  {"block_missing", nullptr, NODE1(R"({"block": null})"), "data.graph.data.node.1.block", "required key is missing"},
-  {"block_type", nullptr, NODE1(R"({"block": [1, 2]})"), "data.graph.data.node.1.block", "must be an object, not an array"},
-  {"block_data_missing", nullptr, NODE1(R"({"block": {"data": null}})"), "data.graph.data.node.1.block.data", "required key is missing"},
+   "data.graph.data.node.0 (\"0\").is_support", "must be true or false, not a string"},
+  {"density_type", nullptr, NODE1(R"({"density": "heavy"})"), "data.graph.data.node.1 (\"1\").density", "must be a number, not a string"},
+  {"density_negative", nullptr, NODE1(R"({"density": -1})"), "data.graph.data.node.1 (\"1\").density", "must be positive"},
+  {"block_missing", nullptr, NODE1(R"({"block": null})"), "data.graph.data.node.1 (\"1\").block", "required key is missing"},
+  {"block_type", nullptr, NODE1(R"({"block": [1, 2]})"), "data.graph.data.node.1 (\"1\").block", "must be an object, not an array"},
+  {"block_data_missing", nullptr, NODE1(R"({"block": {"data": null}})"), "data.graph.data.node.1 (\"1\").block.data", "required key is missing"},
   // Meshes.
   {"vertex_missing", nullptr, MESH1(R"({"vertex": null})"), P1 ".vertex", "required key is missing"},
   {"face_missing", nullptr, MESH1(R"({"face": null})"), P1 ".face", "required key is missing"},
@@ -881,6 +881,34 @@ TEST(CompasToModel, FacesWithinHalfTheToleranceAreKept) {
   EXPECT_NO_THROW(CreateCompasAssembly(m, "flat.json"));
 }
 
+// Issue 13: a fault inside a block names the block by its node key, which
+// plays the part's name: `data.graph.data.node.1 ("1").block...`; a key with a
+// quote and a newline is escaped, so the message stays on one line.
+TEST(ReadCompasScene, FaultsInsideABlockNameTheBlock) {
+  json doc = json::parse(kBase);
+  doc["data"]["graph"]["data"]["node"]["1"]["block"]["data"]["face"]["2"] = {0, 1, 5, 99};
+  const std::string file = WriteTemp("compas_bad_block.json", doc.dump());
+  try {
+    ReadCompasScene(file, {});
+    ADD_FAILURE() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.json_path(), R"(data.graph.data.node.1 ("1").block.data.face.2[3])");
+    EXPECT_THAT(e.message(), HasSubstr("vertex 99 does not exist"));
+  }
+  json odd = json::parse(kBase);
+  json& nodes = odd["data"]["graph"]["data"]["node"];
+  nodes["a\"b\n"] = nodes["1"];
+  nodes["a\"b\n"]["density"] = -1;
+  nodes.erase("1");
+  try {
+    ReadCompasScene(WriteTemp("compas_odd_key.json", odd.dump()), {});
+    ADD_FAILURE() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.json_path(), R"(data.graph.data.node.a\"b\n ("a\"b\n").density)");
+    EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos) << e.what();
+  }
+}
+
 // Expects an InputError of file "f.json" at `path` whose message has `phrase`.
 template <typename F>
 void ExpectModelError(F f, const std::string& path, const std::string& phrase) {
@@ -903,7 +931,8 @@ TEST(CompasToModel, FaultsNameTheBlockAndFaceInTheFile) {
     CompasAssembly a;
     a.blocks.push_back(MakeBlock("7", UnitCube(0), faces));
     ExpectModelError([&] { CompasToModel(a, Friction(0), "f.json"); },
-                     "data.graph.data.node.7.block.data.face.1", "block '7' is not a valid solid");
+                     "data.graph.data.node.7 (\"7\").block.data.face.1",
+                     "block '7' is not a valid solid");
   }
   // A twisted face with two vertices at one point (a mesh's duplicate
   // vertex): no ear can be cut, so it cannot be split into triangles.
@@ -915,7 +944,8 @@ TEST(CompasToModel, FaultsNameTheBlockAndFaceInTheFile) {
     CompasAssembly a;
     a.blocks.push_back(MakeBlock("3", v, faces));
     ExpectModelError([&] { CompasToModel(a, Friction(0), "f.json"); },
-                     "data.graph.data.node.3.block.data.face.1", "cannot be split into triangles");
+                     "data.graph.data.node.3 (\"3\").block.data.face.1",
+                     "cannot be split into triangles");
   }
   // Friction.
   {
@@ -931,7 +961,7 @@ TEST(CompasToModel, FaultsNameTheBlockAndFaceInTheFile) {
     a.blocks.push_back(MakeBlock("0", UnitCube(0), kCubeFaces, true));
     a.blocks.push_back(MakeBlock("12", shifted, kCubeFaces));
     const CompasModel m = CompasToModel(a, Friction(0), "f.json");
-    ExpectModelError([&] { CreateCompasAssembly(m, "f.json"); }, "data.graph.data.node.12",
+    ExpectModelError([&] { CreateCompasAssembly(m, "f.json"); }, "data.graph.data.node.12 (\"12\")",
                      "overlaps part '0' (data.graph.data.node.0)");
   }
 }

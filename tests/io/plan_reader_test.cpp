@@ -186,7 +186,7 @@ const BadCase kBadCases[] = {
   {"unknown_top", nullptr, R"({"gripper": "left"})", "gripper",
    "unknown key (expected one of: cairn_plan, mode, dt, speed, steps)"},
   {"unknown_step_key", nullptr, R"({"steps": [{"remove": ["C"], "path": [[0, 1]], "speed": 2}]})",
-   "steps[0].speed", "unknown key (expected one of: remove, grip, path, direction, distance, support)"},
+   "steps[0] (\"C\").speed", "unknown key (expected one of: remove, grip, path, direction, distance, support)"},
   // Wrong types and values of the top level.
   {"mode_type", nullptr, R"({"mode": 1})", "mode", "must be a string, not a number"},
   {"mode_value", nullptr, R"({"mode": "build"})", "mode", "must be \"disassemble\" or \"assemble\", not \"build\""},
@@ -203,45 +203,45 @@ const BadCase kBadCases[] = {
    "must be an array, not a string"},
   {"remove_entry_type", nullptr, R"({"steps": [{"remove": ["C", 4], "path": [[0, 1]]}]})", "steps[0].remove[1]",
    "must be a string, not a number"},
-  {"grip_type", nullptr, R"({"steps": [{"remove": ["C"], "grip": "C", "path": [[0, 1]]}]})", "steps[0].grip",
+  {"grip_type", nullptr, R"({"steps": [{"remove": ["C"], "grip": "C", "path": [[0, 1]]}]})", "steps[0] (\"C\").grip",
    "must be an array, not a string"},
-  {"grip_empty", nullptr, R"({"steps": [{"remove": ["C"], "grip": [], "path": [[0, 1]]}]})", "steps[0].grip",
+  {"grip_empty", nullptr, R"({"steps": [{"remove": ["C"], "grip": [], "path": [[0, 1]]}]})", "steps[0] (\"C\").grip",
    "must name at least one part"},
-  {"path_type", nullptr, R"({"steps": [{"remove": ["C"], "path": [0, 1]}]})", "steps[0].path[0]",
+  {"path_type", nullptr, R"({"steps": [{"remove": ["C"], "path": [0, 1]}]})", "steps[0] (\"C\").path[0]",
    "must be an array of 2 numbers [x, y], not a number"},
-  {"path_point_size", nullptr, R"({"steps": [{"remove": ["C"], "path": [[0, 0], [0, 1, 2]]}]})", "steps[0].path[1]",
+  {"path_point_size", nullptr, R"({"steps": [{"remove": ["C"], "path": [[0, 0], [0, 1, 2]]}]})", "steps[0] (\"C\").path[1]",
    "must have 2 numbers [x, y]"},
   {"path_coordinate_type", nullptr, R"({"steps": [{"remove": ["C"], "path": [[0, 0], [0, "up"]]}]})",
-   "steps[0].path[1][1]", "must be a number, not a string"},
+   "steps[0] (\"C\").path[1][1]", "must be a number, not a string"},
   {"direction_without_distance", nullptr, R"({"steps": [{"remove": ["C"], "direction": [0, 1]}]})",
-   "steps[0].distance", "required key is missing (a straight path needs both direction and distance)"},
+   "steps[0] (\"C\").distance", "required key is missing (a straight path needs both direction and distance)"},
   {"distance_without_direction", nullptr, R"({"steps": [{"remove": ["C"], "distance": 2}]})",
-   "steps[0].direction", "required key is missing"},
+   "steps[0] (\"C\").direction", "required key is missing"},
   {"direction_type", nullptr, R"({"steps": [{"remove": ["C"], "direction": "up", "distance": 2}]})",
-   "steps[0].direction", "must be an array of 2 numbers"},
+   "steps[0] (\"C\").direction", "must be an array of 2 numbers"},
   {"distance_type", nullptr, R"({"steps": [{"remove": ["C"], "direction": [0, 1], "distance": [2]}]})",
-   "steps[0].distance", "must be a number, not an array"},
+   "steps[0] (\"C\").distance", "must be a number, not an array"},
   {"support_value", nullptr, R"({"steps": [{"remove": ["C"], "path": [[0, 1]], "support": "half"}]})",
-   "steps[0].support", "must be \"full\" or \"none\", not \"half\""},
+   "steps[0] (\"C\").support", "must be \"full\" or \"none\", not \"half\""},
   {"support_type", nullptr, R"({"steps": [{"remove": ["C"], "path": [[0, 1]], "support": false}]})",
-   "steps[0].support", "must be a string, not a boolean"},
+   "steps[0] (\"C\").support", "must be a string, not a boolean"},
   // Parts: names, fixed parts, tools, repeats.
   {"empty_remove", nullptr, R"({"steps": [{"remove": [], "path": [[0, 1]]}]})", "steps[0].remove",
    "must name at least one part"},
   {"unknown_part", nullptr, R"({"steps": [{"remove": ["C", "Z"], "path": [[0, 1]]}]})", "steps[0].remove[1]",
    "no part named 'Z'"},
-  {"unknown_grip", nullptr, R"({"steps": [{"remove": ["C"], "grip": ["c"], "path": [[0, 1]]}]})", "steps[0].grip[0]",
+  {"unknown_grip", nullptr, R"({"steps": [{"remove": ["C"], "grip": ["c"], "path": [[0, 1]]}]})", "steps[0] (\"C\").grip[0]",
    "no part named 'c'"},
   {"fixed_removed", nullptr, R"({"steps": [{"remove": ["E"], "path": [[0, 1]]}]})", "steps[0].remove[0]",
    "part 'E' is fixed: fixed parts never move"},
   {"fixed_gripped", nullptr, R"({"steps": [{"remove": ["C"], "grip": ["C", "E"], "path": [[0, 1]]}]})",
-   "steps[0].grip[1]", "part 'E' is fixed: fixed parts never move"},
+   "steps[0] (\"C\").grip[1]", "part 'E' is fixed: fixed parts never move"},
   {"tool_removed", nullptr, R"({"steps": [{"remove": ["C", "G"], "path": [[0, 1]]}]})", "steps[0].remove[1]",
    "part 'G' is a tool, not part of the assembly: grip it, do not remove it"},
   {"grip_not_removed_not_tool", nullptr, R"({"steps": [{"remove": ["C"], "grip": ["D"], "path": [[0, 1]]}]})",
-   "steps[0].grip[0]", "part 'D' is neither in this step's remove nor a tool"},
+   "steps[0] (\"C\").grip[0]", "part 'D' is neither in this step's remove nor a tool"},
   {"grip_twice", nullptr, R"({"steps": [{"remove": ["C"], "grip": ["G", "G"], "path": [[0, 1]]}]})",
-   "steps[0].grip[1]", "names part 'G' twice (also steps[0].grip[0])"},
+   "steps[0] (\"C\").grip[1]", "names part 'G' twice (also steps[0].grip[0])"},
   {"removed_twice_in_step", nullptr, R"({"steps": [{"remove": ["C", "D", "C"], "path": [[0, 1]]}]})",
    "steps[0].remove[2]", "names part 'C' twice (also steps[0].remove[0])"},
   {"removed_in_two_steps", nullptr,
@@ -249,21 +249,21 @@ const BadCase kBadCases[] = {
    "steps[2].remove[1]", "part 'C' is already removed by steps[0].remove[0]"},
   // Paths.
   {"both_forms", nullptr, R"({"steps": [{"remove": ["C"], "path": [[0, 1]], "direction": [0, 1], "distance": 1}]})",
-   "steps[0]", "has both path and direction with distance: give one of them"},
-  {"neither_form", nullptr, R"({"steps": [{"remove": ["C"]}]})", "steps[0]",
+   "steps[0] (\"C\")", "has both path and direction with distance: give one of them"},
+  {"neither_form", nullptr, R"({"steps": [{"remove": ["C"]}]})", "steps[0] (\"C\")",
    "has no path: give path, or direction and distance"},
-  {"empty_path", nullptr, R"({"steps": [{"remove": ["C"], "path": []}]})", "steps[0].path",
+  {"empty_path", nullptr, R"({"steps": [{"remove": ["C"], "path": []}]})", "steps[0] (\"C\").path",
    "must have at least one point"},
-  {"zero_length_path", nullptr, R"({"steps": [{"remove": ["C"], "path": [[0, 0], [0, 0], [0, 0]]}]})", "steps[0].path",
+  {"zero_length_path", nullptr, R"({"steps": [{"remove": ["C"], "path": [[0, 0], [0, 0], [0, 0]]}]})", "steps[0] (\"C\").path",
    "has zero length"},
-  {"zero_length_single_point", nullptr, R"({"steps": [{"remove": ["C"], "path": [[0, 0]]}]})", "steps[0].path",
+  {"zero_length_single_point", nullptr, R"({"steps": [{"remove": ["C"], "path": [[0, 0]]}]})", "steps[0] (\"C\").path",
    "has zero length"},
   {"zero_direction", nullptr, R"({"steps": [{"remove": ["C"], "direction": [0, 0], "distance": 1}]})",
-   "steps[0].direction", "must not be zero"},
+   "steps[0] (\"C\").direction", "must not be zero"},
   {"zero_distance", nullptr, R"({"steps": [{"remove": ["C"], "direction": [0, 1], "distance": 0}]})",
-   "steps[0].distance", "must be positive (got 0)"},
+   "steps[0] (\"C\").distance", "must be positive (got 0)"},
   {"negative_distance", nullptr, R"({"steps": [{"remove": ["C"], "direction": [0, 1], "distance": -2}]})",
-   "steps[0].distance", "must be positive (got -2)"},
+   "steps[0] (\"C\").distance", "must be positive (got -2)"},
 };
 // clang-format on
 
@@ -296,6 +296,36 @@ TEST(ReadPlan, MissingFile) {
   }
 }
 
+// Issue 13: a step is named by the parts it removes, `steps[0] ("B", "D")`,
+// in faults the reader finds and those Plan::Create finds; a fault of the
+// remove list itself is reported at it, the part named in the message.
+TEST(ReadPlan, FaultsOfAStepNameItsParts) {
+  const Assembly scene = Scene();
+  struct Case {
+    const char* text;
+    const char* path;
+    const char* phrase;
+  };
+  const Case cases[] = {
+      {R"({"cairn_plan": 1, "steps": [{"remove": ["B", "D"], "direction": [0, 0], "distance": 1}]})",
+       R"(steps[0] ("B", "D").direction)", "must not be zero"},
+      {R"({"cairn_plan": 1, "steps": [{"remove": ["C"], "direction": [0, "up"], "distance": 1}]})",
+       R"(steps[0] ("C").direction[1])", "must be a number"},
+      {R"({"cairn_plan": 1, "steps": [{"remove": ["E"], "direction": [0, 1], "distance": 1}]})",
+       "steps[0].remove[0]", "part 'E' is fixed"},
+  };
+  for (const Case& c : cases) {
+    const std::string file = WriteTemp("plan_named_step.json", c.text);
+    try {
+      ReadPlan(file, scene);
+      ADD_FAILURE() << "no error: " << c.text;
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.json_path(), c.path) << e.what();
+      EXPECT_THAT(e.what(), HasSubstr(file + ": " + c.path + ": " + c.phrase));
+    }
+  }
+}
+
 TEST(ParsePlanJson, RejectsNonFiniteNumbersOfABuiltDocument) {
   // A document built in C++ (not parsed from text) can hold NaN and infinity.
   json doc = json::parse(kBase);
@@ -314,7 +344,7 @@ TEST(ParsePlanJson, RejectsNonFiniteNumbersOfABuiltDocument) {
     ParsePlanJson(doc, "");
     ADD_FAILURE() << "no error";
   } catch (const InputError& e) {
-    EXPECT_EQ(e.json_path(), "steps[0].path[1][0]");
+    EXPECT_EQ(e.json_path(), "steps[0] (\"C\").path[1][0]");
     EXPECT_THAT(e.message(), HasSubstr("must be a finite number (got -inf)"));
   }
 }

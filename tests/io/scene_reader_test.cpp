@@ -153,9 +153,9 @@ const BadCase kBadCases[] = {
   // Unknown keys, at every level.
   {"unknown_top", nullptr, R"({"colour": "red"})", "colour", "unknown key"},
   {"unknown_part_key", nullptr, R"({"parts": [{"name": "A", "colour": 1, "polygon": [[0, 0], [1, 0], [0, 1]]}]})",
-   "parts[0].colour", "unknown key (expected one of: name, fixed, tool, density"},
+   "parts[0] (\"A\").colour", "unknown key (expected one of: name, fixed, tool, density"},
   {"unknown_box_key", nullptr, R"({"parts": [{"name": "A", "box": {"min": [0, 0], "max": [1, 1], "centre": [0, 0]}}]})",
-   "parts[0].box.centre", "unknown key"},
+   "parts[0] (\"A\").box.centre", "unknown key"},
   {"unknown_pair_key", nullptr, R"({"friction_pairs": [{"parts": ["A", "B"], "mu": 0.1, "kind": 1}]})",
    "friction_pairs[0].kind", "unknown key"},
   {"unknown_fixture_key", nullptr, R"({"fixtures": [{"part": "B", "point": [1, 1.5], "normal": [-1, 0], "force": 1}]})",
@@ -171,17 +171,17 @@ const BadCase kBadCases[] = {
   {"part_name_type", nullptr, R"({"parts": [{"name": 5, "polygon": [[0, 0], [1, 0], [0, 1]]}]})",
    "parts[0].name", "must be a string"},
   {"fixed_type", nullptr, R"({"parts": [{"name": "A", "fixed": "yes", "polygon": [[0, 0], [1, 0], [0, 1]]}]})",
-   "parts[0].fixed", "must be true or false, not a string"},
+   "parts[0] (\"A\").fixed", "must be true or false, not a string"},
   {"tool_type", nullptr, R"({"parts": [{"name": "A", "tool": 1, "polygon": [[0, 0], [1, 0], [0, 1]]}]})",
-   "parts[0].tool", "must be true or false, not a number"},
+   "parts[0] (\"A\").tool", "must be true or false, not a number"},
   {"density_type", nullptr, R"({"parts": [{"name": "A", "density": [1], "polygon": [[0, 0], [1, 0], [0, 1]]}]})",
-   "parts[0].density", "must be a number, not an array"},
-  {"polygon_type", nullptr, R"({"parts": [{"name": "A", "polygon": {"x": 1}}]})", "parts[0].polygon", "must be an array"},
+   "parts[0] (\"A\").density", "must be a number, not an array"},
+  {"polygon_type", nullptr, R"({"parts": [{"name": "A", "polygon": {"x": 1}}]})", "parts[0] (\"A\").polygon", "must be an array"},
   {"vertex_coordinate_type", nullptr, R"({"parts": [{"name": "A", "polygon": [[0, 0], [1, "0"], [0, 1]]}]})",
-   "parts[0].polygon[1][1]", "must be a number, not a string"},
+   "parts[0] (\"A\").polygon[1][1]", "must be a number, not a string"},
   {"vertex_size", nullptr, R"({"parts": [{"name": "A", "polygon": [[0, 0], [1, 0, 0], [0, 1]]}]})",
-   "parts[0].polygon[1]", "must have 2 numbers"},
-  {"box_type", nullptr, R"({"parts": [{"name": "A", "box": [0, 0, 1, 1]}]})", "parts[0].box", "must be an object"},
+   "parts[0] (\"A\").polygon[1]", "must have 2 numbers"},
+  {"box_type", nullptr, R"({"parts": [{"name": "A", "box": [0, 0, 1, 1]}]})", "parts[0] (\"A\").box", "must be an object"},
   {"pair_names_type", nullptr, R"({"friction_pairs": [{"parts": ["A", 2], "mu": 0.1}]})",
    "friction_pairs[0].parts[1]", "must be a string"},
   {"pair_three_names", nullptr, R"({"friction_pairs": [{"parts": ["A", "B", "table"], "mu": 0.1}]})",
@@ -193,10 +193,10 @@ const BadCase kBadCases[] = {
   {"empty_parts", nullptr, R"({"parts": []})", "parts", "at least one part"},
   {"missing_part_name", nullptr, R"({"parts": [{"polygon": [[0, 0], [1, 0], [0, 1]]}]})", "parts[0].name",
    "required key is missing"},
-  {"missing_shape", nullptr, R"({"parts": [{"name": "A"}]})", "parts[0]", "missing a shape"},
+  {"missing_shape", nullptr, R"({"parts": [{"name": "A"}]})", "parts[0] (\"A\")", "missing a shape"},
   {"two_shapes", nullptr, R"({"parts": [{"name": "A", "polygon": [[0, 0], [1, 0], [0, 1]], "box": {"min": [0, 0], "max": [1, 1]}}]})",
-   "parts[0].box", "exactly one shape"},
-  {"missing_box_max", nullptr, R"({"parts": [{"name": "A", "box": {"min": [0, 0]}}]})", "parts[0].box.max",
+   "parts[0] (\"A\").box", "exactly one shape"},
+  {"missing_box_max", nullptr, R"({"parts": [{"name": "A", "box": {"min": [0, 0]}}]})", "parts[0] (\"A\").box.max",
    "required key is missing"},
   {"missing_pair_mu", nullptr, R"({"friction_pairs": [{"parts": ["A", "B"]}]})", "friction_pairs[0].mu",
    "required key is missing"},
@@ -208,18 +208,18 @@ const BadCase kBadCases[] = {
   {"negative_pair_mu", nullptr, R"({"friction_pairs": [{"parts": ["A", "B"], "mu": -1}]})",
    "friction_pairs[0].mu", "must not be negative"},
   {"negative_mass", nullptr, R"({"parts": [{"name": "A", "mass": -2, "polygon": [[0, 0], [1, 0], [0, 1]]}]})",
-   "parts[0].mass", "must be positive (got -2)"},
+   "parts[0] (\"A\").mass", "must be positive (got -2)"},
   {"zero_density", nullptr, R"({"parts": [{"name": "A", "density": 0, "polygon": [[0, 0], [1, 0], [0, 1]]}]})",
-   "parts[0].density", "must be positive (got 0)"},
+   "parts[0] (\"A\").density", "must be positive (got 0)"},
   {"inverted_box", nullptr, R"({"parts": [{"name": "A", "box": {"min": [0, 1], "max": [1, 0]}}]})",
-   "parts[0].box", "min (0, 1) must be less than max (1, 0)"},
+   "parts[0] (\"A\").box", "min (0, 1) must be less than max (1, 0)"},
   // Names.
   {"duplicate_name", nullptr, R"({"parts": [{"name": "A", "polygon": [[0, 0], [1, 0], [0, 1]]}, {"name": "A", "polygon": [[5, 0], [6, 0], [5, 1]]}]})",
    "parts[1].name", "duplicate part name 'A' (also parts[0])"},
   {"fixed_tool", nullptr, R"({"parts": [{"name": "G", "fixed": true, "tool": true, "polygon": [[0, 0], [1, 0], [0, 1]]}]})",
-   "parts[0].tool", "part 'G' cannot be both fixed and a tool"},
+   "parts[0] (\"G\").tool", "part 'G' cannot be both fixed and a tool"},
   {"tool_overlaps", nullptr, R"({"parts": [{"name": "A", "polygon": [[0, 0], [2, 0], [2, 1], [0, 1]]}, {"name": "G", "tool": true, "box": {"min": [1, 0.5], "max": [3, 2]}}]})",
-   "parts[1]", "part 'G' overlaps part 'A' (parts[0])"},
+   "parts[1] (\"G\")", "part 'G' overlaps part 'A' (parts[0])"},
   {"empty_name", nullptr, R"({"parts": [{"name": "", "polygon": [[0, 0], [1, 0], [0, 1]]}]})", "parts[0].name",
    "must not be empty"},
   {"pair_unknown_part", nullptr, R"({"friction_pairs": [{"parts": ["A", "C"], "mu": 0.1}]})",
@@ -231,20 +231,20 @@ const BadCase kBadCases[] = {
   {"fixture_unknown_part", nullptr, R"({"fixtures": [{"part": "Z", "point": [1, 1.5], "normal": [-1, 0]}]})",
    "fixtures[0].part", "no part named 'Z'"},
   // Geometry.
-  {"two_vertices", nullptr, R"({"parts": [{"name": "A", "polygon": [[0, 0], [1, 0]]}]})", "parts[0].polygon",
+  {"two_vertices", nullptr, R"({"parts": [{"name": "A", "polygon": [[0, 0], [1, 0]]}]})", "parts[0] (\"A\").polygon",
    "has 2 vertices; a polygon needs at least 3"},
-  {"zero_area", nullptr, R"({"parts": [{"name": "A", "polygon": [[0, 0], [1, 0], [3, 0]]}]})", "parts[0].polygon",
+  {"zero_area", nullptr, R"({"parts": [{"name": "A", "polygon": [[0, 0], [1, 0], [3, 0]]}]})", "parts[0] (\"A\").polygon",
    "has zero area"},
   {"bow_tie", nullptr, R"({"parts": [{"name": "A", "polygon": [[0, 0], [2, 2], [2, 0], [0, 2]]}]})",
-   "parts[0].polygon", "self-intersecting: edge 0 crosses edge 2"},
+   "parts[0] (\"A\").polygon", "self-intersecting: edge 0 crosses edge 2"},
   {"touching_edges", nullptr, R"({"parts": [{"name": "A", "polygon": [[0, 0], [4, 0], [4, 2], [2, 0], [0, 2]]}]})",
-   "parts[0].polygon", "self-intersecting: edge 0 touches edge 2"},
+   "parts[0] (\"A\").polygon", "self-intersecting: edge 0 touches edge 2"},
   {"repeated_vertex", nullptr, R"({"parts": [{"name": "A", "polygon": [[0, 0], [2, 0], [2, 2], [0, 2], [2, 0]]}]})",
-   "parts[0].polygon[4]", "self-intersecting: vertex 4 repeats vertex 1"},
+   "parts[0] (\"A\").polygon[4]", "self-intersecting: vertex 4 repeats vertex 1"},
   {"fold_back", nullptr, R"({"parts": [{"name": "A", "polygon": [[0, 0], [4, 0], [4, 2], [4, 1], [0, 2]]}]})",
-   "parts[0].polygon", "self-intersecting: edges 1 and 2 fold back onto each other"},
+   "parts[0] (\"A\").polygon", "self-intersecting: edges 1 and 2 fold back onto each other"},
   {"overlap", nullptr, R"({"parts": [{"name": "A", "polygon": [[0, 0], [2, 0], [2, 1], [0, 1]]}, {"name": "B", "box": {"min": [1, 0.5], "max": [3, 2]}}]})",
-   "parts[1]", "part 'B' overlaps part 'A' (parts[0]) by more than the tolerance"},
+   "parts[1] (\"B\")", "part 'B' overlaps part 'A' (parts[0]) by more than the tolerance"},
   // Fixtures.
   {"fixture_off_part", nullptr, R"({"fixtures": [{"part": "B", "point": [1.5, 1.5], "normal": [-1, 0]}]})",
    "fixtures[0].point", "(1.5, 1.5) is not on the boundary of part 'B' (distance 0.5"},
@@ -256,28 +256,28 @@ const BadCase kBadCases[] = {
    "fixtures[0].normal", "points out of part 'B'"},
   // Dimension.
   {"mixed_box_3d", nullptr, R"({"parts": [{"name": "A", "polygon": [[0, 0], [1, 0], [0, 1]]}, {"name": "B", "box": {"min": [3, 0, 0], "max": [4, 1, 1]}}]})",
-   "parts[1].box", "mixes 2-D and 3-D shapes"},
+   "parts[1] (\"B\").box", "mixes 2-D and 3-D shapes"},
   {"mixed_polyhedron", nullptr, R"({"parts": [{"name": "A", "polygon": [[0, 0], [1, 0], [0, 1]]}, {"name": "B", "polyhedron": {}}]})",
-   "parts[1].polyhedron", "mixes 2-D and 3-D shapes"},
+   "parts[1] (\"B\").polyhedron", "mixes 2-D and 3-D shapes"},
   // 3-D scenes (the base's 2-D gravity and fixtures taken away).
   {"box_3d_inverted", nullptr, R"({"parts": [{"name": "A", "box": {"min": [0, 0, 0], "max": [1, 1, -1]}}]})",
-   "parts[0].box", "min (0, 0, 0) must be less than max (1, 1, -1) in every coordinate"},
+   "parts[0] (\"A\").box", "min (0, 0, 0) must be less than max (1, 1, -1) in every coordinate"},
   {"gravity_2d_in_3d", nullptr, R"({"gravity": [0, -9.81], "parts": [{"name": "A", "box": {"min": [0, 0, 0], "max": [1, 1, 1]}}]})",
    "gravity", "must have 3 numbers [x, y, z] in a 3-D scene, not 2"},
   {"fixture_2d_in_3d", nullptr, R"({"fixtures": [{"part": "B", "point": [1, 1.5], "normal": [-1, 0]}], "parts": [{"name": "B", "box": {"min": [0, 0, 0], "max": [1, 1, 1]}}]})",
    "fixtures[0].point", "must have 3 numbers [x, y, z] in a 3-D scene, not 2"},
   {"polyhedron_few_vertices", nullptr, R"({"parts": [{"name": "A", "polyhedron": {"vertices": [[0, 0, 0], [1, 0, 0], [0, 1, 0]], "faces": [[0, 1, 2]]}}]})",
-   "parts[0].polyhedron.vertices", "at least 4 vertices, not 3"},
+   "parts[0] (\"A\").polyhedron.vertices", "at least 4 vertices, not 3"},
   {"polyhedron_face_index", nullptr, R"({"parts": [{"name": "A", "polyhedron": {"vertices": [[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]], "faces": [[0, 2, 1], [0, 1, 3], [1, 2, 3], [0, 3, 4]]}}]})",
-   "parts[0].polyhedron.faces[3][2]", "must be a vertex index from 0 to 3, not 4"},
+   "parts[0] (\"A\").polyhedron.faces[3][2]", "must be a vertex index from 0 to 3, not 4"},
   {"polyhedron_three_faces", nullptr, R"({"parts": [{"name": "A", "polyhedron": {"vertices": [[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]], "faces": [[0, 2, 1], [0, 1, 3], [1, 2, 3]]}}]})",
-   "parts[0].polyhedron", "a polyhedron needs at least 4 faces (got 3)"},
+   "parts[0] (\"A\").polyhedron", "a polyhedron needs at least 4 faces (got 3)"},
   {"polyhedron_open", nullptr, R"({"parts": [{"name": "A", "polyhedron": {"vertices": [[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0], [0, 0, 1], [1, 0, 1], [1, 1, 1], [0, 1, 1]], "faces": [[0, 3, 2, 1], [4, 5, 6, 7], [0, 1, 5, 4], [1, 2, 6, 5], [2, 3, 7, 6]]}}]})",
-   "parts[0].polyhedron", "the surface is open: edge"},
+   "parts[0] (\"A\").polyhedron", "the surface is open: edge"},
   {"mesh_missing", nullptr, R"({"parts": [{"name": "A", "mesh": "no_such_part.obj"}]})",
-   "parts[0].mesh", "cannot read mesh"},
+   "parts[0] (\"A\").mesh", "cannot read mesh"},
   {"polygon_in_3d", nullptr, R"({"parts": [{"name": "A", "box": {"min": [0, 0, 0], "max": [1, 1, 1]}}, {"name": "B", "polygon": [[0, 0], [1, 0], [0, 1]]}]})",
-   "parts[1].polygon", "mixes 2-D and 3-D shapes"},
+   "parts[1] (\"B\").polygon", "mixes 2-D and 3-D shapes"},
   {"friction_directions_2d", nullptr, R"({"friction_directions": 8})",
    "friction_directions", "applies to 3-D scenes only"},
   {"friction_directions_few", nullptr, R"({"friction_directions": 2, "parts": [{"name": "A", "box": {"min": [0, 0, 0], "max": [1, 1, 1]}}]})",
@@ -328,8 +328,57 @@ TEST(ParseSceneJson, RejectsNonFiniteNumbersOfABuiltDocument) {
     ParseSceneJson(doc, "");
     ADD_FAILURE() << "no error";
   } catch (const InputError& e) {
-    EXPECT_EQ(e.json_path(), "parts[1].polygon[2][0]");
+    EXPECT_EQ(e.json_path(), "parts[1] (\"A\").polygon[2][0]");
     EXPECT_THAT(e.message(), HasSubstr("must be a finite number (got inf)"));
+  }
+}
+
+// Issue 13: a fault inside a part names the part after its JSON path,
+// `parts[1] ("A").polygon`, whether the reader or Assembly::Create finds it.
+TEST(ReadScene, FaultsInsideAPartNameThePart) {
+  const std::string table =
+      R"({"name": "E", "fixed": true, "box": {"min": [-2, -1], "max": [2, 0]}})";
+  // A bow-tie (Assembly::Create's fault) and a bad coordinate (the reader's).
+  const std::string bow_tie = R"({"cairn": 1, "parts": [)" + table +
+                              R"(, {"name": "A", "polygon": [[0, 0], [1, 1], [1, 0], [0, 1]]}]})";
+  const std::string bad_vertex = R"({"cairn": 1, "parts": [)" + table +
+                                 R"(, {"name": "A", "polygon": [[0, 0], [1, "x"], [0, 1]]}]})";
+  for (const auto& [text, path] :
+       {std::pair{bow_tie, std::string("parts[1] (\"A\").polygon")},
+        std::pair{bad_vertex, std::string("parts[1] (\"A\").polygon[1][1]")}}) {
+    const std::string file = WriteTemp("scene_named_part.json", text);
+    try {
+      ReadScene(file);
+      ADD_FAILURE() << "no error: " << text;
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.json_path(), path);
+      EXPECT_THAT(e.what(), HasSubstr(file + ": " + path + ": "));
+    }
+  }
+}
+
+// A name that is itself the fault is not shown as the part's name; a name
+// with quotes and a newline is escaped as JSON escapes it, so the message
+// stays on one line.
+TEST(ReadScene, NamesAreEscapedAndNeverInvented) {
+  const std::string bad_name =
+      WriteTemp("scene_bad_name.json",
+                R"({"cairn": 1, "parts": [{"name": 7, "polygon": [[0, 0], [1, 0], [0, 1]]}]})");
+  try {
+    ReadScene(bad_name);
+    ADD_FAILURE() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.json_path(), "parts[0].name");
+  }
+  const std::string odd = WriteTemp("scene_odd_name.json", R"({"cairn": 1, "parts": [
+      {"name": "E", "fixed": true, "box": {"min": [-2, -1], "max": [2, 0]}},
+      {"name": "say \"hi\"\nnow\\", "polygon": [[0, 0], [1, 1], [1, 0], [0, 1]]}]})");
+  try {
+    ReadScene(odd);
+    ADD_FAILURE() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.json_path(), R"(parts[1] ("say \"hi\"\nnow\\").polygon)");
+    EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos) << e.what();
   }
 }
 
@@ -371,11 +420,12 @@ INSTANTIATE_TEST_SUITE_P(
     ExamplesBad, BadExampleFile,
     ::testing::Values(
         BadFile{"syntax_error.json", "", "invalid JSON at line 6, column 5"},
-        BadFile{"self_intersecting.json", "parts[1].polygon",
+        BadFile{"self_intersecting.json", "parts[1] (\"bow-tie\").polygon",
                 "self-intersecting: edge 1 crosses edge 3"},
-        BadFile{"overlapping_parts.json", "parts[2]", "part 'B' overlaps part 'A' (parts[1])"},
+        BadFile{"overlapping_parts.json", "parts[2] (\"B\")",
+                "part 'B' overlaps part 'A' (parts[1])"},
         BadFile{"fixture_off_part.json", "fixtures[0].point", "not on the boundary of part 'B'"},
-        BadFile{"mixed_dimensions.json", "parts[1].box", "mixes 2-D and 3-D shapes"}),
+        BadFile{"mixed_dimensions.json", "parts[1] (\"cube\").box", "mixes 2-D and 3-D shapes"}),
     [](const auto& param) {
       std::string name = param.param.file;
       return name.substr(0, name.find('.'));

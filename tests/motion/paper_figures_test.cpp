@@ -250,11 +250,18 @@ TEST(PaperFig14, PullingPOutIsUnstableOnEveryFeasiblePath) {
 
 TEST(PaperFig14, TheOtherDirectionsAreBlocked) {
   const Assembly a = ReadScene(ExamplePath("paper_fig14.json"));
-  // Up runs into S4.
+  // Up pushes S4, which rests on P's right end: S4 is free, so it gives way
+  // from the first instant, tipping counter-clockwise about its support on
+  // S3 (issue 13: a push is unstable, not infeasible).
   const SimulationResult up = RunPlan(a, "paper_fig14_up.plan.json");
-  ASSERT_EQ(up.verdict, MotionVerdict::kInfeasible) << Why(up);
-  EXPECT_EQ(up.failure->tick, 1);
-  EXPECT_EQ(up.failure->parts, (std::vector<int>{a.FindPart("P"), a.FindPart("S4")}));
+  ASSERT_EQ(up.verdict, MotionVerdict::kUnstable) << Why(up);
+  EXPECT_EQ(up.failure->pushed, up.failure->parts);
+  EXPECT_EQ(up.failure->tick, 0);
+  EXPECT_EQ(up.failure->time, 0.0);
+  EXPECT_EQ(up.failure->parts, (std::vector<int>{a.FindPart("S4")}));
+  const PartMotion* s4 = MotionOf(*up.failure, a.FindPart("S4"));
+  ASSERT_NE(s4, nullptr);
+  EXPECT_GT(s4->angular.z(), 0.0) << Why(up);
   // Left, P reaches S3 (0.6 away) and shoves it.
   const SimulationResult left = RunPlan(a, "paper_fig14_left.plan.json");
   ASSERT_EQ(left.verdict, MotionVerdict::kUnstable) << Why(left);

@@ -2,6 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
+#include "cairn/io/plan_reader.h"
 #include "cairn/io/scene_reader.h"
 #include "scene_builders.h"
 #include "test_paths.h"
@@ -57,6 +60,9 @@ TEST(Simulate, SlidingAPartOnANarrowBaseTipsItWhereEquationEightSays) {
   ASSERT_FALSE(r.failure->motions.empty());
   EXPECT_EQ(r.failure->motions[0].kind, MotionKind::kTips);
   EXPECT_LT(r.failure->motions[0].angular.z(), 0.0) << "B tips clockwise";
+  // C's weight tips B (Proposition 3), C sinking with it; the gripper's
+  // motion (along x, tangent to the contact) pushes nothing.
+  EXPECT_TRUE(r.failure->pushed.empty()) << r.failure->description;
 }
 
 TEST(Simulate, WithTheWeightCarriedEveryPathIsStable) {
@@ -115,6 +121,69 @@ TEST(Simulate, DrivingAPartIntoAWallIsInfeasible) {
   EXPECT_NEAR(r.failure->time, 2.0, 1e-12);
   EXPECT_EQ(r.failure->parts, (std::vector<int>{2}));
   EXPECT_NE(r.failure->description.find("blocked"), std::string::npos) << r.failure->description;
+}
+
+// Issue 13, paper Fig. 1 with B lifted first: C and D rest on B and are
+// free, so B pushes them up from the first instant: unstable at t = 0 (not
+// "B runs into C"), C and D riding up with B at the gripper's velocity
+// (analytic: a part resting on a rigidly lifted one, frictionless, moves with
+// it), A (under B) left at rest.
+TEST(Simulate, PaperFig1_LiftingBFirstPushesCAndDFromTheFirstInstant) {
+  const Assembly a = ReadScene(ExamplePath("paper_fig1.json"));
+  const Plan plan = ReadPlan(ExamplePath("plans/paper_fig1_b_first.plan.json"), a);
+  const SimulationResult r = SimulatePlan(a, plan);
+  ASSERT_EQ(r.verdict, MotionVerdict::kUnstable) << (r.failure ? r.failure->description : "");
+  EXPECT_EQ(r.failure->tick, 0);
+  EXPECT_EQ(r.failure->time, 0.0);
+  const int C = a.FindPart("C"), D = a.FindPart("D");
+  EXPECT_EQ(r.failure->parts, (std::vector<int>{C, D}));
+  EXPECT_EQ(r.failure->pushed, (std::vector<int>{C, D}));
+  for (const int p : {C, D}) {
+    const auto m = std::find_if(r.failure->motions.begin(), r.failure->motions.end(),
+                                [&](const PartMotion& pm) { return pm.part == p; });
+    ASSERT_NE(m, r.failure->motions.end()) << a.part(p).name;
+    EXPECT_NEAR(m->linear.y(), plan.speed, 1e-6) << a.part(p).name << " rides up with B";
+    EXPECT_NEAR(m->linear.x(), 0.0, 1e-6);
+    EXPECT_NEAR(m->angular.z(), 0.0, 1e-6);
+  }
+  EXPECT_NE(r.failure->description.find("B pushes C, D"), std::string::npos)
+      << r.failure->description;
+  EXPECT_EQ(r.failure->description.find("runs into"), std::string::npos);
+}
+
+// A free block in a driven block's way, reached between two ticks, is
+// pushed from the moment they touch (bisection: the gap 1.5 at speed 1 closes
+// at t = 1.5 s, between the ticks at 1 s and 2 s), moving with the pusher;
+// the same block fixed cannot give way: infeasible, as is a fixed wall.
+TEST(Simulate, AFreePartInTheWayIsPushedAFixedOneBlocks) {
+  for (const bool fixed : {false, true}) {
+    AssemblyDef def;
+    def.parts = {Box("floor", -5, -1, 9, 0, true), Box("mover", 0, 0, 1, 1),
+                 Box("box", 2.5, 0, 3.5, 1, fixed)};
+    const Assembly a = Assembly::Create(def);
+    const int mover = a.FindPart("mover"), box = a.FindPart("box");
+    const SimulationResult r = SimulatePlan(a, MakePlan(a, {Straight("mover", {1, 0}, 4)}, 1.0));
+    ASSERT_TRUE(r.failure.has_value()) << (fixed ? "fixed" : "free");
+    const MotionFailure& f = *r.failure;
+    EXPECT_EQ(f.tick, 2) << f.description;
+    if (fixed) {
+      EXPECT_EQ(r.verdict, MotionVerdict::kInfeasible) << f.description;
+      EXPECT_EQ(f.parts, (std::vector<int>{mover, box}));
+      EXPECT_TRUE(f.pushed.empty());
+      EXPECT_NE(f.description.find("mover runs into box"), std::string::npos) << f.description;
+      continue;
+    }
+    EXPECT_EQ(r.verdict, MotionVerdict::kUnstable) << f.description;
+    EXPECT_EQ(f.parts, (std::vector<int>{box}));
+    EXPECT_EQ(f.pushed, (std::vector<int>{box}));
+    // Touch at 1.5 s; overlap beyond the length tolerance a moment later.
+    EXPECT_NEAR(f.time, 1.5, 1e-4) << f.description;
+    EXPECT_GE(f.time, 1.5);
+    ASSERT_EQ(f.motions.size(), 1u);
+    EXPECT_EQ(f.motions[0].part, box);
+    EXPECT_NEAR(f.motions[0].linear.x(), 1.0, 1e-12);
+    EXPECT_NE(f.description.find("mover pushes box"), std::string::npos) << f.description;
+  }
 }
 
 // Paper Fig. 19–20: μ = 0.2 between A and B, 0.05 between B and the floor,

@@ -6,6 +6,7 @@
 
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace cairn {
 
@@ -26,5 +27,24 @@ class InputError : public std::runtime_error {
   std::string json_path_;
   std::string message_;
 };
+
+/// A name as a JSON string: in double quotes, with `"`, `\` and control
+/// characters escaped as JSON escapes them (`\"`, `\\`, `\n`, `\u0001`), so
+/// that no name can break a one-line message. `"A"` for A.
+std::string JsonQuoted(const std::string& name);
+
+/// The name's characters as JsonQuoted escapes them, without the quotes: for
+/// names inside a message's own quotes (`part 'A'`) or a JSON path key.
+std::string EscapedName(const std::string& name);
+
+/// The JSON path of something that has a name (a part, a COMPAS block, a plan
+/// step by the parts it removes), with the name after it: `parts[1] ("A")`,
+/// `steps[0] ("B", "C")`. The rest of the path follows: `parts[1] ("A").polygon`.
+/// Empty names are left out; with no names left the path is returned as is
+/// (a part whose name is missing or is itself the fault is not named).
+std::string NamedPath(const std::string& path, const std::vector<std::string>& names);
+inline std::string NamedPath(const std::string& path, const std::string& name) {
+  return NamedPath(path, std::vector<std::string>{name});
+}
 
 }  // namespace cairn

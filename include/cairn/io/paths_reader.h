@@ -18,9 +18,10 @@ namespace cairn {
 
 /// Reads a candidate-paths file. Each path is checked as a plan step of its
 /// part would be (ParsePlanJson, Plan::Create). @throws InputError naming
-/// `file` and the place of the fault (`C[2].path[1]`): unreadable file, JSON
-/// syntax, unknown or fixed parts, empty lists, a `remove` key, and every
-/// fault of a plan step.
+/// `file` and the place of the fault, the key named as the part it is
+/// (NamedPath: `C ("C")[2].path[1]`; an unknown part's key bare, `Q`):
+/// unreadable file, JSON syntax, unknown, fixed or tool parts, empty lists, a
+/// `remove` key, and every fault of a plan step.
 std::map<int, std::vector<CandidatePath>> ReadCandidatePaths(const std::string& file,
                                                              const Assembly& assembly);
 

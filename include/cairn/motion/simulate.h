@@ -18,14 +18,34 @@
 /// move rigidly with the gripper; every other present movable part must stay
 /// put.
 ///
-/// Outcome of a tick, in order of precedence: `infeasible` (a gripped part
-/// penetrates another part beyond the tolerance, or its prescribed motion is
-/// blocked), `unstable` (a part that should stay put moves), `unsupported`
-/// (with support "none", a gripped part would fall or tip off its path),
-/// `stable`. A step's outcome is its first failing tick's, a plan's its first
-/// failing step's. With `continue_after_failure`, the simulation goes on as if
-/// each failure had been prevented (parts that should stay put are held in
-/// place), so every step gets a verdict.
+/// Outcome of a tick, in order of precedence:
+/// - `infeasible`: the gripped parts run into something that cannot give way:
+///   a gripped part penetrates a fixed part (or one held after an earlier
+///   failure) beyond the tolerance, or the contact LCP finds no forces that
+///   let the prescribed motion happen (`jammed`: e.g. a free part pinned
+///   between the gripped part and a fixed one);
+/// - `unstable`: a part that should stay put moves: by itself (it falls, tips
+///   or slides), or pushed by the moving parts (MotionFailure::pushed). A
+///   push is seen from the first instant: tick 0 judges the node at rest,
+///   then solves again with the gripper moving, and every judged part that
+///   this driven motion pushes (a closed, loaded contact whose point the
+///   gripper's velocity drives into the part, directly or through carried or
+///   other pushed parts) fails the step at t = its start (paper Fig. 1 with
+///   B lifted before C: C and D ride up on B). Parts that start to move for
+///   another reason (a support or counterweight leaves, a guided part's
+///   weight tips them) and a jam of that solve are judged at the next tick,
+///   as before. At later ticks the pushed ones among the moving parts are
+///   named the same way. A free part that
+///   a gripped part reaches later along its path is pushed from the moment
+///   they touch (found by bisection between ticks): the time reported, with
+///   the pusher's velocity as its motion;
+/// - `unsupported`: with support "none", a gripped part would fall or tip off
+///   its path;
+/// - `stable`.
+/// A step's outcome is its first failing tick's, a plan's its first failing
+/// step's. With `continue_after_failure`, the simulation goes on as if each
+/// failure had been prevented (parts that should stay put, pushed ones
+/// included, are held in place), so every step gets a verdict.
 
 #include <functional>
 #include <optional>
@@ -51,6 +71,9 @@ struct MotionFailure {
   double time = 0;         ///< s, from the start of the plan
   std::vector<int> parts;  ///< unstable: the parts that move; unsupported: the gripped parts;
                            ///< infeasible: the moving part, then the part it runs into (if any)
+  /// unstable: those of `parts` that move because the moving parts push them
+  /// (not by themselves); `time` is when the push starts. Empty: none.
+  std::vector<int> pushed;
   std::vector<PartMotion> motions;      ///< how the parts in `parts` move
   std::vector<ContactReport> contacts;  ///< contacts that break or slide at the failure
   std::string description;              ///< one line for people
@@ -89,9 +112,12 @@ struct SimulationResult {
 /// path, and diagnostics): its inputs, exactly as AnalyzeConfiguration gets
 /// them. Valid only during the call.
 struct AnalysisInputs {
-  int step = -1;       ///< index into Plan::steps
-  int tick = 0;        ///< tick within the step
-  bool judged = true;  ///< false: tick 0's second solve (gripper moving), used for motion only
+  int step = -1;  ///< index into Plan::steps
+  int tick = 0;   ///< tick within the step
+  /// false: tick 0's second solve (gripper moving): it judges the pushes of
+  /// the first instant and moves the carried parts; its pivots are not
+  /// counted in MotionStepReport::pivots.
+  bool judged = true;
   const Configuration* config = nullptr;
   const DriveInputs* drive = nullptr;
   const StabilityOptions* options = nullptr;
