@@ -38,6 +38,7 @@ nlohmann::json SimulationToJson(const Assembly& assembly, const Plan& plan,
     jf["tick"] = f.tick;
     jf["time"] = Clean(f.time);
     jf["parts"] = Names(assembly, f.parts);
+    jf["pushed"] = Names(assembly, f.pushed);  // the free parts the moving ones push
     json motions = json::array();
     for (const PartMotion& m : f.motions) {
       json jm;

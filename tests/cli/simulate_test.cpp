@@ -71,6 +71,7 @@ TEST(Simulate, PaperFig1_BFirstPushesCUpAtTimeZero) {
   EXPECT_EQ(f["tick"], 0);
   EXPECT_EQ(f["time"].get<double>(), 0.0);
   EXPECT_NE(f["parts"].dump().find("\"C\""), std::string::npos) << f.dump();
+  EXPECT_NE(f["pushed"].dump().find("\"C\""), std::string::npos) << f.dump();
   bool c_moves_up = false;
   for (const auto& m : f["motions"])
     if (m["part"] == "C") c_moves_up = m["velocity"]["linear"][1].get<double>() > 0;
