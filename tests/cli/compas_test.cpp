@@ -273,6 +273,7 @@ TEST(CompasCheck, HFrameIsHeldOnlyByJamming) {
   EXPECT_EQ(doc["verdict"], "unstable");
   EXPECT_EQ(doc["static_equilibrium"], true);
   EXPECT_EQ(doc["weakly_stable"], true);
+  EXPECT_EQ(doc["stability"], "weak");  // rest possible, motion found: jamming
   EXPECT_EQ(doc["moving"], json({"2"}));
   const CliRun text = Cairn("check " + file + " --format compas --friction 0.84 --supports 0,1");
   EXPECT_THAT(text.out, HasSubstr("WEAKLY STABLE"));

@@ -156,6 +156,12 @@ TEST(RestHypothesis, JengaExampleStandsUntilThePulledBlockIsNearlyOut) {
   const double pulled = r.failure->time * plan.speed;  // how far the block has come
   EXPECT_GT(pulled, 0.07) << r.failure->description;
   EXPECT_LT(pulled, kL + kGap + 1e-9) << r.failure->description;
+  // The failure names what moves (issue 13): the pulled block itself, whose
+  // overhanging weight the gripper (support "none") must now carry; nothing
+  // else moves, and it is decided, not a solver failure.
+  EXPECT_EQ(r.failure->verdict, MotionVerdict::kUnsupported) << r.failure->description;
+  EXPECT_EQ(r.failure->parts, std::vector<int>{a.FindPart("L09_2")}) << r.failure->description;
+  EXPECT_EQ(r.failure->description.find("could not be solved"), std::string::npos);
 }
 
 }  // namespace
