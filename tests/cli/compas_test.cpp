@@ -856,8 +856,8 @@ INSTANTIATE_TEST_SUITE_P(
         SharedCase{"compas_cra/snake.json", "--supports 0"},
         SharedCase{"compas_cra/bridge.json", "--supports 0,1"},
         SharedCase{"compas_cra/armadillo_cra.json", "--interfaces stored"}),
-    [](const ::testing::TestParamInfo<SharedCase>& info) {
-      std::string name = info.param.file;
+    [](const ::testing::TestParamInfo<SharedCase>& param_info) {
+      std::string name = param_info.param.file;
       for (char& ch : name)
         if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
       return name;
