@@ -5,7 +5,6 @@
 //   build-bench/bench/equilibrium_bench [SHARED_DATASETS_DIR]
 #include <chrono>
 #include <cstdio>
-#include <cstdlib>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -30,20 +29,11 @@ void Run(const std::string& label, const cairn::Assembly& a) {
   for (size_t i = 0; i < lcps.size(); ++i) {
     const cairn::ContactLcp& lcp = lcps[i];
     if (lcp.contacts.empty()) continue;
-    if (std::getenv("MECH_FIRST")) {
-      t0 = std::chrono::steady_clock::now();
-      const auto m = cairn::FindMechanism(lcp);
-      std::printf("%-22s mechanism first: %s, %zu bodies, %.3f s\n", label.c_str(),
-                  m.found ? "found" : "none", m.moving.size(), Since(t0));
-      continue;
-    }
     t0 = std::chrono::steady_clock::now();
     const auto eq = cairn::FindStaticEquilibrium(lcp);
     const double t_eq = Since(t0);
     t0 = std::chrono::steady_clock::now();
-    const auto fl = cairn::FindStaticEquilibrium(
-        lcp, {.frictionless = true,
-              .max_iterations = std::getenv("FL_IT") ? std::atoi(std::getenv("FL_IT")) : 0});
+    const auto fl = cairn::FindStaticEquilibrium(lcp, {.frictionless = true});
     const double t_fl = Since(t0);
     std::printf(
         "%-22s comp %2zu: %4zu bodies %5zu contacts | equilibrium %-3s %-14s %6d it %7.3f s"

@@ -2,7 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
+#include <sstream>
 
 namespace cairn {
 
@@ -57,7 +57,12 @@ constexpr double kCertificateWork = 2e5;
 constexpr int kLeastProbePivots = 100;
 constexpr int kLeastCertificateIterations = 50;
 
-int RankBound(const ContactLcp& lcp);
+// r: the rank bound of the LCP matrix, the free motions of the bodies.
+int RankBound(const ContactLcp& lcp) {
+  int free = 0;
+  for (const BodyDynamics& b : lcp.bodies) free += static_cast<int>(b.FreeBasis().cols());
+  return std::max(1, std::min(lcp.size(), free));
+}
 
 // The Lemke probe's pivot budget: kProbeWork / r² (0: no budget, for dense
 // LCPs, whose pivots are cheap). −1: not worth starting, because Lemke's
@@ -68,12 +73,6 @@ int ProbePivots(const ContactLcp& lcp) {
   const double r = RankBound(lcp);
   const int budget = std::max(kLeastProbePivots, static_cast<int>(kProbeWork / (r * r)));
   return budget < r ? -1 : budget;
-}
-
-int RankBound(const ContactLcp& lcp) {
-  int free = 0;
-  for (const BodyDynamics& b : lcp.bodies) free += static_cast<int>(b.FreeBasis().cols());
-  return std::max(1, std::min(lcp.size(), free));
 }
 
 double CheckTolerance(const ContactLcp& lcp, const LemkeParameters& p) {
@@ -141,19 +140,12 @@ bool AcceptEquilibrium(const ContactLcp& lcp, const SolveContext& ctx, Component
                         ") solves the LCP with every part at rest");
     return true;
   }
-  {
-    const VectorX w = lcp.Multiply(eq.lcp_z) + lcp.q;
-    out.notes.push_back(
-        "the equilibrium's forces fail the LCP check at rest (equilibrium residual " +
-        [&] {
-          char b[32];
-          std::snprintf(b, sizeof b, "%.3g", eq.residual);
-          return std::string(b);
-        }() +
-        ", min z " + std::to_string(eq.lcp_z.minCoeff()) + ", min w " +
-        std::to_string(w.minCoeff()) + ", tolerance " +
-        std::to_string(CheckTolerance(lcp, ctx.lemke)) + ")");
-  }
+  const VectorX w = lcp.Multiply(eq.lcp_z) + lcp.q;
+  std::ostringstream why;
+  why.precision(3);
+  why << "the equilibrium's forces fail the LCP check at rest (equilibrium residual " << eq.residual
+      << ", least w " << w.minCoeff() << ", tolerance " << CheckTolerance(lcp, ctx.lemke) << ")";
+  out.notes.push_back(why.str());
   return false;
 }
 
