@@ -294,19 +294,16 @@ void SolveDriven(const ContactLcp& lcp, const SolveContext& ctx, ComponentSoluti
         Accept(lcp, r.z, ctx.lemke, DecidedBy::kRestHypothesis, out))
       return;
   }
-  RunLemke(lcp, ctx, ProbePivots(lcp), out);
-  if (Solved(out.lemke) && Accept(lcp, out.lemke.z, ctx.lemke, DecidedBy::kLemke, out)) return;
-  // A static equilibrium, where one exists, solves the LCP with every part at
-  // rest when nothing is driven into a contact (checked, not assumed).
-  if (AcceptEquilibrium(lcp, ctx, out)) return;
-  // The rest hypothesis proved that judged parts must move: the mechanism
-  // (with the driven parts stopped) says which, if gravity alone moves them.
   if (out.rest_none) {
+    if (AcceptEquilibrium(lcp, ctx, out)) return;
     ExplainByMechanism(lcp, ctx, out);
     if (out.decided_by == DecidedBy::kMechanism) return;
     ExplainByDrag(lcp, ctx, out);
     if (out.decided_by == DecidedBy::kDrag) return;
   }
+  RunLemke(lcp, ctx, ProbePivots(lcp), out);
+  if (Solved(out.lemke) && Accept(lcp, out.lemke.z, ctx.lemke, DecidedBy::kLemke, out)) return;
+  if (!out.rest_none && AcceptEquilibrium(lcp, ctx, out)) return;
   // A driven part whose prescribed motion no contact forces allow.
   if (ctx.has_driven && out.lemke.status == LcpStatus::kRayTermination) {
     out.decided_by = DecidedBy::kJammed;

@@ -27,13 +27,16 @@
 ///     even that fails, the mechanism itself is the motion reported.
 ///
 /// With a drive (a step of a motion path): in 3-D with friction the rest
-/// hypothesis LP first (mechanics/rest_solution.h), then Lemke's method; a
-/// driven part whose motion no forces allow is jammed (Lemke's ray); when
-/// Lemke's method fails, a static equilibrium with every part at rest is tried
-/// as an LCP solution; where the rest hypothesis proved that judged parts must
-/// move, the mechanism as above (with the driven parts stopped), else the
-/// LCP of the driven parts' neighbours with every other part held (they are
-/// dragged or pushed: "drag"); a Lemke ray with a driven part is a jam.
+/// hypothesis LP first (mechanics/rest_solution.h). Where it proves that the
+/// judged parts cannot all stay at rest, the cheap verified explanations come
+/// next, before Lemke's method on the whole component (whose probe is the
+/// costly step: 0.55 s of the Jenga pull's failing tick, to its pivot limit):
+/// a static equilibrium with every part at rest as an LCP solution; the
+/// mechanism as above (with the driven parts stopped); the LCP of the driven
+/// parts' neighbours with every other part held (they are dragged or pushed:
+/// "drag"); only then Lemke's method. Otherwise (no rest hypothesis, or it
+/// held but failed its check) Lemke's method, then the equilibrium. A Lemke
+/// ray with a driven part is a jam; failing all that, the mechanism.
 ///
 /// The work budgets are deterministic (pivots and simplex iterations scaled by
 /// the component's size), so the answers do not depend on the machine.
