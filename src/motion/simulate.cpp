@@ -198,282 +198,399 @@ std::string Describe(const Assembly& a, const MotionFailure& f, const PlanStep& 
 
 }  // namespace
 
+namespace {
+
+// The parts of one step and what they do (roles fixed for the step).
+struct StepState {
+  int k = -1;  // index into Plan::steps
+  const PlanStep* step = nullptr;
+  std::vector<bool> gripped, carried, in_group;
+  SupportMode support = SupportMode::kFull;  // may become kFull when the gripper carries
+  double length = 0;                         // of the path
+  int moves = 1;                             // ticks after the start
+  MotionStepReport report;
+  bool failed = false;
+};
+
+// Where the gripper is at a tick and where it goes during it.
+struct TickMotion {
+  int tick = 0;
+  double travelled = 0;  // distance along the path so far
+  double s = 0;          // the path parameter (L − travelled when assembling)
+  double dt = 0;         // the interval to the next tick
+  double t_now = 0;      // time of the tick
+  Vector3 v_g;           // the gripper's velocity over the interval
+  Vector3 guide;         // the direction the gripper holds a guided part along
+};
+
+// The solves of one tick: `r` at the tick; at tick 0 also `moved`, the
+// solve with the gripper already moving, whose motions carry on.
+struct TickAnalysis {
+  StabilityResult r;
+  StabilityResult moved;
+  bool has_moved = false;
+  const StabilityResult& motion() const { return has_moved ? moved : r; }
+};
+
+// A tick's verdict and the solve that explains it.
+struct TickVerdict {
+  MotionFailure failure;
+  bool judged_by_moved = false;  // the motions and contacts of `moved`, not `r`
+  double failure_time = 0;
+};
+
+// Algorithm 1 of the paper along a plan: the state carried from tick to
+// tick and step to step, and one method per stage of a tick.
+class PlanSimulation {
+ public:
+  PlanSimulation(const Assembly& assembly, const Plan& plan, const SimulationOptions& options)
+      : a_(assembly),
+        plan_(plan),
+        options_(options),
+        n_(assembly.num_parts()),
+        assemble_(plan.mode == PlanMode::kAssemble),
+        config_(StartingConfiguration()),
+        nu_(n_, Vector6::Zero()),
+        held_(n_, false),
+        tick_length_(plan.speed * plan.dt) {}
+
+  SimulationResult Run() {
+    for (const int k : StepOrder()) {
+      StepState st = EnterStep(k);
+      for (int tick = 0; tick <= st.moves; ++tick)
+        if (!RunTick(st, tick)) break;
+      LeaveStep(st);
+      if (st.failed && !options_.continue_after_failure) break;
+    }
+    result_.verdict = result_.failure ? result_.failure->verdict : MotionVerdict::kStable;
+    return std::move(result_);
+  }
+
+ private:
+  // Steps in the order they happen; an assembly plan runs backwards.
+  std::vector<int> StepOrder() const {
+    std::vector<int> order(plan_.steps.size());
+    std::iota(order.begin(), order.end(), 0);
+    if (assemble_) std::reverse(order.begin(), order.end());
+    return order;
+  }
+
+  // The starting configuration: assembled (tools absent); when assembling,
+  // the parts of every step are still outside.
+  Configuration StartingConfiguration() const {
+    Configuration config = Configuration::Assembled(a_);
+    if (assemble_)
+      for (const PlanStep& step : plan_.steps)
+        for (int p : step.remove) config.present[p] = false;
+    for (int p : options_.absent) {
+      CAIRN_THROW_UNLESS(p >= 0 && p < n_,
+                         "SimulatePlan: absent part " + std::to_string(p) + " out of range");
+      config.present[p] = false;
+    }
+    return config;
+  }
+
+  // Roles of the parts moving in step k; they enter (tools always; parts when
+  // assembling) at the start of the path.
+  StepState EnterStep(int k) {
+    StepState st;
+    st.k = k;
+    st.step = &plan_.steps[k];
+    st.report.step = k;
+    st.report.start_time = time_;
+    st.gripped.assign(n_, false);
+    st.carried.assign(n_, false);
+    st.in_group.assign(n_, false);
+    for (int p : st.step->grip) st.gripped[p] = st.in_group[p] = true;
+    for (int p : st.step->remove)
+      if (!st.gripped[p]) st.carried[p] = st.in_group[p] = true;
+    st.support = st.step->support;
+    st.length = st.step->Length();
+    const double s_start = assemble_ ? st.length : 0.0;
+    for (int p = 0; p < n_; ++p) {
+      if (!st.in_group[p]) continue;
+      config_.present[p] = true;
+      config_.poses[p] = Pose::Translation(st.step->At(s_start));
+      nu_[p].setZero();
+    }
+    st.moves = std::max(1, static_cast<int>(std::ceil(st.length / tick_length_ - 1e-9)));
+    return st;
+  }
+
+  // One tick: place the gripper, analyse, classify, record a failure, move
+  // on. False when the step stops here.
+  bool RunTick(StepState& st, int tick) {
+    const TickMotion tm = GripperAt(st, tick);
+    for (int p = 0; p < n_; ++p)
+      if (st.gripped[p]) config_.poses[p] = Pose::Translation(st.step->At(tm.s));
+    StabilityOptions so;
+    so.dt = tm.dt;
+    so.lemke = options_.lemke;
+    const Tolerances tol = a_.MakeTolerances(tm.dt);
+    so.tolerances = tol;
+    const TickAnalysis an = Analyze(st, tm, so);
+    TickVerdict v = Classify(st, tm, an, tol);
+    if (v.failure.verdict != MotionVerdict::kStable && !st.failed)
+      RecordFailure(st, tm, v.judged_by_moved ? an.moved : an.r, v);
+    AdvanceCarriedParts(st, tm, an.motion());
+    if (v.failure.verdict == MotionVerdict::kStable) return true;
+    if (!options_.continue_after_failure) return false;
+    // Continue as if the failure were prevented: hold the parts that moved,
+    // let the gripper carry an unsupported part.
+    if (v.failure.verdict == MotionVerdict::kUnstable)
+      for (int p : v.failure.parts) held_[p] = true, nu_[p].setZero();
+    if (v.failure.verdict == MotionVerdict::kUnsupported) st.support = SupportMode::kFull;
+    return true;
+  }
+
+  // Where the gripper is and where it goes during this tick.
+  TickMotion GripperAt(const StepState& st, int tick) const {
+    TickMotion tm;
+    tm.tick = tick;
+    const double L = st.length;
+    tm.travelled = std::min(tick * tick_length_, L);
+    const double next = std::min((tick + 1) * tick_length_, L);
+    tm.s = assemble_ ? L - tm.travelled : tm.travelled;
+    tm.dt = tick < st.moves ? (next - tm.travelled) / plan_.speed : plan_.dt;
+    // Time stepping: the contact LCP at a tick gives the motion over the
+    // coming interval, with the gripper's velocity for that interval (zero
+    // at the last tick: the gripper has stopped, and a part set into its
+    // seat does not keep pushing); the carried parts are moved with it.
+    tm.v_g = tick < st.moves ? Vector3(plan_.speed * TravelDirection(*st.step, tm.s, !assemble_))
+                             : Vector3::Zero();
+    // The path direction the gripper holds a guided part along: the coming
+    // one, or at the end of the path the one it came along.
+    tm.guide = tm.v_g.norm() > 0 ? Vector3(tm.v_g.normalized())
+                                 : Vector3(-TravelDirection(*st.step, tm.s, assemble_));
+    tm.t_now = time_ + tm.travelled / plan_.speed;
+    return tm;
+  }
+
+  // The drive: who moves how. `at_rest` describes the node before the step:
+  // the gripper has not moved yet, so its parts still rest on the assembly
+  // with their weight (the paper's figures show their contact forces until
+  // they are lifted).
+  DriveInputs MakeDrive(const StepState& st, const TickMotion& tm, bool at_rest) const {
+    DriveInputs d;
+    d.role.assign(n_, PartRole::kJudged);
+    d.velocity.assign(n_, Vector3::Zero());
+    d.guide.assign(n_, tm.guide);
+    d.nu_prev = nu_;
+    for (int p = 0; p < n_; ++p) {
+      if (st.gripped[p] && at_rest && !a_.part(p).tool) {
+        d.role[p] = PartRole::kCarried;
+        d.nu_prev[p].setZero();
+      } else if (st.gripped[p]) {
+        const bool rigid = st.support == SupportMode::kFull || a_.part(p).tool;
+        d.role[p] = rigid ? PartRole::kPrescribed : PartRole::kGuided;
+        d.velocity[p] = at_rest ? Vector3::Zero() : tm.v_g;
+      } else if (st.carried[p]) {
+        d.role[p] = PartRole::kCarried;
+      } else if (held_[p]) {
+        d.role[p] = PartRole::kPrescribed;  // held in place: velocity 0
+      }
+    }
+    return d;
+  }
+
+  // At tick 0 the verdict is first the node's, at rest (r); then the gripper
+  // starts to move, and a second solve with the driven motion (`moved`)
+  // tells which judged parts it pushes from the first instant and how the
+  // carried parts move over the first interval.
+  TickAnalysis Analyze(StepState& st, const TickMotion& tm, const StabilityOptions& so) {
+    TickAnalysis an;
+    const int k = st.k, tick = tm.tick;
+    const DriveInputs drive = MakeDrive(st, tm, tick == 0);
+    if (options_.on_analysis) options_.on_analysis({k, tick, true, &config_, &drive, &so});
+    an.r = AnalyzeConfiguration(a_, config_, so, &drive, &workspace_);
+    ++st.report.ticks;
+    for (const ComponentReport& c : an.r.components) st.report.pivots += c.pivots;
+    if (!an.r.diagnostics.empty())
+      result_.diagnostics +=
+          "step " + std::to_string(k) + ", tick " + std::to_string(tick) + ": " + an.r.diagnostics;
+    if (options_.record_timeline)
+      for (const ContactReport& c : an.r.contacts)
+        result_.timeline.push_back({tm.t_now, k, tick, c});
+    if (tick == 0 && tick < st.moves) {
+      const DriveInputs go = MakeDrive(st, tm, false);
+      if (options_.on_analysis) options_.on_analysis({k, tick, false, &config_, &go, &so});
+      an.moved = AnalyzeConfiguration(a_, config_, so, &go, &workspace_);
+      an.has_moved = true;
+      if (!an.moved.diagnostics.empty())
+        result_.diagnostics +=
+            "step " + std::to_string(k) + ", tick 0 (gripper moving): " + an.moved.diagnostics;
+    }
+    return an;
+  }
+
+  // Classify the tick: infeasible, unstable, unsupported, stable, in that
+  // order of precedence.
+  TickVerdict Classify(StepState& st, const TickMotion& tm, const TickAnalysis& an,
+                       const Tolerances& tol) const {
+    TickVerdict v;
+    v.failure_time = tm.t_now;
+    MotionFailure& f = v.failure;
+    ClassifyOverlap(st, tm, tol, v);
+    const StabilityResult& r = an.r;
+    if (f.verdict == MotionVerdict::kStable && !r.jammed.empty()) {
+      f.verdict = MotionVerdict::kInfeasible;
+      f.parts = r.jammed;
+    }
+    if (f.verdict == MotionVerdict::kStable && !r.moving.empty()) {
+      f.verdict = MotionVerdict::kUnstable;
+      f.parts = r.moving;
+      if (tm.tick > 0)  // the gripper moves: some may be pushed
+        f.pushed =
+            PushedParts(a_, config_, r, st.gripped, st.carried, tm.v_g, tol.force, tol.velocity);
+    }
+    if (f.verdict == MotionVerdict::kStable && r.verdict == Verdict::kSolverFailure) {
+      // Numerical trouble is never taken for stability.
+      f.verdict = MotionVerdict::kUnstable;
+      f.description = "the contact LCP could not be solved: " + r.diagnostics;
+    }
+    // Pushes at the first instant: judged parts that the driven motion
+    // pushes (PushedParts) are unstable from t = the step's start. Judged
+    // parts that start to move for another reason (a support or a
+    // counterweight leaves) are judged at the next tick, as before; so are a
+    // jam and a numerical failure of this solve, whose motions are then not
+    // trusted (a ray termination of Lemke's method with friction is no
+    // proof that no forces allow the motion: the next tick's solve confirms
+    // a real jam, or the overlap check does).
+    if (f.verdict == MotionVerdict::kStable && an.has_moved && an.moved.jammed.empty() &&
+        an.moved.verdict != Verdict::kSolverFailure) {
+      const std::vector<int> pushed = PushedParts(a_, config_, an.moved, st.gripped, st.carried,
+                                                  tm.v_g, tol.force, tol.velocity);
+      if (!pushed.empty()) {
+        v.judged_by_moved = true;
+        f.verdict = MotionVerdict::kUnstable;
+        f.parts = f.pushed = pushed;
+      }
+    }
+    if (f.verdict == MotionVerdict::kStable && !r.unsupported.empty()) {
+      if (options_.carry_when_unsupported) {
+        // The paper's Fig. 6 gripper: it takes the part's weight from here on.
+        st.support = SupportMode::kFull;
+      } else {
+        f.verdict = MotionVerdict::kUnsupported;
+        f.parts = r.unsupported;
+      }
+    }
+    return v;
+  }
+
+  // Overlap: a gripped part inside a part that cannot give way (fixed, or
+  // held after an earlier failure) is infeasible; inside a free part, it has
+  // pushed that part since they touched (found by bisection between the
+  // ticks): unstable from then, the part moving with the pusher.
+  void ClassifyOverlap(const StepState& st, const TickMotion& tm, const Tolerances& tol,
+                       TickVerdict& v) const {
+    std::vector<bool> can_give_way(n_);
+    for (int p = 0; p < n_; ++p)
+      can_give_way[p] = !a_.part(p).fixed && !a_.part(p).tool && !held_[p];
+    const auto hit = FindCollision(a_, config_, st.gripped, st.in_group, can_give_way, tol.length);
+    if (!hit) return;
+    MotionFailure& f = v.failure;
+    if (!can_give_way[hit->other]) {
+      f.verdict = MotionVerdict::kInfeasible;
+      f.parts = {hit->driven, hit->other};
+      return;
+    }
+    const double L = st.length;
+    const double u = tm.tick > 0 ? FirstOverlap(a_, config_, *st.step, assemble_, *hit,
+                                                std::min((tm.tick - 1) * tick_length_, L),
+                                                tm.travelled, tol.length)
+                                 : tm.travelled;
+    f.verdict = MotionVerdict::kUnstable;
+    f.parts = f.pushed = {hit->other};
+    v.failure_time = time_ + u / plan_.speed;
+    PartMotion m;
+    m.part = hit->other;
+    m.moving = true;
+    m.kind = MotionKind::kSlides;
+    m.linear = plan_.speed * TravelDirection(*st.step, assemble_ ? L - u : u, !assemble_);
+    f.motions = {m};
+  }
+
+  // The step's first failure, with the motions and the breaking or sliding
+  // contacts of its parts from the solve that explains it.
+  void RecordFailure(StepState& st, const TickMotion& tm, const StabilityResult& judged,
+                     TickVerdict& v) {
+    MotionFailure& f = v.failure;
+    f.step = st.k;
+    f.tick = tm.tick;
+    f.time = v.failure_time;
+    if (f.motions.empty())
+      for (const PartMotion& m : judged.parts)
+        if (std::find(f.parts.begin(), f.parts.end(), m.part) != f.parts.end())
+          f.motions.push_back(m);
+    const auto involved = [&](int part) {
+      return std::find(f.parts.begin(), f.parts.end(), part) != f.parts.end();
+    };
+    for (const ContactReport& c : judged.contacts)
+      if ((c.breaking || c.sliding) && (involved(c.contact.part_a) || involved(c.contact.part_b)))
+        f.contacts.push_back(c);
+    const std::string why = f.description;
+    f.description = Describe(a_, f, *st.step) + (why.empty() ? "" : "; " + why);
+    st.report.verdict = f.verdict;
+    st.report.failure = f;
+    if (!result_.failure) result_.failure = f;
+    st.failed = true;
+  }
+
+  // Carry velocities to the next tick (a gripped part keeps only its own
+  // off-path velocity: the gripper's may change direction at a corner); move
+  // the carried parts.
+  void AdvanceCarriedParts(const StepState& st, const TickMotion& tm,
+                           const StabilityResult& motion) {
+    for (const PartMotion& m : motion.parts) {
+      nu_[m.part] << m.linear, m.angular;
+      if (st.gripped[m.part]) nu_[m.part].head<3>() -= tm.v_g;
+    }
+    for (int p = 0; p < n_; ++p) {
+      if (!st.carried[p]) continue;
+      config_.poses[p].translation += nu_[p].head<3>() * tm.dt;
+      config_.poses[p].Rotate(nu_[p].tail<3>() * tm.dt);
+    }
+  }
+
+  // The step is over: removed parts leave (or, assembling, stay placed);
+  // tools always leave.
+  void LeaveStep(StepState& st) {
+    st.report.warm_starts = workspace_.warm_starts;
+    workspace_.warm_starts = 0;
+    time_ += st.length / plan_.speed;
+    st.report.end_time = time_;
+    result_.steps.push_back(st.report);
+    for (int p = 0; p < n_; ++p) {
+      if (!st.in_group[p]) continue;
+      config_.present[p] = assemble_ && !a_.part(p).tool;
+      config_.poses[p] = Pose{};
+      nu_[p].setZero();
+    }
+  }
+
+  const Assembly& a_;
+  const Plan& plan_;
+  const SimulationOptions& options_;
+  const int n_;
+  const bool assemble_;
+  Configuration config_;
+  std::vector<Vector6> nu_;  // each part's velocity after the last tick
+  std::vector<bool> held_;   // held in place after a failure (continue mode)
+  StabilityWorkspace workspace_;
+  double time_ = 0;
+  const double tick_length_;
+  SimulationResult result_;
+};
+
+}  // namespace
+
 SimulationResult SimulatePlan(const Assembly& assembly, const Plan& plan,
                               const SimulationOptions& options) {
   CAIRN_THROW_UNLESS(!assembly.has_interfaces(),
                      "SimulatePlan: the assembly's contacts are given interfaces of its assembled "
                      "configuration; its parts cannot move");
-  SimulationResult result;
-  const int n = assembly.num_parts();
-  const bool assemble = plan.mode == PlanMode::kAssemble;
-
-  // Steps in the order they happen; an assembly plan runs backwards.
-  std::vector<int> order(plan.steps.size());
-  std::iota(order.begin(), order.end(), 0);
-  if (assemble) std::reverse(order.begin(), order.end());
-
-  // The starting configuration: assembled (tools absent); when assembling,
-  // the parts of every step are still outside.
-  Configuration config = Configuration::Assembled(assembly);
-  if (assemble)
-    for (const PlanStep& step : plan.steps)
-      for (int p : step.remove) config.present[p] = false;
-  for (int p : options.absent) {
-    CAIRN_THROW_UNLESS(p >= 0 && p < n,
-                       "SimulatePlan: absent part " + std::to_string(p) + " out of range");
-    config.present[p] = false;
-  }
-
-  std::vector<Vector6> nu(n, Vector6::Zero());  // each part's velocity after the last tick
-  std::vector<bool> held(n, false);             // held in place after a failure (continue mode)
-  StabilityWorkspace workspace;
-  double time = 0;
-  const double tick_length = plan.speed * plan.dt;
-
-  for (const int k : order) {
-    const PlanStep& step = plan.steps[k];
-    MotionStepReport report;
-    report.step = k;
-    report.start_time = time;
-
-    // Roles of the parts moving in this step.
-    std::vector<bool> gripped(n, false), carried(n, false), in_group(n, false);
-    for (int p : step.grip) gripped[p] = in_group[p] = true;
-    for (int p : step.remove)
-      if (!gripped[p]) carried[p] = in_group[p] = true;
-    SupportMode support = step.support;
-
-    // They enter (tools always; parts when assembling) at the start of the path.
-    const double L = step.Length();
-    const double s_start = assemble ? L : 0.0;
-    for (int p = 0; p < n; ++p) {
-      if (!in_group[p]) continue;
-      config.present[p] = true;
-      config.poses[p] = Pose::Translation(step.At(s_start));
-      nu[p].setZero();
-    }
-
-    const int moves = std::max(1, static_cast<int>(std::ceil(L / tick_length - 1e-9)));
-    bool step_failed = false;
-    for (int tick = 0; tick <= moves; ++tick) {
-      // Where the gripper is and where it goes during this tick.
-      const double travelled = std::min(tick * tick_length, L);
-      const double next = std::min((tick + 1) * tick_length, L);
-      const double s = assemble ? L - travelled : travelled;
-      const double dt = tick < moves ? (next - travelled) / plan.speed : plan.dt;
-      // Time stepping: the contact LCP at a tick gives the motion over the
-      // coming interval, with the gripper's velocity for that interval (zero
-      // at the last tick: the gripper has stopped, and a part set into its
-      // seat does not keep pushing); the carried parts are moved with it.
-      const Vector3 v_g = tick < moves ? Vector3(plan.speed * TravelDirection(step, s, !assemble))
-                                       : Vector3::Zero();
-      // The path direction the gripper holds a guided part along: the coming
-      // one, or at the end of the path the one it came along.
-      const Vector3 guide =
-          v_g.norm() > 0 ? Vector3(v_g.normalized()) : Vector3(-TravelDirection(step, s, assemble));
-      const double t_now = time + travelled / plan.speed;
-      for (int p = 0; p < n; ++p)
-        if (gripped[p]) config.poses[p] = Pose::Translation(step.At(s));
-
-      // The drive: who moves how. `at_rest` describes the node before the
-      // step: the gripper has not moved yet, so its parts still rest on the
-      // assembly with their weight (the paper's figures show their contact
-      // forces until they are lifted).
-      const auto make_drive = [&](bool at_rest) {
-        DriveInputs d;
-        d.role.assign(n, PartRole::kJudged);
-        d.velocity.assign(n, Vector3::Zero());
-        d.guide.assign(n, guide);
-        d.nu_prev = nu;
-        for (int p = 0; p < n; ++p) {
-          if (gripped[p] && at_rest && !assembly.part(p).tool) {
-            d.role[p] = PartRole::kCarried;
-            d.nu_prev[p].setZero();
-          } else if (gripped[p]) {
-            const bool rigid = support == SupportMode::kFull || assembly.part(p).tool;
-            d.role[p] = rigid ? PartRole::kPrescribed : PartRole::kGuided;
-            d.velocity[p] = at_rest ? Vector3::Zero() : v_g;
-          } else if (carried[p]) {
-            d.role[p] = PartRole::kCarried;
-          } else if (held[p]) {
-            d.role[p] = PartRole::kPrescribed;  // held in place: velocity 0
-          }
-        }
-        return d;
-      };
-
-      StabilityOptions so;
-      so.dt = dt;
-      so.lemke = options.lemke;
-      const Tolerances tol = assembly.MakeTolerances(dt);
-      so.tolerances = tol;
-      // At tick 0 the verdict is first the node's, at rest (r); then the
-      // gripper starts to move, and a second solve with the driven motion
-      // (`moved`) tells which judged parts it pushes from the first instant
-      // and how the carried parts move over the first interval.
-      const DriveInputs drive = make_drive(tick == 0);
-      if (options.on_analysis) options.on_analysis({k, tick, true, &config, &drive, &so});
-      const StabilityResult r = AnalyzeConfiguration(assembly, config, so, &drive, &workspace);
-      ++report.ticks;
-      for (const ComponentReport& c : r.components) report.pivots += c.pivots;
-      if (!r.diagnostics.empty())
-        result.diagnostics +=
-            "step " + std::to_string(k) + ", tick " + std::to_string(tick) + ": " + r.diagnostics;
-      if (options.record_timeline)
-        for (const ContactReport& c : r.contacts) result.timeline.push_back({t_now, k, tick, c});
-      StabilityResult moved;
-      const StabilityResult* motion = &r;
-      if (tick == 0 && tick < moves) {
-        const DriveInputs go = make_drive(false);
-        if (options.on_analysis) options.on_analysis({k, tick, false, &config, &go, &so});
-        moved = AnalyzeConfiguration(assembly, config, so, &go, &workspace);
-        motion = &moved;
-        if (!moved.diagnostics.empty())
-          result.diagnostics +=
-              "step " + std::to_string(k) + ", tick 0 (gripper moving): " + moved.diagnostics;
-      }
-
-      // Classify the tick: infeasible, unstable, unsupported, stable.
-      // `judged` is the solve whose motions and contacts explain the failure.
-      MotionFailure f;
-      const StabilityResult* judged = &r;
-      double failure_time = t_now;
-      // Overlap: a gripped part inside a part that cannot give way (fixed, or
-      // held after an earlier failure) is infeasible; inside a free part, it
-      // has pushed that part since they touched (found by bisection between
-      // the ticks): unstable from then, the part moving with the pusher.
-      std::vector<bool> can_give_way(n);
-      for (int p = 0; p < n; ++p)
-        can_give_way[p] = !assembly.part(p).fixed && !assembly.part(p).tool && !held[p];
-      if (const auto hit =
-              FindCollision(assembly, config, gripped, in_group, can_give_way, tol.length)) {
-        if (!can_give_way[hit->other]) {
-          f.verdict = MotionVerdict::kInfeasible;
-          f.parts = {hit->driven, hit->other};
-        } else {
-          const double u =
-              tick > 0 ? FirstOverlap(assembly, config, step, assemble, *hit,
-                                      std::min((tick - 1) * tick_length, L), travelled, tol.length)
-                       : travelled;
-          f.verdict = MotionVerdict::kUnstable;
-          f.parts = f.pushed = {hit->other};
-          failure_time = time + u / plan.speed;
-          PartMotion m;
-          m.part = hit->other;
-          m.moving = true;
-          m.kind = MotionKind::kSlides;
-          m.linear = plan.speed * TravelDirection(step, assemble ? L - u : u, !assemble);
-          f.motions = {m};
-        }
-      }
-      if (f.verdict == MotionVerdict::kStable && !r.jammed.empty()) {
-        f.verdict = MotionVerdict::kInfeasible;
-        f.parts = r.jammed;
-      }
-      if (f.verdict == MotionVerdict::kStable && !r.moving.empty()) {
-        f.verdict = MotionVerdict::kUnstable;
-        f.parts = r.moving;
-        if (tick > 0)  // the gripper moves: some may be pushed
-          f.pushed =
-              PushedParts(assembly, config, r, gripped, carried, v_g, tol.force, tol.velocity);
-      }
-      if (f.verdict == MotionVerdict::kStable && r.verdict == Verdict::kSolverFailure) {
-        // Numerical trouble is never taken for stability.
-        f.verdict = MotionVerdict::kUnstable;
-        f.description = "the contact LCP could not be solved: " + r.diagnostics;
-      }
-      // Pushes at the first instant: judged parts that the driven motion
-      // pushes (PushedParts) are unstable from t = the step's start. Judged
-      // parts that start to move for another reason (a support or a
-      // counterweight leaves) are judged at the next tick, as before; so are a
-      // jam and a numerical failure of this solve, whose motions are then not
-      // trusted (a ray termination of Lemke's method with friction is no
-      // proof that no forces allow the motion: the next tick's solve confirms
-      // a real jam, or the overlap check does).
-      if (f.verdict == MotionVerdict::kStable && motion == &moved && moved.jammed.empty() &&
-          moved.verdict != Verdict::kSolverFailure) {
-        const std::vector<int> pushed =
-            PushedParts(assembly, config, moved, gripped, carried, v_g, tol.force, tol.velocity);
-        if (!pushed.empty()) {
-          judged = &moved;
-          f.verdict = MotionVerdict::kUnstable;
-          f.parts = f.pushed = pushed;
-        }
-      }
-      if (f.verdict == MotionVerdict::kStable && !r.unsupported.empty()) {
-        if (options.carry_when_unsupported) {
-          // The paper's Fig. 6 gripper: it takes the part's weight from here on.
-          support = SupportMode::kFull;
-        } else {
-          f.verdict = MotionVerdict::kUnsupported;
-          f.parts = r.unsupported;
-        }
-      }
-
-      if (f.verdict != MotionVerdict::kStable && !step_failed) {
-        f.step = k;
-        f.tick = tick;
-        f.time = failure_time;
-        if (f.motions.empty())
-          for (const PartMotion& m : judged->parts)
-            if (std::find(f.parts.begin(), f.parts.end(), m.part) != f.parts.end())
-              f.motions.push_back(m);
-        // The contacts of the failing parts that break or slide.
-        const auto involved = [&](int part) {
-          return std::find(f.parts.begin(), f.parts.end(), part) != f.parts.end();
-        };
-        for (const ContactReport& c : judged->contacts)
-          if ((c.breaking || c.sliding) &&
-              (involved(c.contact.part_a) || involved(c.contact.part_b)))
-            f.contacts.push_back(c);
-        const std::string why = f.description;
-        f.description = Describe(assembly, f, step) + (why.empty() ? "" : "; " + why);
-        report.verdict = f.verdict;
-        report.failure = f;
-        if (!result.failure) result.failure = f;
-        step_failed = true;
-      }
-
-      // Carry velocities to the next tick (a gripped part keeps only its own
-      // off-path velocity: the gripper's may change direction at a corner);
-      // move the carried parts.
-      for (const PartMotion& m : motion->parts) {
-        nu[m.part] << m.linear, m.angular;
-        if (gripped[m.part]) nu[m.part].head<3>() -= v_g;
-      }
-      for (int p = 0; p < n; ++p) {
-        if (!carried[p]) continue;
-        config.poses[p].translation += nu[p].head<3>() * dt;
-        config.poses[p].Rotate(nu[p].tail<3>() * dt);
-      }
-      if (f.verdict != MotionVerdict::kStable) {
-        if (!options.continue_after_failure) break;
-        // Continue as if the failure were prevented: hold the parts that
-        // moved, let the gripper carry an unsupported part.
-        if (f.verdict == MotionVerdict::kUnstable)
-          for (int p : f.parts) held[p] = true, nu[p].setZero();
-        if (f.verdict == MotionVerdict::kUnsupported) support = SupportMode::kFull;
-      }
-    }
-    report.warm_starts = workspace.warm_starts;
-    workspace.warm_starts = 0;
-    time += L / plan.speed;
-    report.end_time = time;
-    result.steps.push_back(report);
-
-    // The step is over: removed parts leave (or, assembling, stay placed);
-    // tools always leave.
-    for (int p = 0; p < n; ++p) {
-      if (!in_group[p]) continue;
-      config.present[p] = assemble && !assembly.part(p).tool;
-      config.poses[p] = Pose{};
-      nu[p].setZero();
-    }
-    if (step_failed && !options.continue_after_failure) break;
-  }
-
-  result.verdict = result.failure ? result.failure->verdict : MotionVerdict::kStable;
-  return result;
+  return PlanSimulation(assembly, plan, options).Run();
 }
 
 }  // namespace cairn
