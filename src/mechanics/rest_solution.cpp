@@ -5,6 +5,8 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
+#include <optional>
+#include <string>
 
 namespace cairn {
 
@@ -31,6 +33,237 @@ Eigen::Matrix<double, 6, Eigen::Dynamic> RangeOf(const Matrix6& P) {
   return B;
 }
 
+// Relative velocities are exact zeros between bodies at rest and the
+// gripper's speed times a direction cosine otherwise: a relative threshold
+// only has to absorb the roundoff of those products (dimensionless, times the
+// largest body speed).
+constexpr double kVelocityRoundoff = 1e-9;
+// Rounding leaves coefficients of ~1e-17 where the geometry says 0 (a moment
+// arm along an axis); kept, they make the simplex's bases near-singular.
+// Dropped below this fraction of the largest (as in static_equilibrium.cpp).
+constexpr double kDropRelative = 1e-13;
+// Bounds (the cone rows, z ≥ 0) to this rather than GLPK's 1e-7 (relative,
+// on the scaled problem): z must pass the LCP check at 1e-8 of q.
+constexpr double kBoundTolerance = 1e-10;
+
+// What the hypothesis allows each contact: which forces may act, which
+// contacts slide and their λ.
+struct ForceFreedom {
+  std::vector<char> normal_free;  // (nc) p_n may be > 0
+  std::vector<char> dir_free;     // (D nf) β_k may be > 0
+  std::vector<char> sliding;      // (nf) the contact slides: its cone row is tight
+  std::vector<double> lambda;     // (nf) λ of the contact
+};
+
+// Contact motions under the hypothesis: which forces may act. Empty when a
+// driven part closes on a contact (the hypothesis is refuted; `why` says so).
+std::optional<ForceFreedom> FreeForces(const ContactLcp& lcp, const std::vector<Vector6>& nu,
+                                       const std::vector<double>& fixed,
+                                       const std::vector<double>& fixed_lambda, std::string* why) {
+  const int nc = static_cast<int>(lcp.contacts.size());
+  const int D = lcp.num_directions;
+  const int nf = lcp.num_friction;
+  double speed = 0;
+  for (const Vector6& v : nu) speed = std::max(speed, v.cwiseAbs().maxCoeff());
+  const double vtol = kVelocityRoundoff * speed;
+  ForceFreedom ff;
+  ff.normal_free.assign(nc, 1);
+  ff.dir_free.assign(D * nf, 1);
+  ff.sliding.assign(nf, 0);
+  ff.lambda.assign(nf, 0.0);
+  for (int c = 0; c < nc; ++c) {
+    if (std::isfinite(fixed[c])) {  // decided elsewhere, with its friction and λ
+      ff.normal_free[c] = 0;
+      const int f = lcp.friction_of[c];
+      if (f < 0) continue;
+      ff.lambda[f] = fixed_lambda[f];
+      for (int k = 0; k < D; ++k) ff.dir_free[D * f + k] = 0;
+      continue;
+    }
+    const double wn = lcp.normal_rows[c].Dot(nu) + lcp.normal_offset(c);
+    if (wn < -vtol) {
+      *why = "a driven part closes on contact " + std::to_string(c);
+      return std::nullopt;
+    }
+    if (wn > vtol) ff.normal_free[c] = 0;  // opening: no force
+    const int f = lcp.friction_of[c];
+    if (f < 0) continue;
+    double most = 0;  // λ: the largest −d_k · u
+    for (int k = 0; k < D; ++k) most = std::max(most, -lcp.direction_rows[D * f + k].Dot(nu));
+    if (most > vtol) {
+      ff.sliding[f] = 1;
+      ff.lambda[f] = most;
+      for (int k = 0; k < D; ++k)
+        ff.dir_free[D * f + k] = lcp.direction_rows[D * f + k].Dot(nu) + most <= vtol;
+    }
+  }
+  return ff;
+}
+
+// The LP's matrix in GLPK's triplet form (1-based; entry 0 unused).
+struct RestLpMatrix {
+  std::vector<int> col_of;  // (nc + D nf) GLPK column of p_n / β, 0 = fixed at zero
+  int ncols = 0;
+  std::vector<Eigen::Matrix<double, 6, Eigen::Dynamic>> B;  // free directions per body
+  std::vector<int> first_row;                               // (nb + 1) first balance row
+  int nrows = 0;
+  std::vector<int> ia{0}, ja{0};
+  std::vector<double> ar{0.0};
+  void Add(int row, int col, double value) {
+    ia.push_back(row), ja.push_back(col), ar.push_back(value);
+  }
+};
+
+void DropRoundoff(RestLpMatrix& m);
+
+const JacobianRow& RowOf(const ContactLcp& lcp, int v) {
+  const int nc = static_cast<int>(lcp.contacts.size());
+  return v < nc ? lcp.normal_rows[v] : lcp.direction_rows[v - nc];
+}
+
+// Columns: the free p_n and β. Rows: the balance of each unsolved body in its
+// free directions, then one cone row per frictional contact.
+RestLpMatrix BuildRestLpMatrix(const ContactLcp& lcp, const ForceFreedom& ff,
+                               const std::vector<char>& solved) {
+  const int nb = static_cast<int>(lcp.bodies.size());
+  const int nc = static_cast<int>(lcp.contacts.size());
+  const int D = lcp.num_directions;
+  const int nf = lcp.num_friction;
+  const int nr = nc + D * nf;
+  RestLpMatrix m;
+  m.col_of.assign(nr, 0);
+  for (int c = 0; c < nc; ++c)
+    if (ff.normal_free[c]) m.col_of[c] = ++m.ncols;
+  for (int j = 0; j < D * nf; ++j)
+    if (ff.dir_free[j]) m.col_of[nc + j] = ++m.ncols;
+  m.B.resize(nb);
+  m.first_row.assign(nb + 1, 0);
+  for (int b = 0; b < nb; ++b) {
+    m.B[b] = solved[b] ? Eigen::Matrix<double, 6, Eigen::Dynamic>(6, 0)
+                       : RangeOf(lcp.bodies[b].FreeProjector());
+    m.first_row[b + 1] = m.first_row[b] + static_cast<int>(m.B[b].cols());
+  }
+  m.nrows = m.first_row[nb] + nf;
+  for (int v = 0; v < nr; ++v) {
+    if (!m.col_of[v]) continue;
+    const JacobianRow& r = RowOf(lcp, v);
+    for (int s = 0; s < 2; ++s) {
+      const int b = r.body[s];
+      if (b < 0) continue;
+      const VectorX coef = m.B[b].transpose() * r.g[s];
+      for (int k = 0; k < coef.size(); ++k) m.Add(m.first_row[b] + k + 1, m.col_of[v], coef[k]);
+    }
+  }
+  for (int c = 0; c < nc; ++c) {
+    const int f = lcp.friction_of[c];
+    if (f < 0) continue;
+    const int row = m.first_row[nb] + f + 1;
+    if (m.col_of[c]) m.Add(row, m.col_of[c], lcp.contacts[c].mu);
+    for (int k = 0; k < D; ++k)
+      if (m.col_of[nc + D * f + k]) m.Add(row, m.col_of[nc + D * f + k], -1.0);
+  }
+  DropRoundoff(m);
+  return m;
+}
+
+void DropRoundoff(RestLpMatrix& m) {
+  double largest = 0;
+  for (size_t k = 1; k < m.ar.size(); ++k) largest = std::max(largest, std::abs(m.ar[k]));
+  size_t kept = 1;
+  for (size_t k = 1; k < m.ar.size(); ++k) {
+    if (std::abs(m.ar[k]) <= kDropRelative * largest) continue;
+    m.ia[kept] = m.ia[k], m.ja[kept] = m.ja[k], m.ar[kept] = m.ar[k];
+    ++kept;
+  }
+  m.ia.resize(kept), m.ja.resize(kept), m.ar.resize(kept);
+}
+
+// The bounds and costs: each balance row equals minus the momentum and the
+// external and held impulses in the body's free directions; a cone row is
+// free (its contact held), tight (sliding) or ≥ 0 (sticking); every column ≥ 0
+// with cost 1.
+void LoadRestLp(const ContactLcp& lcp, const RestLpMatrix& m, const ForceFreedom& ff,
+                const std::vector<double>& fixed, glp_prob* lp) {
+  const int nb = static_cast<int>(lcp.bodies.size());
+  const int nc = static_cast<int>(lcp.contacts.size());
+  const int nf = lcp.num_friction;
+  const int nr = nc + lcp.num_directions * nf;
+  // The impulses of the held unknowns on each body: moved to the right-hand side.
+  std::vector<Vector6> held(nb, Vector6::Zero());
+  for (int v = 0; v < nr; ++v) {
+    if (!std::isfinite(fixed[v]) || fixed[v] == 0.0) continue;
+    const JacobianRow& r = RowOf(lcp, v);
+    for (int s = 0; s < 2; ++s)
+      if (r.body[s] >= 0) held[r.body[s]] += r.g[s] * fixed[v];
+  }
+  glp_set_obj_dir(lp, GLP_MIN);
+  if (m.nrows > 0) glp_add_rows(lp, m.nrows);
+  if (m.ncols > 0) glp_add_cols(lp, m.ncols);
+  for (int b = 0; b < nb; ++b) {
+    const BodyDynamics& body = lcp.bodies[b];
+    Matrix6 M = Matrix6::Zero();
+    M.topLeftCorner<3, 3>() = body.mass * Matrix3::Identity();
+    M.bottomRightCorner<3, 3>() = body.inertia;
+    const VectorX rhs = -(m.B[b].transpose() * (M * body.FreeProjector() * body.nu_prev +
+                                                body.F_ext * lcp.dt + held[b]));
+    for (int k = 0; k < rhs.size(); ++k)
+      glp_set_row_bnds(lp, m.first_row[b] + k + 1, GLP_FX, rhs[k], rhs[k]);
+  }
+  std::vector<char> held_contact(nf, 0);
+  for (int c = 0; c < nc; ++c)
+    if (lcp.friction_of[c] >= 0 && std::isfinite(fixed[c])) held_contact[lcp.friction_of[c]] = 1;
+  for (int f = 0; f < nf; ++f)
+    glp_set_row_bnds(lp, m.first_row[nb] + f + 1,
+                     held_contact[f] ? GLP_FR
+                     : ff.sliding[f] ? GLP_FX
+                                     : GLP_LO,
+                     0.0, 0.0);
+  for (int j = 1; j <= m.ncols; ++j) {
+    glp_set_col_bnds(lp, j, GLP_LO, 0.0, 0.0);
+    glp_set_obj_coef(lp, j, 1.0);
+  }
+  if (m.ia.size() > 1)
+    glp_load_matrix(lp, static_cast<int>(m.ia.size()) - 1, m.ia.data(), m.ja.data(), m.ar.data());
+  // Equilibration scaling only: GLP_SF_AUTO's geometric-mean passes took 11 %
+  // of the Jenga pull (one LP a tick), for no change in the answers.
+  glp_scale_prob(lp, GLP_SF_EQ);
+}
+
+// A warm start from the last basis of this shape, else the slack basis (dual
+// feasible: every cost is ≥ 0 and every column at its bound 0).
+void StartBasis(const RestLpBasis* warm, int nrows, int ncols, glp_prob* lp) {
+  bool warmed = false;
+  if (warm && static_cast<int>(warm->rows.size()) == nrows &&
+      static_cast<int>(warm->cols.size()) == ncols) {
+    for (int r = 1; r <= nrows; ++r) glp_set_row_stat(lp, r, warm->rows[r - 1]);
+    for (int j = 1; j <= ncols; ++j) glp_set_col_stat(lp, j, warm->cols[j - 1]);
+    // Only a dual feasible basis is worth keeping: the dual simplex goes on
+    // from it, while from one that is not it needs a first phase that costs
+    // more (~900 iterations on the Jenga tower) than starting afresh (~400).
+    warmed = glp_warm_up(lp) == 0 && glp_get_dual_stat(lp) == GLP_FEAS;
+  }
+  if (!warmed) glp_std_basis(lp);
+}
+
+// The dual simplex; on trouble on the way (a near-singular basis), once more
+// from the slack basis with the primal simplex. GLPK's error code.
+int RunSimplex(glp_prob* lp, int* iterations) {
+  glp_smcp params;
+  glp_init_smcp(&params);
+  params.msg_lev = GLP_MSG_OFF;
+  params.meth = GLP_DUALP;
+  params.tol_bnd = kBoundTolerance;
+  int err = glp_simplex(lp, &params);
+  *iterations = glp_get_it_cnt(lp);
+  if (err != 0 && err != GLP_ENOPFS && err != GLP_ENODFS) {
+    glp_std_basis(lp);
+    params.meth = GLP_PRIMAL;
+    err = glp_simplex(lp, &params);
+    *iterations += glp_get_it_cnt(lp);
+  }
+  return err;
+}
+
 // The LP of the file comment for the body velocities `nu`. Bodies with
 // `solved[b]` are not balanced here (their motion and the forces of their
 // contacts come from elsewhere); the LCP unknowns with a finite `fixed[v]`
@@ -40,189 +273,19 @@ RestSolution SolveRestLp(const ContactLcp& lcp, const std::vector<Vector6>& nu,
                          const std::vector<char>& solved, const std::vector<double>& fixed,
                          const std::vector<double>& fixed_lambda, RestLpBasis* warm) {
   RestSolution out;
-  const int nb = static_cast<int>(lcp.bodies.size());
-  const int nc = static_cast<int>(lcp.contacts.size());
-  const int D = lcp.num_directions;
-  const int nf = lcp.num_friction;
-  const int nr = nc + D * nf;  // p_n and β: the LP's unknowns
-  const int n = lcp.size();
-  double speed = 0;
-  for (int b = 0; b < nb; ++b) speed = std::max(speed, nu[b].cwiseAbs().maxCoeff());
-  // Relative velocities are exact zeros between bodies at rest and the
-  // gripper's speed times a direction cosine otherwise: a relative threshold
-  // only has to absorb the roundoff of those products.
-  const double vtol = 1e-9 * speed;
-
-  // Contact motions under the hypothesis: which forces may act.
-  std::vector<char> normal_free(nc, 1), dir_free(D * nf, 1), sliding(nf, 0);
-  std::vector<double> lambda(nf, 0.0);
-  for (int c = 0; c < nc; ++c) {
-    if (std::isfinite(fixed[c])) {  // decided elsewhere, with its friction and λ
-      normal_free[c] = 0;
-      const int f = lcp.friction_of[c];
-      if (f < 0) continue;
-      lambda[f] = fixed_lambda[f];
-      for (int k = 0; k < D; ++k) dir_free[D * f + k] = 0;
-      continue;
-    }
-    const double wn = lcp.normal_rows[c].Dot(nu) + lcp.normal_offset(c);
-    if (wn < -vtol) {
-      out.outcome = RestSolution::Outcome::kNone;
-      out.message = "a driven part closes on contact " + std::to_string(c);
-      return out;
-    }
-    if (wn > vtol) normal_free[c] = 0;  // opening: no force
-    const int f = lcp.friction_of[c];
-    if (f < 0) continue;
-    double most = 0;  // λ: the largest −d_k · u
-    for (int k = 0; k < D; ++k) most = std::max(most, -lcp.direction_rows[D * f + k].Dot(nu));
-    if (most > vtol) {
-      sliding[f] = 1;
-      lambda[f] = most;
-      for (int k = 0; k < D; ++k)
-        dir_free[D * f + k] = lcp.direction_rows[D * f + k].Dot(nu) + most <= vtol;
-    }
+  const std::optional<ForceFreedom> ff = FreeForces(lcp, nu, fixed, fixed_lambda, &out.message);
+  if (!ff) {
+    out.outcome = RestSolution::Outcome::kNone;
+    return out;
   }
-
-  // Columns: the free p_n and β (1-based GLPK indices; 0 = fixed at zero).
-  std::vector<int> col_of(nr, 0);
-  int ncols = 0;
-  for (int c = 0; c < nc; ++c)
-    if (normal_free[c]) col_of[c] = ++ncols;
-  for (int j = 0; j < D * nf; ++j)
-    if (dir_free[j]) col_of[nc + j] = ++ncols;
-
-  // Rows: the balance of each body in its free directions, then one cone row
-  // per frictional contact.
-  std::vector<Eigen::Matrix<double, 6, Eigen::Dynamic>> B(nb);
-  std::vector<int> first_row(nb + 1, 0);
-  for (int b = 0; b < nb; ++b) {
-    B[b] = solved[b] ? Eigen::Matrix<double, 6, Eigen::Dynamic>(6, 0)
-                     : RangeOf(lcp.bodies[b].FreeProjector());
-    first_row[b + 1] = first_row[b] + static_cast<int>(B[b].cols());
-  }
-  const int nrows = first_row[nb] + nf;
-  std::vector<int> ia{0}, ja{0};
-  std::vector<double> ar{0.0};
-  const auto row_of = [&](int v) -> const JacobianRow& {
-    return v < nc ? lcp.normal_rows[v] : lcp.direction_rows[v - nc];
-  };
-  for (int v = 0; v < nr; ++v) {
-    if (!col_of[v]) continue;
-    const JacobianRow& r = row_of(v);
-    for (int s = 0; s < 2; ++s) {
-      const int b = r.body[s];
-      if (b < 0) continue;
-      const VectorX coef = B[b].transpose() * r.g[s];
-      for (int k = 0; k < coef.size(); ++k) {
-        ia.push_back(first_row[b] + k + 1);
-        ja.push_back(col_of[v]);
-        ar.push_back(coef[k]);
-      }
-    }
-  }
-  for (int c = 0; c < nc; ++c) {
-    const int f = lcp.friction_of[c];
-    if (f < 0) continue;
-    const int row = first_row[nb] + f + 1;
-    if (col_of[c]) {
-      ia.push_back(row), ja.push_back(col_of[c]), ar.push_back(lcp.contacts[c].mu);
-    }
-    for (int k = 0; k < D; ++k)
-      if (col_of[nc + D * f + k])
-        ia.push_back(row), ja.push_back(col_of[nc + D * f + k]), ar.push_back(-1.0);
-  }
-  // Rounding leaves coefficients of ~1e-17 where the geometry says 0 (a
-  // moment arm along an axis); kept, they make the simplex's bases
-  // near-singular. Dropped below 1e-13 of the largest (as in
-  // static_equilibrium.cpp).
-  {
-    double largest = 0;
-    for (size_t k = 1; k < ar.size(); ++k) largest = std::max(largest, std::abs(ar[k]));
-    size_t kept = 1;
-    for (size_t k = 1; k < ar.size(); ++k) {
-      if (std::abs(ar[k]) <= 1e-13 * largest) continue;
-      ia[kept] = ia[k], ja[kept] = ja[k], ar[kept] = ar[k];
-      ++kept;
-    }
-    ia.resize(kept), ja.resize(kept), ar.resize(kept);
-  }
-
-  // The impulses of the held unknowns on each body: moved to the right-hand side.
-  std::vector<Vector6> held(nb, Vector6::Zero());
-  for (int v = 0; v < nr; ++v) {
-    if (!std::isfinite(fixed[v]) || fixed[v] == 0.0) continue;
-    const JacobianRow& r = row_of(v);
-    for (int s = 0; s < 2; ++s)
-      if (r.body[s] >= 0) held[r.body[s]] += r.g[s] * fixed[v];
-  }
-
-  GlpProblem lp;
-  glp_set_obj_dir(lp.p, GLP_MIN);
-  if (nrows > 0) glp_add_rows(lp.p, nrows);
-  if (ncols > 0) glp_add_cols(lp.p, ncols);
-  for (int b = 0; b < nb; ++b) {
-    const BodyDynamics& body = lcp.bodies[b];
-    Matrix6 M = Matrix6::Zero();
-    M.topLeftCorner<3, 3>() = body.mass * Matrix3::Identity();
-    M.bottomRightCorner<3, 3>() = body.inertia;
-    const VectorX rhs = -(B[b].transpose() * (M * body.FreeProjector() * body.nu_prev +
-                                              body.F_ext * lcp.dt + held[b]));
-    for (int k = 0; k < rhs.size(); ++k)
-      glp_set_row_bnds(lp.p, first_row[b] + k + 1, GLP_FX, rhs[k], rhs[k]);
-  }
-  std::vector<char> held_contact(nf, 0);
-  for (int c = 0; c < nc; ++c)
-    if (lcp.friction_of[c] >= 0 && std::isfinite(fixed[c])) held_contact[lcp.friction_of[c]] = 1;
-  for (int f = 0; f < nf; ++f)
-    glp_set_row_bnds(lp.p, first_row[nb] + f + 1,
-                     held_contact[f] ? GLP_FR
-                     : sliding[f]    ? GLP_FX
-                                     : GLP_LO,
-                     0.0, 0.0);
-  for (int j = 1; j <= ncols; ++j) {
-    glp_set_col_bnds(lp.p, j, GLP_LO, 0.0, 0.0);
-    glp_set_obj_coef(lp.p, j, 1.0);
-  }
-  if (ia.size() > 1)
-    glp_load_matrix(lp.p, static_cast<int>(ia.size()) - 1, ia.data(), ja.data(), ar.data());
+  const RestLpMatrix m = BuildRestLpMatrix(lcp, *ff, solved);
   // GLPK reports to the terminal whatever msg_lev says; the CLI's stdout may
   // be a JSON document.
   const int terminal = glp_term_out(GLP_OFF);
-  // Equilibration scaling only: GLP_SF_AUTO's geometric-mean passes took 11 %
-  // of the Jenga pull (one LP a tick), for no change in the answers.
-  glp_scale_prob(lp.p, GLP_SF_EQ);
-
-  // A warm start from the last basis of this shape, else the slack basis
-  // (dual feasible: every cost is ≥ 0 and every column at its bound 0).
-  bool warmed = false;
-  if (warm && static_cast<int>(warm->rows.size()) == nrows &&
-      static_cast<int>(warm->cols.size()) == ncols) {
-    for (int r = 1; r <= nrows; ++r) glp_set_row_stat(lp.p, r, warm->rows[r - 1]);
-    for (int j = 1; j <= ncols; ++j) glp_set_col_stat(lp.p, j, warm->cols[j - 1]);
-    // Only a dual feasible basis is worth keeping: the dual simplex goes on
-    // from it, while from one that is not it needs a first phase that costs
-    // more (~900 iterations on the Jenga tower) than starting afresh (~400).
-    warmed = glp_warm_up(lp.p) == 0 && glp_get_dual_stat(lp.p) == GLP_FEAS;
-  }
-  if (!warmed) glp_std_basis(lp.p);
-  glp_smcp params;
-  glp_init_smcp(&params);
-  params.msg_lev = GLP_MSG_OFF;
-  params.meth = GLP_DUALP;
-  // Bounds (the cone rows, z ≥ 0) to 1e-10 rather than GLPK's 1e-7: z must
-  // pass the LCP check at 1e-8 of q.
-  params.tol_bnd = 1e-10;
-  int err = glp_simplex(lp.p, &params);
-  out.iterations = glp_get_it_cnt(lp.p);
-  if (err != 0 && err != GLP_ENOPFS && err != GLP_ENODFS) {
-    // Trouble on the way (a near-singular basis): once more from the slack
-    // basis with the primal simplex.
-    glp_std_basis(lp.p);
-    params.meth = GLP_PRIMAL;
-    err = glp_simplex(lp.p, &params);
-    out.iterations += glp_get_it_cnt(lp.p);
-  }
+  GlpProblem lp;
+  LoadRestLp(lcp, m, *ff, fixed, lp.p);
+  StartBasis(warm, m.nrows, m.ncols, lp.p);
+  const int err = RunSimplex(lp.p, &out.iterations);
   glp_term_out(terminal);
   const int status = glp_get_status(lp.p);
   if (err == GLP_ENOPFS || status == GLP_NOFEAS) {
@@ -237,17 +300,19 @@ RestSolution SolveRestLp(const ContactLcp& lcp, const std::vector<Vector6>& nu,
     return out;
   }
   if (warm) {
-    warm->rows.resize(nrows);
-    warm->cols.resize(ncols);
-    for (int r = 1; r <= nrows; ++r) warm->rows[r - 1] = glp_get_row_stat(lp.p, r);
-    for (int j = 1; j <= ncols; ++j) warm->cols[j - 1] = glp_get_col_stat(lp.p, j);
+    warm->rows.resize(m.nrows);
+    warm->cols.resize(m.ncols);
+    for (int r = 1; r <= m.nrows; ++r) warm->rows[r - 1] = glp_get_row_stat(lp.p, r);
+    for (int j = 1; j <= m.ncols; ++j) warm->cols[j - 1] = glp_get_col_stat(lp.p, j);
   }
-  out.z = VectorX::Zero(n);
+  // z = (p_n, β) from the LP (held values as given), λ from the hypothesis.
+  const int nr = static_cast<int>(m.col_of.size());
+  out.z = VectorX::Zero(lcp.size());
   for (int v = 0; v < nr; ++v) {
-    if (col_of[v]) out.z[v] = std::max(0.0, glp_get_col_prim(lp.p, col_of[v]));
+    if (m.col_of[v]) out.z[v] = std::max(0.0, glp_get_col_prim(lp.p, m.col_of[v]));
     if (std::isfinite(fixed[v])) out.z[v] = fixed[v];
   }
-  for (int f = 0; f < nf; ++f) out.z[nr + f] = lambda[f];
+  for (int f = 0; f < lcp.num_friction; ++f) out.z[nr + f] = ff->lambda[f];
   out.outcome = RestSolution::Outcome::kFound;
   return out;
 }
