@@ -44,6 +44,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <sstream>
 
 #include "cairn/core/check.h"
@@ -272,9 +273,38 @@ class Path {
   // Follows Lemke's path from the current complementary basis until z₀
   // leaves, a ray, the pivot limit or a singular basis.
   PathEnd Follow(int max_pivots) {
-    // The covering vector d = B·1: every basic value grows at unit rate with
-    // z₀. On the rows R, C·1 + d_R = 0 ⇒ d_R = −M(R, Z)·1; on a basic w,
-    // M(i, Z)·1 + d_i = 1.
+    if (!EnterZ0()) return PathEnd::kSingular;
+    ++pivots_;
+    bool retried = false;
+    while (true) {
+      if (pivots_ >= max_pivots) return PathEnd::kPivotLimit;
+      if (!KeepAccurate()) return PathEnd::kSingular;
+      // The entering variable: the complement of the last one to leave.
+      const int c = none_;
+      const bool enter_w = last_left_z_;
+      EnteringRates(c, enter_w);
+      const std::optional<Leaving> leave = RatioTest();
+      if (!leave) return PathEnd::kRay;
+      if (!Exchange(enter_w ? -1 : c, enter_w ? c : -1, leave->row, leave->col, leave->theta)) {
+        // A zero pivot element from a drifted H: refactor and redo the
+        // ratio test once (the basis is unchanged); twice is a real failure.
+        if (retried) return PathEnd::kSingular;
+        retried = true;
+        if (!Refactor()) return PathEnd::kSingular;
+        RecomputeValues();
+        continue;
+      }
+      retried = false;
+      ++pivots_;
+      if (z0_pos_ < 0) return PathEnd::kSolution;
+    }
+  }
+
+  // The first pivot: the covering vector d = B·1, so that every basic value
+  // grows at unit rate with z₀. On the rows R, C·1 + d_R = 0 ⇒ d_R =
+  // −M(R, Z)·1; on a basic w, M(i, Z)·1 + d_i = 1. z₀ enters at −min(basic
+  // values); the most negative leaves.
+  bool EnterZ0() {
     {
       std::vector<double> ones(cols_.size(), 1.0);
       scratch_.setZero(n_);
@@ -282,7 +312,6 @@ class Path {
       scratch_ *= inv_s_;
       for (int i = 0; i < n_; ++i) d_[i] = role_[i] == Role::kW ? 1.0 - scratch_[i] : -scratch_[i];
     }
-    // z₀ enters at −min(basic values); the most negative leaves.
     double v_min = std::numeric_limits<double>::infinity();
     int first_row = -1, first_col = -1;
     for (int i = 0; i < n_; ++i)
@@ -296,94 +325,89 @@ class Path {
     for (int i = 0; i < n_; ++i)
       if (role_[i] == Role::kW) omega_[i] = 1.0;
     a_ = d_;
-    if (!Exchange(/*enter_z=*/-1, /*enter_w=*/-1, first_row, first_col, -v_min)) {
-      return PathEnd::kSingular;
-    }
-    ++pivots_;
+    return Exchange(/*enter_z=*/-1, /*enter_w=*/-1, first_row, first_col, -v_min);
+  }
 
-    bool retried = false;
-    while (true) {
-      if (pivots_ >= max_pivots) return PathEnd::kPivotLimit;
-      // Every kRevalueEvery pivots: the values afresh from H, and H afresh
-      // from C when it has drifted (the tight rows' residual).
-      if (pivots_ % kRevalueEvery == 0 && pivots_ != last_revalue_) {
-        last_revalue_ = pivots_;
-        RecomputeValues();
-        if (TightResidual() > drift_tol_ ||
-            pivots_ - last_refactor_ >= kRefactorPerOrder * std::max(k(), 1)) {
-          if (!Refactor()) return PathEnd::kSingular;
-          RecomputeValues();
-        }
-      }
-      // The entering variable: the complement of the last one to leave.
-      const int c = none_;
-      const bool enter_w = last_left_z_;
-      if (enter_w) {
-        // w_c enters: x(t) = x + t H(:, s).
-        const int s = row_pos_[c];
-        delta_ = H_.col(s).head(k());
-        omega_.setZero(n_);
-        M_.AddColumns(cols_z_view(), delta_view().data(), &omega_, &u_);
-        omega_ *= inv_s_;
-        if (z0_pos_ >= 0) omega_ += delta_[z0_pos_] * d_;
-      } else {
-        // z_c enters with column a = M(:, c)/s.
-        M_.Column(c, &a_);
-        a_ *= inv_s_;
-        Restrict(a_, &aR_);
-        delta_ = -(H_.topLeftCorner(k(), k()) * aR_);
-        omega_ = a_;
-        scratch_.setZero(n_);
-        M_.AddColumns(cols_z_view(), delta_view().data(), &scratch_, &u_);
-        omega_ += scratch_ * inv_s_;
-        if (z0_pos_ >= 0) omega_ += delta_[z0_pos_] * d_;
-      }
-      // Ratio test (Harris's two passes): basic values decrease where
-      // Δ_p < 0 or ω_i < 0. Pass 1 finds the largest step θ_max that keeps
-      // every value ≥ −τ (τ = tol_, the roundoff of a value); pass 2 takes,
-      // of the candidates whose exact ratio is ≤ θ_max, the one with the
-      // largest pivot element relative to its column's scale. Values tied
-      // within roundoff thus never leave on a roundoff-sized pivot element
-      // (which made the basis numerically singular on the Jenga ticks); the
-      // ties the perturbation separates (by δ ≫ τ) are still told apart.
-      const double col_scale = std::max(1.0, delta_.head(k()).cwiseAbs().maxCoeff());
-      double row_scale = 1.0;
-      for (int i = 0; i < n_; ++i)
-        if (role_[i] == Role::kW) row_scale = std::max(row_scale, std::abs(omega_[i]));
-      candidates_.clear();
-      for (int p = 0; p < k(); ++p)
-        if (-delta_[p] > tol_ * col_scale)
-          candidates_.push_back({x_[p], -delta_[p], -delta_[p] / col_scale, -1, p});
-      for (int i = 0; i < n_; ++i)
-        if (role_[i] == Role::kW && -omega_[i] > tol_ * row_scale)
-          candidates_.push_back({w_[i], -omega_[i], -omega_[i] / row_scale, i, -1});
-      if (candidates_.empty()) return PathEnd::kRay;
-      double theta_max = std::numeric_limits<double>::infinity();
-      for (const Candidate& cd : candidates_)
-        theta_max = std::min(theta_max, (std::max(cd.value, 0.0) + tol_) / cd.rate);
-      double theta = 0, best = -1;
-      int leave_row = -1, leave_col = -1;
-      for (const Candidate& cd : candidates_) {
-        const double ratio = std::max(cd.value, 0.0) / cd.rate;
-        if (ratio > theta_max) continue;
-        // z₀ leaves whenever it can: the path ends.
-        const bool is_z0 = cd.col >= 0 && cd.col == z0_pos_;
-        const double key = is_z0 ? std::numeric_limits<double>::infinity() : cd.relative;
-        if (key > best) best = key, theta = ratio, leave_row = cd.row, leave_col = cd.col;
-      }
-      if (!Exchange(enter_w ? -1 : c, enter_w ? c : -1, leave_row, leave_col, theta)) {
-        // A zero pivot element from a drifted H: refactor and redo the
-        // ratio test once (the basis is unchanged); twice is a real failure.
-        if (retried) return PathEnd::kSingular;
-        retried = true;
-        if (!Refactor()) return PathEnd::kSingular;
-        RecomputeValues();
-        continue;
-      }
-      retried = false;
-      ++pivots_;
-      if (z0_pos_ < 0) return PathEnd::kSolution;
+  // Every kRevalueEvery pivots: the values afresh from H, and H afresh from C
+  // when it has drifted (the tight rows' residual) or k/4 pivots have passed.
+  // False when C is singular.
+  bool KeepAccurate() {
+    if (pivots_ % kRevalueEvery != 0 || pivots_ == last_revalue_) return true;
+    last_revalue_ = pivots_;
+    RecomputeValues();
+    if (TightResidual() > drift_tol_ ||
+        pivots_ - last_refactor_ >= kRefactorPerOrder * std::max(k(), 1)) {
+      if (!Refactor()) return false;
+      RecomputeValues();
     }
+    return true;
+  }
+
+  // The rates Δ of x and ω of w as the entering variable grows: for w_c
+  // (position s of R), x(t) = x + t H(:, s); for z_c, with column a = M(:, c)/s,
+  // x(t) = x − t H a_R and w(t) = w + t (a − M(:, Z) H a_R).
+  void EnteringRates(int c, bool enter_w) {
+    if (enter_w) {
+      const int s = row_pos_[c];
+      delta_ = H_.col(s).head(k());
+      omega_.setZero(n_);
+      M_.AddColumns(cols_z_view(), delta_view().data(), &omega_, &u_);
+      omega_ *= inv_s_;
+      if (z0_pos_ >= 0) omega_ += delta_[z0_pos_] * d_;
+      return;
+    }
+    M_.Column(c, &a_);
+    a_ *= inv_s_;
+    Restrict(a_, &aR_);
+    delta_ = -(H_.topLeftCorner(k(), k()) * aR_);
+    omega_ = a_;
+    scratch_.setZero(n_);
+    M_.AddColumns(cols_z_view(), delta_view().data(), &scratch_, &u_);
+    omega_ += scratch_ * inv_s_;
+    if (z0_pos_ >= 0) omega_ += delta_[z0_pos_] * d_;
+  }
+
+  // The leaving variable: a basic w (row) or position col of Z, at step θ.
+  struct Leaving {
+    int row = -1, col = -1;
+    double theta = 0;
+  };
+
+  // Ratio test (Harris's two passes): basic values decrease where Δ_p < 0 or
+  // ω_i < 0. Pass 1 finds the largest step θ_max that keeps every value ≥ −τ
+  // (τ = tol_, the roundoff of a value); pass 2 takes, of the candidates
+  // whose exact ratio is ≤ θ_max, the one with the largest pivot element
+  // relative to its column's scale. Values tied within roundoff thus never
+  // leave on a roundoff-sized pivot element (which made the basis
+  // numerically singular on the Jenga ticks); the ties the perturbation
+  // separates (by δ ≫ τ) are still told apart. Empty: a ray.
+  std::optional<Leaving> RatioTest() {
+    const double col_scale = std::max(1.0, delta_.head(k()).cwiseAbs().maxCoeff());
+    double row_scale = 1.0;
+    for (int i = 0; i < n_; ++i)
+      if (role_[i] == Role::kW) row_scale = std::max(row_scale, std::abs(omega_[i]));
+    candidates_.clear();
+    for (int p = 0; p < k(); ++p)
+      if (-delta_[p] > tol_ * col_scale)
+        candidates_.push_back({x_[p], -delta_[p], -delta_[p] / col_scale, -1, p});
+    for (int i = 0; i < n_; ++i)
+      if (role_[i] == Role::kW && -omega_[i] > tol_ * row_scale)
+        candidates_.push_back({w_[i], -omega_[i], -omega_[i] / row_scale, i, -1});
+    if (candidates_.empty()) return std::nullopt;
+    double theta_max = std::numeric_limits<double>::infinity();
+    for (const Candidate& cd : candidates_)
+      theta_max = std::min(theta_max, (std::max(cd.value, 0.0) + tol_) / cd.rate);
+    Leaving out;
+    double best = -1;
+    for (const Candidate& cd : candidates_) {
+      const double ratio = std::max(cd.value, 0.0) / cd.rate;
+      if (ratio > theta_max) continue;
+      // z₀ leaves whenever it can: the path ends.
+      const bool is_z0 = cd.col >= 0 && cd.col == z0_pos_;
+      const double key = is_z0 ? std::numeric_limits<double>::infinity() : cd.relative;
+      if (key > best) best = key, out.theta = ratio, out.row = cd.row, out.col = cd.col;
+    }
+    return out;
   }
 
   // max |q_R + M(R, Z) x| over the tight rows (scaled; their w, 0 exactly),
@@ -486,88 +510,105 @@ class Path {
     for (int i = 0; i < n_; ++i)
       if (role_[i] == Role::kW) w_[i] += theta * omega_[i];
     if (enter_w < 0) {
-      // A column enters: z_{enter_z}, or z₀ with column d. h = H a_R = −Δ.
-      const int var = enter_z;  // −1 for z₀
-      const VectorX h = -delta_.head(kk);
-      if (leave_row >= 0) {
-        // Bordering: C grows by row `leave_row` and the entering column.
-        const int i = leave_row;
-        RowOverZ(i, &r_);
-        const double s = omega_[i];  // a_i − r·h
-        if (!(std::abs(s) > 0) || !std::isfinite(s)) return false;
-        EnsureCapacity(kk + 1);
-        const VectorX rH = (r_.transpose() * H_.topLeftCorner(kk, kk)).transpose();
-        H_.topLeftCorner(kk, kk).noalias() += (h / s) * rH.transpose();
-        H_.block(0, kk, kk, 1) = -h / s;
-        H_.block(kk, 0, 1, kk) = -rH.transpose() / s;
-        H_(kk, kk) = 1.0 / s;
-        rows_.push_back(i);
-        row_pos_[i] = kk;
-        cols_.push_back(var);
-        if (var >= 0)
-          col_pos_[var] = kk;
-        else
-          z0_pos_ = kk;
-        x_[kk] = theta;
-        role_[i] = Role::kNone;
-        w_[i] = 0;
-        none_ = i;
-        last_left_z_ = false;
-      } else {
-        // Column replacement at position p.
-        const int p = leave_col;
-        const double hp = h[p];
-        if (!(std::abs(hp) > 0) || !std::isfinite(hp)) return false;
-        const Eigen::RowVectorXd Hp = H_.row(p).head(kk) / hp;
-        VectorX u = h;
-        u[p] -= 1.0;
-        H_.topLeftCorner(kk, kk).noalias() -= u * Hp;
-        const int leaving = cols_[p];
-        cols_[p] = var;
-        if (var >= 0)
-          col_pos_[var] = p;
-        else
-          z0_pos_ = p;
-        x_[p] = theta;
-        if (leaving < 0) {
-          z0_pos_ = -1;  // z₀ left: complementary.
-        } else {
-          col_pos_[leaving] = -1;
-          role_[leaving] = Role::kNone;
-          none_ = leaving;
-          last_left_z_ = true;
-        }
-        if (var >= 0) role_[var] = Role::kZ;
-      }
-      if (var >= 0) role_[var] = Role::kZ;
-      return true;
+      // A column enters: z_{enter_z}, or z₀ with column d (var −1).
+      const bool ok = leave_row >= 0 ? Border(enter_z, leave_row, theta)
+                                     : ReplaceColumn(enter_z, leave_col, theta);
+      if (ok && enter_z >= 0) role_[enter_z] = Role::kZ;
+      return ok;
     }
-    // w_c enters: row c (position s) leaves R.
-    const int c = enter_w;
+    // w_c enters: row c leaves R.
+    return leave_row >= 0 ? ReplaceRow(enter_w, leave_row, theta)
+                          : Shrink(enter_w, leave_col, theta);
+  }
+
+  // z_var enters, w_i leaves: C grows by row i and the entering column
+  // (bordering). h = H a_R = −Δ; s = a_i − r·h = ω_i, the Schur complement.
+  bool Border(int var, int i, double theta) {
+    const int kk = k();
+    const VectorX h = -delta_.head(kk);
+    RowOverZ(i, &r_);
+    const double s = omega_[i];
+    if (!(std::abs(s) > 0) || !std::isfinite(s)) return false;
+    EnsureCapacity(kk + 1);
+    const VectorX rH = (r_.transpose() * H_.topLeftCorner(kk, kk)).transpose();
+    H_.topLeftCorner(kk, kk).noalias() += (h / s) * rH.transpose();
+    H_.block(0, kk, kk, 1) = -h / s;
+    H_.block(kk, 0, 1, kk) = -rH.transpose() / s;
+    H_(kk, kk) = 1.0 / s;
+    rows_.push_back(i);
+    row_pos_[i] = kk;
+    cols_.push_back(var);
+    if (var >= 0)
+      col_pos_[var] = kk;
+    else
+      z0_pos_ = kk;
+    x_[kk] = theta;
+    role_[i] = Role::kNone;
+    w_[i] = 0;
+    none_ = i;
+    last_left_z_ = false;
+    return true;
+  }
+
+  // z_var enters, the variable at position p of Z leaves: column p of C
+  // replaced by a (Sherman–Morrison).
+  bool ReplaceColumn(int var, int p, double theta) {
+    const int kk = k();
+    const VectorX h = -delta_.head(kk);
+    const double hp = h[p];
+    if (!(std::abs(hp) > 0) || !std::isfinite(hp)) return false;
+    const Eigen::RowVectorXd Hp = H_.row(p).head(kk) / hp;
+    VectorX u = h;
+    u[p] -= 1.0;
+    H_.topLeftCorner(kk, kk).noalias() -= u * Hp;
+    const int leaving = cols_[p];
+    cols_[p] = var;
+    if (var >= 0)
+      col_pos_[var] = p;
+    else
+      z0_pos_ = p;
+    x_[p] = theta;
+    if (leaving < 0) {
+      z0_pos_ = -1;  // z₀ left: complementary.
+    } else {
+      col_pos_[leaving] = -1;
+      role_[leaving] = Role::kNone;
+      none_ = leaving;
+      last_left_z_ = true;
+    }
+    return true;
+  }
+
+  // w_c enters, w_i leaves: row c of C (position s) replaced by row i
+  // (Sherman–Morrison).
+  bool ReplaceRow(int c, int i, double theta) {
+    const int kk = k();
     const int s = row_pos_[c];
-    if (leave_row >= 0) {
-      // Row replacement at s by row `leave_row`.
-      const int i = leave_row;
-      RowOverZ(i, &r_);
-      const VectorX Hs = H_.col(s).head(kk);
-      Eigen::RowVectorXd rH = r_.transpose() * H_.topLeftCorner(kk, kk);
-      const double den = rH[s];
-      if (!(std::abs(den) > 0) || !std::isfinite(den)) return false;
-      rH[s] -= 1.0;
-      H_.topLeftCorner(kk, kk).noalias() -= (Hs / den) * rH;
-      rows_[s] = i;
-      row_pos_[i] = s;
-      row_pos_[c] = -1;
-      role_[c] = Role::kW;
-      w_[c] = theta;
-      role_[i] = Role::kNone;
-      w_[i] = 0;
-      none_ = i;
-      last_left_z_ = false;
-      return true;
-    }
-    // Shrink: remove position p of Z and position s of R.
-    const int p = leave_col;
+    RowOverZ(i, &r_);
+    const VectorX Hs = H_.col(s).head(kk);
+    Eigen::RowVectorXd rH = r_.transpose() * H_.topLeftCorner(kk, kk);
+    const double den = rH[s];
+    if (!(std::abs(den) > 0) || !std::isfinite(den)) return false;
+    rH[s] -= 1.0;
+    H_.topLeftCorner(kk, kk).noalias() -= (Hs / den) * rH;
+    rows_[s] = i;
+    row_pos_[i] = s;
+    row_pos_[c] = -1;
+    role_[c] = Role::kW;
+    w_[c] = theta;
+    role_[i] = Role::kNone;
+    w_[i] = 0;
+    none_ = i;
+    last_left_z_ = false;
+    return true;
+  }
+
+  // w_c enters, the variable at position p of Z leaves: row c (position s)
+  // and column p removed (Schur complement), the last position moved into
+  // the holes.
+  bool Shrink(int c, int p, double theta) {
+    const int kk = k();
+    const int s = row_pos_[c];
     const double hps = H_(p, s);
     if (!(std::abs(hps) > 0) || !std::isfinite(hps)) return false;
     const VectorX Hcol = H_.col(s).head(kk);
@@ -645,6 +686,142 @@ struct Attempt {
   LcpBasis basis;
 };
 
+// The problem as every attempt sees it: the data, its scale and tolerances.
+struct Problem {
+  const FactoredLcpMatrix& M;
+  const VectorX& q;
+  int n = 0;
+  double accept = 0;  // the natural-map residual a solution must reach
+  double inv_s = 1;   // 1 / the scale of the data
+  double tol = 0;     // the pivot tolerance (relative)
+};
+
+// Fills `result` with z, w = M z + q, the residual and the basis; true when
+// z solves the LCP to the acceptance tolerance.
+bool Finish(const Problem& pb, VectorX z, const LcpBasis& basis, LcpResult* result) {
+  VectorX w;
+  pb.M.Multiply(z, &w);
+  w += pb.q;
+  double res = 0;
+  for (int i = 0; i < pb.n; ++i) res = std::max(res, std::abs(std::min(z[i], w[i])));
+  result->z = std::move(z);
+  result->w = std::move(w);
+  result->residual = res;
+  result->basis = basis;
+  return res <= pb.accept && IsComplementarySolution(result->z, result->w, pb.accept);
+}
+
+// The basis re-solved with the true q: z_α = −M_αα⁻¹ q_α by LU (no inverse:
+// this is the whole cost of a warm start that needs no pivot), one
+// refinement step. False when M_αα is singular.
+bool Resolve(const Problem& pb, const LcpBasis& basis, VectorX* z) {
+  std::vector<int> alpha;
+  for (int i = 0; i < pb.n; ++i)
+    if (basis.basic_z[i]) alpha.push_back(i);
+  z->setZero(pb.n);
+  const int k = static_cast<int>(alpha.size());
+  if (k == 0) return true;
+  MatrixX C(k, k);
+  VectorX col, rhs(k);
+  for (int p = 0; p < k; ++p) {
+    pb.M.Column(alpha[p], &col);
+    for (int s = 0; s < k; ++s) C(s, p) = col[alpha[s]];
+    rhs[p] = -pb.q[alpha[p]];
+  }
+  const Eigen::PartialPivLU<MatrixX> lu(C);
+  const double u_min = lu.matrixLU().diagonal().cwiseAbs().minCoeff();
+  if (!(u_min > k * kEps * C.cwiseAbs().maxCoeff())) return false;
+  VectorX x = lu.solve(rhs);
+  x += lu.solve(rhs - C * x);
+  if (!x.allFinite()) return false;
+  for (int p = 0; p < k; ++p) (*z)[alpha[p]] = x[p];
+  return true;
+}
+
+// One attempt from `start` (all false: cold) with perturbation seed `seed`.
+// The starting basis is factorised once: with the true q it may already
+// solve the problem (a warm start without pivots: `result` is then filled);
+// otherwise the same factorisation starts the path on the perturbed q.
+Attempt RunAttempt(const Problem& pb, const std::vector<bool>& start, uint64_t seed,
+                   double perturbation, int limit, LcpResult* result) {
+  Attempt a;
+  const VectorX q_true = pb.q * pb.inv_s;
+  Path path(pb.M, q_true, pb.inv_s, pb.tol, kDriftFraction * std::max(perturbation, pb.tol));
+  if (!path.SetBasis(start, /*with_inverse=*/false)) return a;
+  if (std::find(start.begin(), start.end(), true) != start.end()) {
+    VectorX z;
+    path.SolveWith(q_true, &z);
+    if (Finish(pb, z, LcpBasis{start}, result)) {
+      a.end = PathEnd::kSolution;
+      a.start_solves = true;
+      return a;
+    }
+  }
+  VectorX qs = q_true;
+  for (int i = 0; i < pb.n; ++i) qs[i] += perturbation * internal::PerturbationWeight(seed, i);
+  if (!path.EnsureInverse()) return a;
+  path.SetQ(qs);
+  a.end = path.Feasible(0.0) ? PathEnd::kSolution : path.Follow(limit);
+  a.pivots = path.pivots();
+  path.Extract(&a.z, &a.basis);
+  if (a.end == PathEnd::kSolution) path.SolveWith(q_true, &a.z_exact);
+  return a;
+}
+
+// What an attempt's end means for the solve: done (the result is final), or
+// on to the next round. `ray` records a cold path's secondary ray.
+bool Concludes(const Problem& pb, Attempt& a, bool from_warm, LcpResult* result, bool* ray) {
+  if (a.start_solves) {  // Finish() has filled the result
+    result->status = LcpStatus::kSolved;
+    result->warm_start_used = true;
+    return true;
+  }
+  switch (a.end) {
+    case PathEnd::kSolution: {
+      // The final basis with the true q: from the path's H, else by a fresh
+      // LU of the basis (when H has drifted), else the perturbed iterate if
+      // it is the better answer.
+      VectorX z;
+      if (Finish(pb, a.z_exact, a.basis, result) ||
+          (Resolve(pb, a.basis, &z) && Finish(pb, z, a.basis, result)) ||
+          Finish(pb, a.z, a.basis, result)) {
+        result->status = LcpStatus::kSolved;
+        result->message.clear();
+        return true;
+      }
+      result->status = LcpStatus::kNumericalFailure;
+      std::ostringstream why;
+      why << "final basis does not solve the LCP: natural-map residual " << result->residual
+          << " > " << pb.accept;
+      result->message = why.str();
+      return false;
+    }
+    case PathEnd::kRay:
+      // A ray from the cold start proves there is no solution (M
+      // copositive-plus, or Stewart–Trinkle's with physical q); one from a
+      // warm start proves nothing: retry cold.
+      if (from_warm) return false;
+      if (Finish(pb, a.z, a.basis, result)) {  // ended a roundoff away from a solution
+        result->status = LcpStatus::kSolved;
+        return true;
+      }
+      // On the degenerate 3-D LCPs a perturbed path can also end on a ray
+      // when the LCP has a solution (the bridge of compas_cra): the other
+      // rounds are tried, and the ray is reported only if none solves it.
+      *ray = true;
+      return false;
+    case PathEnd::kPivotLimit:
+      result->status = LcpStatus::kPivotLimit;
+      result->message = "pivot limit reached";
+      return !from_warm;
+    case PathEnd::kSingular:
+      break;
+  }
+  result->status = LcpStatus::kNumericalFailure;
+  result->message = "singular basis on the path";
+  return false;
+}
+
 }  // namespace
 
 LcpResult SolveLemkeFactored(const FactoredLcpMatrix& M, const VectorX& q,
@@ -659,94 +836,23 @@ LcpResult SolveLemkeFactored(const FactoredLcpMatrix& M, const VectorX& q,
     return result;
   }
   const double q_inf = q.cwiseAbs().maxCoeff();
-  const double accept = params.solution_tolerance * std::max(1.0, q_inf);
-  const auto finish = [&](VectorX z, const LcpBasis& basis) {
-    VectorX w;
-    M.Multiply(z, &w);
-    w += q;
-    double res = 0;
-    for (int i = 0; i < n; ++i) res = std::max(res, std::abs(std::min(z[i], w[i])));
-    result.z = std::move(z);
-    result.w = std::move(w);
-    result.residual = res;
-    result.basis = basis;
-    return res <= accept && IsComplementarySolution(result.z, result.w, accept);
-  };
+  Problem pb{
+      M,
+      q,
+      n,
+      params.solution_tolerance * std::max(1.0, q_inf),
+      1.0 / std::max(M.MagnitudeBound(), q_inf),
+      params.pivot_tolerance > 0.0 ? params.pivot_tolerance : static_cast<double>(n) * kEps * 16.0};
   if (q.minCoeff() >= 0.0) {
     result.status = LcpStatus::kTrivial;
-    finish(VectorX::Zero(n), LcpBasis{std::vector<bool>(n, false)});
+    Finish(pb, VectorX::Zero(n), LcpBasis{std::vector<bool>(n, false)}, &result);
     return result;
   }
-  const double scale = std::max(M.MagnitudeBound(), q_inf);
-  const double inv_s = 1.0 / scale;
-  const double tol =
-      params.pivot_tolerance > 0.0 ? params.pivot_tolerance : static_cast<double>(n) * kEps * 16.0;
   const int max_pivots = params.max_pivots > 0 ? params.max_pivots : std::max(1000, 50 * (n + 1));
   // The tie-breaking perturbation (relative, like tol): between the pivot
   // tolerance and the solution tolerance (perturbation.h).
-  const double delta = internal::PerturbationSize(tol, params.solution_tolerance);
-
-  // The basis re-solved with the true q: z_α = −M_αα⁻¹ q_α by LU (no
-  // inverse: this is the whole cost of a warm start that needs no pivot), one
-  // refinement step.
-  const auto resolve = [&](const LcpBasis& basis, VectorX* z) {
-    std::vector<int> alpha;
-    for (int i = 0; i < n; ++i)
-      if (basis.basic_z[i]) alpha.push_back(i);
-    z->setZero(n);
-    const int k = static_cast<int>(alpha.size());
-    if (k == 0) return true;
-    MatrixX C(k, k);
-    VectorX col, rhs(k);
-    for (int p = 0; p < k; ++p) {
-      M.Column(alpha[p], &col);
-      for (int s = 0; s < k; ++s) C(s, p) = col[alpha[s]];
-      rhs[p] = -q[alpha[p]];
-    }
-    const Eigen::PartialPivLU<MatrixX> lu(C);
-    const double u_min = lu.matrixLU().diagonal().cwiseAbs().minCoeff();
-    if (!(u_min > k * kEps * C.cwiseAbs().maxCoeff())) return false;
-    VectorX x = lu.solve(rhs);
-    x += lu.solve(rhs - C * x);
-    if (!x.allFinite()) return false;
-    for (int p = 0; p < k; ++p) (*z)[alpha[p]] = x[p];
-    return true;
-  };
-
-  // One attempt from `start` (empty: cold) with perturbation seed `seed`.
-  // The starting basis is factorised once: with the true q it may already
-  // solve the problem (a warm start without pivots); otherwise the same
-  // factorisation starts the path on the perturbed q.
-  const auto attempt = [&](const std::vector<bool>& start, uint64_t seed, double perturbation,
-                           int limit) {
-    Attempt a;
-    const VectorX q_true = q * inv_s;
-    Path path(M, q_true, inv_s, tol, kDriftFraction * std::max(perturbation, tol));
-    if (!path.SetBasis(start, /*with_inverse=*/false)) return a;
-    if (std::find(start.begin(), start.end(), true) != start.end()) {
-      VectorX z;
-      path.SolveWith(q_true, &z);
-      if (finish(z, LcpBasis{start})) {
-        a.end = PathEnd::kSolution;
-        a.start_solves = true;
-        return a;
-      }
-    }
-    VectorX qs = q_true;
-    for (int i = 0; i < n; ++i) qs[i] += perturbation * internal::PerturbationWeight(seed, i);
-    if (!path.EnsureInverse()) return a;
-    path.SetQ(qs);
-    a.end = path.Feasible(0.0) ? PathEnd::kSolution : path.Follow(limit);
-    a.pivots = path.pivots();
-    path.Extract(&a.z, &a.basis);
-    if (a.end == PathEnd::kSolution) path.SolveWith(q_true, &a.z_exact);
-    return a;
-  };
-
+  const double delta = internal::PerturbationSize(pb.tol, params.solution_tolerance);
   const bool warm = warm_start != nullptr && warm_start->basic_z.size() == static_cast<size_t>(n);
-  const std::vector<bool> start = warm ? warm_start->basic_z : std::vector<bool>(n, false);
-
-  std::ostringstream why;
   bool ray = false;  // a cold path ended on a secondary ray
   for (int round = 0; round < 4; ++round) {
     // Round 0: from the warm basis (if any), else cold; then cold with two
@@ -755,60 +861,12 @@ LcpResult SolveLemkeFactored(const FactoredLcpMatrix& M, const VectorX& q,
     // from problem to problem (docs/benchmarks.md, "Degenerate contact
     // LCPs"): each is tried only when the ones before it failed.
     const bool from_warm = warm && round == 0;
-    const std::vector<bool> from = from_warm ? start : std::vector<bool>(n, false);
+    const std::vector<bool> from = from_warm ? warm_start->basic_z : std::vector<bool>(n, false);
     const int limit = from_warm ? std::min(max_pivots, 2 * n + 100) : max_pivots;
-    Attempt a = attempt(from, static_cast<uint64_t>(round), round < 3 ? delta : 0.0, limit);
+    Attempt a =
+        RunAttempt(pb, from, static_cast<uint64_t>(round), round < 3 ? delta : 0.0, limit, &result);
     result.pivots += a.pivots;
-    if (a.start_solves) {  // finish() has filled the result
-      result.status = LcpStatus::kSolved;
-      result.warm_start_used = true;
-      return result;
-    }
-    if (a.end == PathEnd::kSolution) {
-      // The final basis with the true q: from the path's H, else by a fresh
-      // LU of the basis (when H has drifted), else the perturbed iterate.
-      VectorX z;
-      if (finish(a.z_exact, a.basis) || (resolve(a.basis, &z) && finish(z, a.basis))) {
-        result.status = LcpStatus::kSolved;
-        result.message.clear();
-        return result;
-      }
-      // Keep the perturbed iterate if it is the better answer.
-      if (finish(a.z, a.basis)) {
-        result.status = LcpStatus::kSolved;
-        result.message.clear();
-        return result;
-      }
-      result.status = LcpStatus::kNumericalFailure;
-      why.str("");
-      why << "final basis does not solve the LCP: natural-map residual " << result.residual << " > "
-          << accept;
-      result.message = why.str();
-      continue;
-    }
-    if (a.end == PathEnd::kRay) {
-      // A ray from the cold start proves there is no solution (M
-      // copositive-plus, or Stewart–Trinkle's with physical q); one from a
-      // warm start proves nothing: retry cold.
-      if (from_warm) continue;
-      if (finish(a.z, a.basis)) {  // ended a roundoff away from a solution
-        result.status = LcpStatus::kSolved;
-        return result;
-      }
-      // On the degenerate 3-D LCPs a perturbed path can also end on a ray
-      // when the LCP has a solution (the bridge of compas_cra): the other
-      // rounds are tried, and the ray is reported only if none solves it.
-      ray = true;
-      continue;
-    }
-    if (a.end == PathEnd::kPivotLimit) {
-      result.status = LcpStatus::kPivotLimit;
-      result.message = "pivot limit reached";
-      if (!from_warm) return result;
-      continue;
-    }
-    result.status = LcpStatus::kNumericalFailure;
-    result.message = "singular basis on the path";
+    if (Concludes(pb, a, from_warm, &result, &ray)) return result;
   }
   if (ray) {
     result.status = LcpStatus::kRayTermination;
