@@ -329,20 +329,14 @@ double BodyRadius(const BodyDynamics& b) {
   return r > 0 ? r : 1.0;
 }
 
-}  // namespace
-
-Mechanism FindMechanism(const ContactLcp& lcp) {
-  Mechanism out;
-  const int nb = static_cast<int>(lcp.bodies.size());
-  const EquilibriumLp e = MakeEquilibriumLp(lcp, /*frictionless=*/false);
+// The elastic equilibrium LP: min Σ w_i (s⁺_i + s⁻_i) with A x + s⁺ − s⁻ = rhs,
+// x, s ≥ 0; w = 1 on force rows, 1/r on torque rows. Its dual is the
+// mechanism LP of the file comment: max F·ν with W_jᵀν ≥ 0 and |ν_i| ≤ w_i,
+// where ν = −y (y the row duals). The optimum is the least unbalanced load.
+// False (with `message`) when Clp fails.
+bool SolveElasticLp(const EquilibriumLp& e, const std::vector<double>& radius, ClpSimplex& lp,
+                    std::string* message) {
   const int ng = static_cast<int>(e.generators.size());
-  std::vector<double> radius(nb);
-  for (int b = 0; b < nb; ++b) radius[b] = BodyRadius(lcp.bodies[b]);
-
-  // The elastic equilibrium LP: min Σ w_i (s⁺_i + s⁻_i) with A x + s⁺ − s⁻ = rhs,
-  // x, s ≥ 0; w = 1 on force rows, 1/r on torque rows. Its dual is the
-  // mechanism LP of the file comment: max F·ν with W_jᵀν ≥ 0 and |ν_i| ≤ w_i,
-  // where ν = −y (y the row duals). The optimum is the least unbalanced load.
   Triplets a = e.a;
   const int ncols = ng + 2 * e.nrows;
   std::vector<double> cost(ncols, 0.0);
@@ -353,7 +347,6 @@ Mechanism FindMechanism(const ContactLcp& lcp) {
     cost[ng + 2 * i] = cost[ng + 2 * i + 1] = w;
   }
   const std::vector<double> col_lo(ncols, 0.0), col_hi(ncols, COIN_DBL_MAX);
-  ClpSimplex lp;
   lp.setLogLevel(0);
   lp.loadProblem(a.Matrix(e.nrows, ncols), col_lo.data(), col_hi.data(), cost.data(), e.rhs.data(),
                  e.rhs.data());
@@ -367,40 +360,50 @@ Mechanism FindMechanism(const ContactLcp& lcp) {
   } else {
     lp.dual();
   }
-  if (lp.status() != 0) {
-    out.message = "Clp (elastic equilibrium LP): status " + std::to_string(lp.status());
-    return out;
-  }
+  if (lp.status() == 0) return true;
+  *message = "Clp (elastic equilibrium LP): status " + std::to_string(lp.status());
+  return false;
+}
 
-  // ν = −P y per body, normalised; then checked independently of Clp.
-  const double* y = lp.dualRowSolution();
-  out.nu.assign(nb, Vector6::Zero());
+// The virtual motion ν = −P y per body from the row duals, normalised so that
+// the largest body moves by 1 (|v| + r|ω|); bodies below kMechanismRest of
+// that are at rest (interior-point duals leave dust there). False when every
+// body is at rest.
+bool MotionFromDuals(const EquilibriumLp& e, const std::vector<double>& radius, const double* y,
+                     std::vector<Vector6>* nu) {
+  const int nb = static_cast<int>(radius.size());
+  const auto size = [&](int b) {
+    return (*nu)[b].head<3>().norm() + radius[b] * (*nu)[b].tail<3>().norm();
+  };
+  nu->assign(nb, Vector6::Zero());
   double largest = 0;
   for (int b = 0; b < nb; ++b) {
     Vector6 yb;
     for (int k = 0; k < 6; ++k) yb[k] = y[6 * b + k];
-    out.nu[b] = -(e.P[b] * yb);
-    largest =
-        std::max(largest, out.nu[b].head<3>().norm() + radius[b] * out.nu[b].tail<3>().norm());
+    (*nu)[b] = -(e.P[b] * yb);
+    largest = std::max(largest, size(b));
   }
-  if (!(largest > 0)) {
-    out.message = "no motion along which gravity does work is admissible";
-    return out;
-  }
-  // Interior-point duals leave dust where a body is at rest.
+  if (!(largest > 0)) return false;
   for (int b = 0; b < nb; ++b)
-    if (out.nu[b].head<3>().norm() + radius[b] * out.nu[b].tail<3>().norm() <=
-        kMechanismRest * largest)
-      out.nu[b].setZero();
-  for (Vector6& n : out.nu) n /= largest;
+    if (size(b) <= kMechanismRest * largest) (*nu)[b].setZero();
+  for (Vector6& n : *nu) n /= largest;
+  return true;
+}
+
+// The independent check of a mechanism, without Clp: gravity's power F·ν >
+// 0 and every generator's power W_jᵀν ≥ 0 (no contact resists), both to
+// kMechanismSlack of the wrenches' scale; the moving bodies.
+void CheckMechanism(const ContactLcp& lcp, const EquilibriumLp& e,
+                    const std::vector<double>& radius, Mechanism& out) {
+  const int nb = static_cast<int>(lcp.bodies.size());
   double least = 0, wrench_scale = 0;
-  for (int j = 0; j < ng; ++j) {
-    const JacobianRow& rn = lcp.normal_rows[e.generators[j].contact];
+  for (const Generator& g : e.generators) {
+    const JacobianRow& rn = lcp.normal_rows[g.contact];
     double pj = 0;
     for (int s = 0; s < 2; ++s) {
       const int b = rn.body[s];
       if (b < 0) continue;
-      const Vector6 w = GeneratorWrench(lcp, e.generators[j], s);
+      const Vector6 w = GeneratorWrench(lcp, g, s);
       pj += w.dot(out.nu[b]);
       wrench_scale = std::max(wrench_scale, w.cwiseAbs().maxCoeff());
     }
@@ -420,6 +423,23 @@ Mechanism FindMechanism(const ContactLcp& lcp) {
                       ? "no motion along which gravity does work is admissible"
                       : "the mechanism failed its check (power " + std::to_string(out.power) +
                             ", least generator power " + std::to_string(least) + ")";
+}
+
+}  // namespace
+
+Mechanism FindMechanism(const ContactLcp& lcp) {
+  Mechanism out;
+  const int nb = static_cast<int>(lcp.bodies.size());
+  const EquilibriumLp e = MakeEquilibriumLp(lcp, /*frictionless=*/false);
+  std::vector<double> radius(nb);
+  for (int b = 0; b < nb; ++b) radius[b] = BodyRadius(lcp.bodies[b]);
+  ClpSimplex lp;
+  if (!SolveElasticLp(e, radius, lp, &out.message)) return out;
+  if (!MotionFromDuals(e, radius, lp.dualRowSolution(), &out.nu)) {
+    out.message = "no motion along which gravity does work is admissible";
+    return out;
+  }
+  CheckMechanism(lcp, e, radius, out);
   return out;
 }
 
