@@ -1,8 +1,20 @@
 #!/usr/bin/env bash
-# Installs everything Cairn needs to build, test and benchmark, from Debian's
-# packages only. Safe to run again: it installs only what is missing.
-# Must run as root (or with sudo available) on Debian 12.
+# Installs everything Cairn needs to build and test, from Debian's packages
+# only; with --bench, also the benchmarks' peers (Google Benchmark, Siconos,
+# Bullet), which the main job and the tests do not need. Safe to run again: it
+# installs only what is missing. Must run as root (or with sudo available) on
+# Debian 12.
+#   bash scripts/setup.sh          # build + tests
+#   bash scripts/setup.sh --bench  # ... and bench/
 set -euo pipefail
+
+bench=0
+for arg in "$@"; do
+  case "$arg" in
+    --bench) bench=1 ;;
+    *) echo "setup: unknown option $arg (known: --bench)" >&2; exit 2 ;;
+  esac
+done
 
 packages=(
   build-essential cmake git pkg-config
@@ -14,10 +26,14 @@ packages=(
   libassimp-dev          # mesh parts (OBJ, STL)
   libboost-dev           # Boost.Geometry: clipping coplanar faces of 3-D contacts
   libgtest-dev libgmock-dev  # tests
-  libbenchmark-dev       # bench/
-  libsiconos-numerics-dev    # bench/: Siconos' Lemke, the peer we compare against
-  libbullet-dev          # bench/: Bullet, the simulator a user would otherwise threshold
 )
+if ((bench)); then
+  packages+=(
+    libbenchmark-dev           # bench/
+    libsiconos-numerics-dev    # bench/: Siconos' Lemke, the peer we compare against
+    libbullet-dev              # bench/: Bullet, the simulator a user would otherwise threshold
+  )
+fi
 
 missing=()
 for p in "${packages[@]}"; do
