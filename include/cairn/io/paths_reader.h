@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "cairn/geometry/assembly.h"
-#include "cairn/planning/planner.h"
+#include "cairn/geometry/plan.h"
 
 namespace cairn {
 

@@ -7,7 +7,7 @@
 #include <string>
 
 #include "cairn/geometry/assembly.h"
-#include "cairn/motion/plan.h"
+#include "cairn/geometry/plan.h"
 
 namespace cairn {
 

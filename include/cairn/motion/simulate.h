@@ -52,7 +52,7 @@
 #include <string>
 #include <vector>
 
-#include "cairn/motion/plan.h"
+#include "cairn/geometry/plan.h"
 #include "cairn/stability/analyze.h"
 
 namespace cairn {

@@ -41,7 +41,7 @@
 #include <vector>
 
 #include "cairn/geometry/assembly.h"
-#include "cairn/motion/plan.h"
+#include "cairn/geometry/plan.h"
 #include "cairn/motion/simulate.h"
 
 namespace cairn {

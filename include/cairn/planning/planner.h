@@ -48,21 +48,11 @@
 #include <vector>
 
 #include "cairn/geometry/assembly.h"
-#include "cairn/motion/plan.h"
+#include "cairn/geometry/plan.h"
 #include "cairn/motion/simulate.h"
 #include "cairn/planning/fixtures.h"
 
 namespace cairn {
-
-/// A candidate path for a part or subassembly.
-struct CandidatePath {
-  std::vector<Vector3> path;  ///< displacements from the assembled pose, path[0] = 0, ≥ 2 points
-  SupportMode support = SupportMode::kFull;
-  std::vector<int> grip;  ///< extra gripped parts besides the removed ones (tools), may be empty
-  std::string label;      ///< for people: "up", "(−1, 0)", "given path 2 of C"
-  bool straight = false;  ///< a straight removal along an NDBG cell direction
-  Vector3 direction{0, 0, 0};  ///< straight: the unit direction
-};
 
 /// Which support modes straight removals are tried with.
 enum class SupportChoice { kFull, kNone, kBoth };

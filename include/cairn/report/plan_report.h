@@ -8,7 +8,7 @@
 #include <string>
 
 #include "cairn/geometry/assembly.h"
-#include "cairn/motion/plan.h"
+#include "cairn/geometry/plan.h"
 #include "cairn/planning/planner.h"
 
 namespace cairn {

@@ -1,4 +1,4 @@
-#include "cairn/motion/plan.h"
+#include "cairn/geometry/plan.h"
 
 #include <algorithm>
 #include <cmath>

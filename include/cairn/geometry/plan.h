@@ -1,7 +1,11 @@
 #pragma once
 /// @file
 /// A disassembly (or assembly) plan: a sequence of removals, each with the
-/// path its gripped parts follow (docs/plan-format.md; a public contract).
+/// path its gripped parts follow (docs/plan-format.md; a public contract);
+/// and the candidate paths the planner tries (`cairn plan --paths`). Data
+/// about the model's parts and their motions, validated against the
+/// Assembly, which the readers (io) build and the algorithms (motion,
+/// planning) use: it lives with the Assembly, below both.
 
 #include <string>
 #include <vector>
@@ -74,6 +78,16 @@ struct Plan {
   /// `remove`, an empty path or zero-length path, both or neither path forms,
   /// a zero direction, a negative distance, dt or speed ≤ 0, non-finite numbers.
   static Plan Create(const PlanDef& def, const Assembly& assembly, const std::string& file = "");
+};
+
+/// A candidate path for a part or subassembly.
+struct CandidatePath {
+  std::vector<Vector3> path;  ///< displacements from the assembled pose, path[0] = 0, ≥ 2 points
+  SupportMode support = SupportMode::kFull;
+  std::vector<int> grip;  ///< extra gripped parts besides the removed ones (tools), may be empty
+  std::string label;      ///< for people: "up", "(−1, 0)", "given path 2 of C"
+  bool straight = false;  ///< a straight removal along an NDBG cell direction
+  Vector3 direction{0, 0, 0};  ///< straight: the unit direction
 };
 
 }  // namespace cairn

@@ -1,4 +1,4 @@
-#include "cairn/motion/plan.h"
+#include "cairn/geometry/plan.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
