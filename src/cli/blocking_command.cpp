@@ -1,17 +1,19 @@
 // `cairn blocking`: the NDBG of a scene (planning/blocking.h) and, per cell,
 // the parts that can be taken out along its directions.
+#include "cli/blocking_command.h"
+
 #include <ostream>
 
 #include "cairn/core/error.h"
 #include "cairn/planning/blocking.h"
 #include "cairn/report/blocking_report.h"
-#include "cli/commands.h"
+#include "cli/command.h"
 #include "cli/model.h"
 
 namespace cairn::cli {
 
 int RunBlocking(const BlockingArgs& args, std::ostream& out, std::ostream& err) {
-  try {
+  return RunGuarded(err, [&]() -> int {
     const Assembly assembly = LoadModel(args.scene, args.model).assembly;
     ReportOptions report;
     report.scene_file = args.scene;
@@ -23,10 +25,7 @@ int RunBlocking(const BlockingArgs& args, std::ostream& out, std::ostream& err) 
     else
       out << NdbgToText(assembly, ndbg, report);
     return kExitStable;
-  } catch (const InputError& e) {
-    err << "cairn: error: " << e.what() << '\n';
-    return kExitBadInput;
-  }
+  });
 }
 
 }  // namespace cairn::cli

@@ -3,7 +3,12 @@
 #include <CLI/CLI.hpp>
 #include <iostream>
 
-#include "cli/commands.h"
+#include "cli/blocking_command.h"
+#include "cli/check_command.h"
+#include "cli/command.h"
+#include "cli/convert_command.h"
+#include "cli/plan_command.h"
+#include "cli/simulate_command.h"
 
 namespace {
 
@@ -47,104 +52,124 @@ void AddWithout(CLI::App* cmd, std::vector<std::string>& without, const char* de
   cmd->add_option("--without", without, description)->delimiter(',');
 }
 
-}  // namespace
+CLI::App* AddCheck(CLI::App& app, cairn::cli::CheckArgs& check) {
+  CLI::App* cmd =
+      AddSceneCommand(app, "check", "Is one configuration of a scene stable under gravity?",
+                      check.scene, check.json);
+  cmd->add_option("--normalize", check.normalize, "Divide forces by the weight of this part");
+  AddWithout(cmd, check.without, "Check with these parts taken away (comma-separated)");
+  AddModelOptions(cmd, check.model);
+  return cmd;
+}
 
-int main(int argc, char** argv) {
+CLI::App* AddSimulate(CLI::App& app, cairn::cli::SimulateArgs& sim) {
+  CLI::App* cmd = AddSceneCommand(
+      app, "simulate", "Run a disassembly or assembly plan: is every step stable along its path?",
+      sim.scene, sim.json);
+  cmd->add_option("plan", sim.plan, "Plan file (JSON, plan format 1)")->required();
+  cmd->add_option("--timeline", sim.timeline,
+                  "Write one CSV row per time step and contact to this file");
+  cmd->add_option("--normalize", sim.normalize, "Divide forces by the weight of this part");
+  cmd->add_flag("--continue", sim.continue_after_failure,
+                "Go on after a failure, as if it had been prevented");
+  cmd->add_flag("--suggest-fixtures", sim.suggest_fixtures,
+                "When a step fails, suggest the fewest fixels (point fixtures) that make the "
+                "plan stable, verified by re-running it");
+  cmd->add_option("--max-fixels", sim.max_fixels,
+                  "The most fixels --suggest-fixtures adds (default 3)")
+      ->check(CLI::Range(1, 20));
+  AddModelOptions(cmd, sim.model);
+  return cmd;
+}
+
+CLI::App* AddConvert(CLI::App& app, cairn::cli::ConvertArgs& convert) {
+  CLI::App* cmd = app.add_subcommand(
+      "convert", "Write the model of a file (e.g. a COMPAS assembly) as a scene file, format 1");
+  cmd->add_option("input", convert.input, "Input file (--format says which format)")->required();
+  cmd->add_option("output", convert.output, "Scene file to write (JSON, format 1)")->required();
+  AddModelOptions(cmd, convert.model);
+  return cmd;
+}
+
+CLI::App* AddBlocking(CLI::App& app, cairn::cli::BlockingArgs& blocking) {
+  CLI::App* cmd = AddSceneCommand(
+      app, "blocking", "Which parts can be taken out, and along which directions? (the NDBG)",
+      blocking.scene, blocking.json);
+  AddWithout(cmd, blocking.without, "Compute it with these parts taken away (comma-separated)");
+  AddModelOptions(cmd, blocking.model);
+  return cmd;
+}
+
+CLI::App* AddPlan(CLI::App& app, cairn::cli::PlanArgs& plan) {
+  CLI::App* cmd = AddSceneCommand(
+      app, "plan", "Find stable disassembly sequences (and their assembly plans) of a scene",
+      plan.scene, plan.json);
+  cmd->add_option("--max", plan.max,
+                  "Stop after K stable sequences (best-first search); default: all")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--threads", plan.threads, "Worker threads (default: every core)")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--paths", plan.paths,
+                  "Candidate paths per part (JSON: part name -> list of paths)");
+  cmd->add_option("--emit-plans", plan.emit_plans,
+                  "Write each sequence as plan files (disassembly and assembly) in this folder");
+  cmd->add_option("--dot", plan.dot,
+                  "Write the AND/OR graph (Graphviz dot) with stable and unstable edges");
+  cmd->add_option("--keep", plan.keep, "Parts that stay in the assembly (comma-separated)")
+      ->delimiter(',');
+  cmd->add_option("--support", plan.support,
+                  "Support of straight removals: full (carried, default), none (pushed "
+                  "along the path), both")
+      ->check(CLI::IsMember({"full", "none", "both"}));
+  cmd->add_flag("--single-parts", plan.no_subassemblies,
+                "Remove one part per step (no subassemblies)");
+  cmd->add_option("--dt", plan.dt, "Time step of simulated paths (s; default: size/100)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--speed", plan.speed, "Gripper speed (length/s; default 1)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--allow-fixtures", plan.allow_fixtures,
+                  "When nothing is stable, allow up to N fixels (fewest first)")
+      ->check(CLI::Range(0, 20));
+  AddModelOptions(cmd, plan.model);
+  return cmd;
+}
+
+// The command line: its subcommands and their options, parsed; then the
+// chosen command runs. Returns the exit code.
+int Run(int argc, char** argv) {
+  namespace cli = cairn::cli;
   CLI::App app{"Cairn: does an assembly stay put while parts are taken out?"};
   app.require_subcommand(1);
   app.set_version_flag("--version", "cairn 0.1.0");
-
-  cairn::cli::CheckArgs check;
-  CLI::App* check_cmd =
-      AddSceneCommand(app, "check", "Is one configuration of a scene stable under gravity?",
-                      check.scene, check.json);
-  check_cmd->add_option("--normalize", check.normalize, "Divide forces by the weight of this part");
-  AddWithout(check_cmd, check.without, "Check with these parts taken away (comma-separated)");
-  AddModelOptions(check_cmd, check.model);
-
-  cairn::cli::SimulateArgs sim;
-  CLI::App* sim_cmd = AddSceneCommand(
-      app, "simulate", "Run a disassembly or assembly plan: is every step stable along its path?",
-      sim.scene, sim.json);
-  sim_cmd->add_option("plan", sim.plan, "Plan file (JSON, plan format 1)")->required();
-  sim_cmd->add_option("--timeline", sim.timeline,
-                      "Write one CSV row per time step and contact to this file");
-  sim_cmd->add_option("--normalize", sim.normalize, "Divide forces by the weight of this part");
-  sim_cmd->add_flag("--continue", sim.continue_after_failure,
-                    "Go on after a failure, as if it had been prevented");
-  sim_cmd->add_flag("--suggest-fixtures", sim.suggest_fixtures,
-                    "When a step fails, suggest the fewest fixels (point fixtures) that make the "
-                    "plan stable, verified by re-running it");
-  sim_cmd
-      ->add_option("--max-fixels", sim.max_fixels,
-                   "The most fixels --suggest-fixtures adds (default 3)")
-      ->check(CLI::Range(1, 20));
-  AddModelOptions(sim_cmd, sim.model);
-
-  cairn::cli::ConvertArgs convert;
-  CLI::App* convert_cmd = app.add_subcommand(
-      "convert", "Write the model of a file (e.g. a COMPAS assembly) as a scene file, format 1");
-  convert_cmd->add_option("input", convert.input, "Input file (--format says which format)")
-      ->required();
-  convert_cmd->add_option("output", convert.output, "Scene file to write (JSON, format 1)")
-      ->required();
-  AddModelOptions(convert_cmd, convert.model);
-
-  cairn::cli::BlockingArgs blocking;
-  CLI::App* blocking_cmd = AddSceneCommand(
-      app, "blocking", "Which parts can be taken out, and along which directions? (the NDBG)",
-      blocking.scene, blocking.json);
-  AddWithout(blocking_cmd, blocking.without,
-             "Compute it with these parts taken away (comma-separated)");
-  AddModelOptions(blocking_cmd, blocking.model);
-
-  cairn::cli::PlanArgs plan;
-  CLI::App* plan_cmd = AddSceneCommand(
-      app, "plan", "Find stable disassembly sequences (and their assembly plans) of a scene",
-      plan.scene, plan.json);
-  plan_cmd
-      ->add_option("--max", plan.max,
-                   "Stop after K stable sequences (best-first search); default: all")
-      ->check(CLI::NonNegativeNumber);
-  plan_cmd->add_option("--threads", plan.threads, "Worker threads (default: every core)")
-      ->check(CLI::NonNegativeNumber);
-  plan_cmd->add_option("--paths", plan.paths,
-                       "Candidate paths per part (JSON: part name -> list of paths)");
-  plan_cmd->add_option(
-      "--emit-plans", plan.emit_plans,
-      "Write each sequence as plan files (disassembly and assembly) in this folder");
-  plan_cmd->add_option("--dot", plan.dot,
-                       "Write the AND/OR graph (Graphviz dot) with stable and unstable edges");
-  plan_cmd->add_option("--keep", plan.keep, "Parts that stay in the assembly (comma-separated)")
-      ->delimiter(',');
-  plan_cmd
-      ->add_option("--support", plan.support,
-                   "Support of straight removals: full (carried, default), none (pushed "
-                   "along the path), both")
-      ->check(CLI::IsMember({"full", "none", "both"}));
-  plan_cmd->add_flag("--single-parts", plan.no_subassemblies,
-                     "Remove one part per step (no subassemblies)");
-  plan_cmd->add_option("--dt", plan.dt, "Time step of simulated paths (s; default: size/100)")
-      ->check(CLI::PositiveNumber);
-  plan_cmd->add_option("--speed", plan.speed, "Gripper speed (length/s; default 1)")
-      ->check(CLI::PositiveNumber);
-  plan_cmd
-      ->add_option("--allow-fixtures", plan.allow_fixtures,
-                   "When nothing is stable, allow up to N fixels (fewest first)")
-      ->check(CLI::Range(0, 20));
-  AddModelOptions(plan_cmd, plan.model);
-
+  cli::CheckArgs check;
+  cli::SimulateArgs sim;
+  cli::ConvertArgs convert;
+  cli::BlockingArgs blocking;
+  cli::PlanArgs plan;
+  const CLI::App* check_cmd = AddCheck(app, check);
+  const CLI::App* sim_cmd = AddSimulate(app, sim);
+  const CLI::App* convert_cmd = AddConvert(app, convert);
+  const CLI::App* blocking_cmd = AddBlocking(app, blocking);
+  const CLI::App* plan_cmd = AddPlan(app, plan);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     // --help and --version exit 0; a usage error is bad input (exit 2).
     const int code = app.exit(e);
-    return code == 0 ? 0 : cairn::cli::kExitBadInput;
+    return code == 0 ? 0 : cli::kExitBadInput;
   }
-  if (*check_cmd) return cairn::cli::RunCheck(check, std::cout, std::cerr);
-  if (*sim_cmd) return cairn::cli::RunSimulate(sim, std::cout, std::cerr);
-  if (*convert_cmd) return cairn::cli::RunConvert(convert, std::cout, std::cerr);
-  if (*blocking_cmd) return cairn::cli::RunBlocking(blocking, std::cout, std::cerr);
-  if (*plan_cmd) return cairn::cli::RunPlan(plan, std::cout, std::cerr);
-  return cairn::cli::kExitBadInput;
+  if (*check_cmd) return cli::RunCheck(check, std::cout, std::cerr);
+  if (*sim_cmd) return cli::RunSimulate(sim, std::cout, std::cerr);
+  if (*convert_cmd) return cli::RunConvert(convert, std::cout, std::cerr);
+  if (*blocking_cmd) return cli::RunBlocking(blocking, std::cout, std::cerr);
+  if (*plan_cmd) return cli::RunPlan(plan, std::cout, std::cerr);
+  return cli::kExitBadInput;
+}
+
+}  // namespace
+
+// Any exception that escapes a command (they catch their own) is a defect:
+// reported as an internal error with exit code 4, never a crash.
+int main(int argc, char** argv) {
+  return cairn::cli::RunGuarded(std::cerr, [&] { return Run(argc, argv); });
 }

@@ -7,9 +7,31 @@
 #include <vector>
 
 #include "cairn/geometry/assembly.h"
-#include "cli/commands.h"
 
 namespace cairn::cli {
+
+/// How the input file is read and what the command line changes in its model
+/// (shared by check, simulate and convert; docs/cli.md, "Reading the model").
+struct ModelArgs {
+  /// "scene" (scene format v1, the default) or "compas" (a COMPAS assembly).
+  std::string format = "scene";
+  /// --friction: μ of every contact. Required with compas (the files store
+  /// none); with scene it replaces the scene's `friction` (friction pairs keep
+  /// theirs).
+  std::optional<double> friction;
+  /// --supports: parts (COMPAS blocks: node keys) fixed in addition to those
+  /// the file fixes (`is_support`, `"fixed": true`).
+  std::vector<std::string> supports;
+  /// --tolerance: the length tolerance (contact distance, allowed overlap,
+  /// planarity); replaces the scene's `tolerance` or the COMPAS default.
+  std::optional<double> tolerance;
+  /// --gravity: replaces the gravity (2 numbers in 2-D, 3 in 3-D); empty: the
+  /// file's, or the default.
+  std::vector<double> gravity;
+  /// --interfaces: "detect" (contacts found from the shapes, the default) or
+  /// "stored" (a COMPAS file's stored interfaces: CompasOptions::stored_interfaces).
+  std::string interfaces = "detect";
+};
 
 /// A model read from a file with the command line's changes applied: the
 /// definition (what convert writes, what the fixture search adds to) and the

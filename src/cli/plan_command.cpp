@@ -1,5 +1,7 @@
 // `cairn plan`: stable disassembly sequences of a scene (docs/planning.md).
 
+#include "cli/plan_command.h"
+
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -11,7 +13,7 @@
 #include "cairn/io/paths_reader.h"
 #include "cairn/planning/planner.h"
 #include "cairn/report/plan_report.h"
-#include "cli/commands.h"
+#include "cli/command.h"
 #include "cli/model.h"
 #include "cli/scene_writer.h"
 
@@ -29,7 +31,7 @@ std::string Numbered(const std::string& stem, size_t k, const std::string& suffi
 }  // namespace
 
 int RunPlan(const PlanArgs& args, std::ostream& out, std::ostream& err) {
-  try {
+  return RunGuarded(err, [&]() -> int {
     const Model model = LoadModel(args.scene, args.model);
     const Assembly& assembly = model.assembly;
     RefuseGivenInterfaces(assembly, args.scene,
@@ -92,10 +94,7 @@ int RunPlan(const PlanArgs& args, std::ostream& out, std::ostream& err) {
     if (!args.dot.empty()) WriteAtomically(args.dot, PlannerToDot(assembly, result), "--dot");
     out << text;
     return result.sequences.empty() ? kExitUnstable : kExitStable;
-  } catch (const InputError& e) {
-    err << "cairn: error: " << e.what() << '\n';
-    return kExitBadInput;
-  }
+  });
 }
 
 }  // namespace cairn::cli

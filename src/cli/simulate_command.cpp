@@ -1,4 +1,5 @@
-#include "cli/commands.h"
+
+#include "cli/simulate_command.h"
 
 #include <algorithm>
 #include <cmath>
@@ -18,34 +19,14 @@
 #include "cairn/report/fixture_report.h"
 #include "cairn/report/report.h"
 #include "cairn/stability/analyze.h"
+#include "cli/command.h"
 #include "cli/model.h"
 #include "cli/scene_writer.h"
 
 namespace cairn::cli {
 
-int RunCheck(const CheckArgs& args, std::ostream& out, std::ostream& err) {
-  try {
-    const Assembly assembly = LoadModel(args.scene, args.model).assembly;
-    ReportOptions report;
-    report.scene_file = args.scene;
-    report.normalize_part = ResolveNormalize(assembly, args.normalize, args.scene);
-    const Configuration config = WithoutParts(assembly, args.without, args.scene, report.without);
-    StabilityOptions analysis;
-    analysis.check_equilibrium = true;  // report jamming (weak stability) too
-    const StabilityResult result = AnalyzeConfiguration(assembly, config, analysis);
-    if (args.json)
-      out << StabilityToJson(assembly, config, result, report).dump(2) << '\n';
-    else
-      out << StabilityToText(assembly, config, result, report);
-    return result.stable() ? kExitStable : kExitUnstable;
-  } catch (const InputError& e) {
-    err << "cairn: error: " << e.what() << '\n';
-    return kExitBadInput;
-  }
-}
-
 int RunSimulate(const SimulateArgs& args, std::ostream& out, std::ostream& err) {
-  try {
+  return RunGuarded(err, [&]() -> int {
     // The definition too: a fixel suggestion adds fixtures to it.
     const Model model = LoadModel(args.scene, args.model);
     const Assembly& assembly = model.assembly;
@@ -92,28 +73,7 @@ int RunSimulate(const SimulateArgs& args, std::ostream& out, std::ostream& err) 
       default:
         return kExitUnstable;
     }
-  } catch (const InputError& e) {
-    err << "cairn: error: " << e.what() << '\n';
-    return kExitBadInput;
-  }
-}
-
-int RunConvert(const ConvertArgs& args, std::ostream& out, std::ostream& err) {
-  try {
-    // The model is validated (Assembly::Create) before anything is written,
-    // so a scene that convert writes is one `cairn check` reads.
-    const Model m = LoadModel(args.input, args.model);
-    const std::string text = WriteSceneJson(m.def);
-    WriteAtomically(args.output, text, "");
-    int fixed = 0;
-    for (const Part& p : m.assembly.parts()) fixed += p.fixed ? 1 : 0;
-    out << "cairn: wrote " << args.output << ": " << m.assembly.num_parts() << " parts (" << fixed
-        << " fixed), " << m.assembly.dimension() << "-D, friction " << Num(m.def.friction) << '\n';
-    return kExitStable;
-  } catch (const InputError& e) {
-    err << "cairn: error: " << e.what() << '\n';
-    return kExitBadInput;
-  }
+  });
 }
 
 }  // namespace cairn::cli

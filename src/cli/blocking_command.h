@@ -1,0 +1,23 @@
+#pragma once
+// `cairn blocking`: the NDBG of a scene (docs/blocking.md).
+
+#include <iosfwd>
+#include <string>
+#include <vector>
+
+#include "cli/model.h"
+
+namespace cairn::cli {
+
+struct BlockingArgs {
+  std::string scene;
+  bool json = false;
+  std::vector<std::string> without;  // part names
+  ModelArgs model;
+};
+
+/// `cairn blocking`: the NDBG of the scene (planning/blocking.h), per cell
+/// its directions and the parts that can leave. Exit 0, or 2 on bad input.
+int RunBlocking(const BlockingArgs& args, std::ostream& out, std::ostream& err);
+
+}  // namespace cairn::cli

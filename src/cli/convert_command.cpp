@@ -1,0 +1,43 @@
+
+#include "cli/convert_command.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <optional>
+#include <sstream>
+
+#include "cairn/core/error.h"
+#include "cairn/io/compas_reader.h"
+#include "cairn/io/plan_reader.h"
+#include "cairn/io/scene_reader.h"
+#include "cairn/motion/simulate.h"
+#include "cairn/planning/fixtures.h"
+#include "cairn/report/fixture_report.h"
+#include "cairn/report/report.h"
+#include "cairn/stability/analyze.h"
+#include "cli/command.h"
+#include "cli/model.h"
+#include "cli/scene_writer.h"
+
+namespace cairn::cli {
+
+int RunConvert(const ConvertArgs& args, std::ostream& out, std::ostream& err) {
+  return RunGuarded(err, [&]() -> int {
+    // The model is validated (Assembly::Create) before anything is written,
+    // so a scene that convert writes is one `cairn check` reads.
+    const Model m = LoadModel(args.input, args.model);
+    const std::string text = WriteSceneJson(m.def);
+    WriteAtomically(args.output, text, "");
+    int fixed = 0;
+    for (const Part& p : m.assembly.parts()) fixed += p.fixed ? 1 : 0;
+    out << "cairn: wrote " << args.output << ": " << m.assembly.num_parts() << " parts (" << fixed
+        << " fixed), " << m.assembly.dimension() << "-D, friction " << Num(m.def.friction) << '\n';
+    return kExitStable;
+  });
+}
+
+}  // namespace cairn::cli

@@ -1,0 +1,32 @@
+#pragma once
+// `cairn plan`: stable disassembly sequences (docs/planning.md).
+
+#include <iosfwd>
+#include <string>
+#include <vector>
+
+#include "cli/model.h"
+
+namespace cairn::cli {
+
+struct PlanArgs {
+  std::string scene;
+  bool json = false;
+  int max = 0;                    // --max K; 0: every sequence
+  int threads = 0;                // --threads; 0: every core
+  std::string paths;              // --paths FILE: candidate paths per part
+  std::string emit_plans;         // --emit-plans DIR
+  std::string dot;                // --dot FILE
+  std::vector<std::string> keep;  // --keep: parts never removed
+  std::string support = "full";   // --support full|none|both
+  bool no_subassemblies = false;  // --single-parts
+  double dt = 0, speed = 0;       // --dt, --speed; 0: automatic
+  int allow_fixtures = 0;         // --allow-fixtures N
+  ModelArgs model;
+};
+
+/// `cairn plan`: stable disassembly sequences (planning/planner.h). Exit 0
+/// when a stable sequence was found, 1 when none, 2 on bad input.
+int RunPlan(const PlanArgs& args, std::ostream& out, std::ostream& err);
+
+}  // namespace cairn::cli

@@ -1,0 +1,30 @@
+#pragma once
+// `cairn simulate`: a plan along its paths (docs/cli.md, docs/plan-format.md).
+
+#include <iosfwd>
+#include <string>
+#include <vector>
+
+#include "cli/model.h"
+
+namespace cairn::cli {
+
+struct SimulateArgs {
+  std::string scene;
+  std::string plan;
+  bool json = false;
+  std::string timeline;   // CSV file, or empty
+  std::string normalize;  // part name, or empty
+  bool continue_after_failure = false;
+  /// --suggest-fixtures: when a step fails, look for the fewest fixels that
+  /// make the plan stable (planning/fixtures.h) and report them.
+  bool suggest_fixtures = false;
+  int max_fixels = 3;  ///< --max-fixels
+  ModelArgs model;
+};
+
+/// `cairn simulate`: exit 0 stable, 1 unstable or unsupported, 3 infeasible,
+/// 2 bad input.
+int RunSimulate(const SimulateArgs& args, std::ostream& out, std::ostream& err);
+
+}  // namespace cairn::cli
