@@ -52,7 +52,7 @@ PolygonMass ComputePolygonMass(const Polygon& poly) {
   PolygonMass m;
   const int n = Size(poly);
   if (n < 3) return m;
-  const Vector2 o = poly[0];
+  const Vector2& o = poly[0];
   double twice_area = 0, j_o = 0;
   Vector2 first_moment(0, 0);  // 6 · ∫ r dA (relative to o)
   for (int i = 0; i < n; ++i) {

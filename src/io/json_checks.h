@@ -85,7 +85,8 @@ class JsonChecker {
 
   void CheckKeys(const json& obj, const std::string& path,
                  std::initializer_list<const char*> known) const {
-    for (const auto& [key, value] : obj.items()) {
+    for (const auto& item : obj.items()) {
+      const std::string& key = item.key();
       if (std::none_of(known.begin(), known.end(), [&](const char* k) { return key == k; })) {
         Fail(Child(path, key), "unknown key (expected one of: " + JoinKeys(known) + ")");
       }

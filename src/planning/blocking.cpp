@@ -163,7 +163,7 @@ std::vector<Vector3> PreferredAxes(const Assembly& assembly) {
     axes.push_back(Vector3::Unit(a));
     axes.push_back(-Vector3::Unit(a));
   }
-  const Vector3 g = assembly.gravity();
+  const Vector3& g = assembly.gravity();
   const Vector3 up = g.norm() > 0 ? Vector3(-g / g.norm()) : Vector3::Zero();
   std::stable_sort(axes.begin(), axes.end(), [&](const Vector3& a, const Vector3& b) {
     return a.dot(up) > b.dot(up) + 1e-12;

@@ -9,7 +9,6 @@ namespace cairn {
 namespace {
 using report_internal::Clean;
 using report_internal::Num;
-using report_internal::Vec;
 }  // namespace
 
 nlohmann::json FixtureSuggestionToJson(const Assembly& assembly,
