@@ -35,7 +35,8 @@ int RunConvert(const ConvertArgs& args, std::ostream& out, std::ostream& err) {
     int fixed = 0;
     for (const Part& p : m.assembly.parts()) fixed += p.fixed ? 1 : 0;
     out << "cairn: wrote " << args.output << ": " << m.assembly.num_parts() << " parts (" << fixed
-        << " fixed), " << m.assembly.dimension() << "-D, friction " << Num(m.def.friction) << '\n';
+        << " fixed), " << m.assembly.dimension() << "-D, friction " << FormatNumber(m.def.friction)
+        << '\n';
     return kExitStable;
   });
 }

@@ -14,27 +14,23 @@
 
 namespace cairn::cli {
 
-std::string Num(double x) {
-  std::ostringstream os;
-  os << x;
-  return os.str();
-}
-
 Model LoadModel(const std::string& file, const ModelArgs& args) {
   if (args.friction) {
     // CLI11 parses "nan" and "inf" as doubles; neither is a coefficient.
     if (!std::isfinite(*args.friction))
       throw InputError("", "--friction",
-                       "must be a finite number (got " + Num(*args.friction) + ")");
+                       "must be a finite number (got " + FormatNumber(*args.friction) + ")");
     if (*args.friction < 0)
-      throw InputError("", "--friction", "must not be negative (got " + Num(*args.friction) + ")");
+      throw InputError("", "--friction",
+                       "must not be negative (got " + FormatNumber(*args.friction) + ")");
   }
   if (args.tolerance && !(std::isfinite(*args.tolerance) && *args.tolerance > 0))
     throw InputError("", "--tolerance",
-                     "must be a positive length (got " + Num(*args.tolerance) + ")");
+                     "must be a positive length (got " + FormatNumber(*args.tolerance) + ")");
   for (double g : args.gravity) {
     if (!std::isfinite(g))
-      throw InputError("", "--gravity", "must have finite components (got " + Num(g) + ")");
+      throw InputError("", "--gravity",
+                       "must have finite components (got " + FormatNumber(g) + ")");
   }
 
   Model m;

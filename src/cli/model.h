@@ -71,7 +71,4 @@ void RefuseGivenInterfaces(const Assembly& assembly, const std::string& file,
 /// renamed over it once complete. @throws InputError naming `flag`.
 void WriteAtomically(const std::string& path, const std::string& text, const std::string& flag);
 
-/// A number as a user reads it (shortest round-trip-ish, `operator<<`).
-std::string Num(double x);
-
 }  // namespace cairn::cli

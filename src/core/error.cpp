@@ -2,6 +2,7 @@
 
 #include <cstdio>
 #include <cstdlib>
+#include <sstream>
 
 #include "cairn/core/check.h"
 
@@ -78,4 +79,10 @@ void AbortWithMessage(const char* kind, const char* condition, const char* file,
   std::abort();
 }
 }  // namespace internal
+std::string FormatNumber(double x) {
+  std::ostringstream os;
+  os << x;
+  return os.str();
+}
+
 }  // namespace cairn

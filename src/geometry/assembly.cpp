@@ -18,16 +18,12 @@ using Box = std::pair<Vector2, Vector2>;
 
 std::string Indexed(const std::string& key, int i) { return key + "[" + std::to_string(i) + "]"; }
 
-std::string Num(double x) {
-  std::ostringstream os;
-  os << x;
-  return os.str();
+std::string Point(const Vector2& p) {
+  return "(" + FormatNumber(p.x()) + ", " + FormatNumber(p.y()) + ")";
 }
 
-std::string Point(const Vector2& p) { return "(" + Num(p.x()) + ", " + Num(p.y()) + ")"; }
-
 std::string Point(const Vector3& p) {
-  return "(" + Num(p.x()) + ", " + Num(p.y()) + ", " + Num(p.z()) + ")";
+  return "(" + FormatNumber(p.x()) + ", " + FormatNumber(p.y()) + ", " + FormatNumber(p.z()) + ")";
 }
 
 bool Finite(const Vector2& v) { return std::isfinite(v.x()) && std::isfinite(v.y()); }
@@ -42,7 +38,7 @@ class Validator {
     throw InputError(file_, path, message);
   }
   void FiniteNumber(double x, const std::string& path) const {
-    if (!std::isfinite(x)) Fail(path, "must be a finite number (got " + Num(x) + ")");
+    if (!std::isfinite(x)) Fail(path, "must be a finite number (got " + FormatNumber(x) + ")");
   }
   void FinitePoint(const Vector2& v, const std::string& path) const {
     if (!Finite(v)) Fail(path, "must have finite coordinates (got " + Point(v) + ")");
@@ -52,11 +48,11 @@ class Validator {
   }
   void Positive(double x, const std::string& path) const {
     FiniteNumber(x, path);
-    if (x <= 0) Fail(path, "must be positive (got " + Num(x) + ")");
+    if (x <= 0) Fail(path, "must be positive (got " + FormatNumber(x) + ")");
   }
   void NonNegative(double x, const std::string& path) const {
     FiniteNumber(x, path);
-    if (x < 0) Fail(path, "must not be negative (got " + Num(x) + ")");
+    if (x < 0) Fail(path, "must not be negative (got " + FormatNumber(x) + ")");
   }
 
  private:
@@ -156,8 +152,9 @@ Part Make2dPart(const PartDef& p, const std::string& path, double tol, const Val
   }
   const double area = std::abs(SignedArea(p.polygon));
   if (area <= tol * size) {
-    check.Fail(path, "has zero area (" + Num(area) + ", at most the tolerance times its size, " +
-                         Num(tol * size) + ")");
+    check.Fail(path, "has zero area (" + FormatNumber(area) +
+                         ", at most the tolerance times its size, " + FormatNumber(tol * size) +
+                         ")");
   }
   Part part;
   part.polygon = p.polygon;
@@ -342,7 +339,7 @@ Assembly Assembly::Create(const AssemblyDef& def, const std::string& source_file
     check.Fail(PartPath(def.parts[later], later),
                "part '" + EscapedName(out.parts_[later].name) + "' overlaps part '" +
                    EscapedName(out.parts_[earlier].name) + "' (" + Indexed("parts", earlier) +
-                   ") by more than the tolerance " + Num(tol) + ", e.g. at " +
+                   ") by more than the tolerance " + FormatNumber(tol) + ", e.g. at " +
                    (is3 ? Point(witness) : Point(Vector2(witness.head<2>()))));
   }
 
@@ -397,8 +394,8 @@ Assembly Assembly::Create(const AssemblyDef& def, const std::string& source_file
     }
     if (dist > tol) {
       check.Fail(path + ".point", show(fd.point) + " is not on the boundary of part '" +
-                                      EscapedName(fd.part) + "' (distance " + Num(dist) +
-                                      " > tolerance " + Num(tol) + ")");
+                                      EscapedName(fd.part) + "' (distance " + FormatNumber(dist) +
+                                      " > tolerance " + FormatNumber(tol) + ")");
     }
     if (!into) {
       check.Fail(path + ".normal", show(fd.normal) + " points out of part '" +
@@ -440,8 +437,9 @@ Assembly Assembly::Create(const AssemblyDef& def, const std::string& source_file
       const double off = std::abs(in.normal.dot(id.points[i] - id.points[0]));
       if (off > tol)
         check.Fail(path + Indexed(".points", static_cast<int>(i)),
-                   Point(id.points[i]) + " is " + Num(off) +
-                       " off the interface's plane (more than the tolerance " + Num(tol) + ")");
+                   Point(id.points[i]) + " is " + FormatNumber(off) +
+                       " off the interface's plane (more than the tolerance " + FormatNumber(tol) +
+                       ")");
     }
     in.points = id.points;
     out.interfaces_.push_back(std::move(in));
@@ -452,6 +450,12 @@ Assembly Assembly::Create(const AssemblyDef& def, const std::string& source_file
     if (!p.fixed) out.max_weight_ = std::max(out.max_weight_, p.mass * out.gravity_.norm());
   }
   out.tolerances_ = out.MakeTolerances(1.0);
+  return out;
+}
+
+std::string Assembly::NameList(const std::vector<int>& parts) const {
+  std::string out;
+  for (size_t i = 0; i < parts.size(); ++i) out += (i ? ", " : "") + part(parts[i]).name;
   return out;
 }
 

@@ -17,15 +17,10 @@ std::string Indexed(const std::string& path, size_t i) {
   return path + "[" + std::to_string(i) + "]";
 }
 
-std::string Num(double x) {
-  std::ostringstream os;
-  os << x;
-  return os.str();
-}
-
 // A point as the user wrote it: (x, y) in 2-D, (x, y, z) in 3-D.
 std::string Point(const Vector3& p, int dimension) {
-  return "(" + Num(p.x()) + ", " + Num(p.y()) + (dimension == 3 ? ", " + Num(p.z()) : "") + ")";
+  return "(" + FormatNumber(p.x()) + ", " + FormatNumber(p.y()) +
+         (dimension == 3 ? ", " + FormatNumber(p.z()) : "") + ")";
 }
 
 // Throws the InputError of one fault of a plan; all validation goes through it.
@@ -38,8 +33,8 @@ class PlanValidator {
     throw InputError(file_, path, message);
   }
   void Positive(double x, const std::string& path) const {
-    if (!std::isfinite(x)) Fail(path, "must be a finite number (got " + Num(x) + ")");
-    if (x <= 0) Fail(path, "must be positive (got " + Num(x) + ")");
+    if (!std::isfinite(x)) Fail(path, "must be a finite number (got " + FormatNumber(x) + ")");
+    if (x <= 0) Fail(path, "must be positive (got " + FormatNumber(x) + ")");
   }
   void FinitePoint(const Vector3& v, const std::string& path) const {
     if (!v.allFinite()) {

@@ -12,6 +12,7 @@
 #include <utility>
 
 #include "cairn/core/check.h"
+#include "cairn/core/error.h"
 #include "cairn/geometry/polygon.h"
 
 namespace cairn {
@@ -24,12 +25,6 @@ using Triangle = std::array<int, 3>;
 constexpr double kRelEps = 1e-12;
 
 int Size(const std::vector<int>& v) { return static_cast<int>(v.size()); }
-
-std::string Num(double x) {
-  std::ostringstream os;
-  os << x;
-  return os.str();
-}
 
 PolyhedronFault Fault(int face, const std::string& message) { return {face, message}; }
 
@@ -345,15 +340,16 @@ std::optional<PolyhedronFault> Validate(const PolyhedronDef& def, double tol, Ch
     // A face of width w and perimeter P has area about w P / 2: zero area or
     // collinear vertices (within tol) make it degenerate.
     if (area <= std::max(tol * perimeter / 2, kRelEps * perimeter * perimeter)) {
-      return Fault(
-          f, name + " is degenerate: zero area or collinear vertices (area " + Num(area) + ")");
+      return Fault(f, name + " is degenerate: zero area or collinear vertices (area " +
+                          FormatNumber(area) + ")");
     }
     const Vector3 n = newell / (2 * area);
     for (int v : face) {
       const double off = std::abs(n.dot(x[v] - center));
       if (off > tol) {
-        return Fault(f, name + " is not planar: vertex " + std::to_string(v) + " is " + Num(off) +
-                            " off its plane (tolerance " + Num(tol) + ")");
+        return Fault(f, name + " is not planar: vertex " + std::to_string(v) + " is " +
+                            FormatNumber(off) + " off its plane (tolerance " + FormatNumber(tol) +
+                            ")");
       }
     }
     // Project onto the plane; (u, w, n) is right-handed, so the projection runs
@@ -465,7 +461,7 @@ std::optional<PolyhedronFault> Validate(const PolyhedronDef& def, double tol, Ch
   // A solid thinner than tol everywhere has volume at most about tol × area / 2.
   if (std::abs(out.mass.volume) <=
       std::max(tol * surface / 2, kRelEps * surface * std::sqrt(surface))) {
-    return Fault(-1, "the solid has zero volume (" + Num(out.mass.volume) + ")");
+    return Fault(-1, "the solid has zero volume (" + FormatNumber(out.mass.volume) + ")");
   }
   if (out.mass.volume < 0) {
     for (int f = 0; f < num_faces; ++f) {

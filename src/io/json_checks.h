@@ -36,11 +36,7 @@ inline std::string Index(const std::string& path, size_t i) {
   return path + "[" + std::to_string(i) + "]";
 }
 
-inline std::string Num(double x) {
-  std::ostringstream os;
-  os << x;
-  return os.str();
-}
+inline std::string Num(double x) { return FormatNumber(x); }
 
 inline std::string Point(const Vector2& p) { return "(" + Num(p.x()) + ", " + Num(p.y()) + ")"; }
 inline std::string Point(const Vector3& p) {

@@ -138,9 +138,7 @@ double LcpResidual(const FactoredLcpMatrix& M, const VectorX& q, const VectorX& 
   VectorX w;
   M.Multiply(z, &w);
   w += q;
-  double r = 0;
-  for (Eigen::Index i = 0; i < z.size(); ++i) r = std::max(r, std::abs(std::min(z[i], w[i])));
-  return r;
+  return NaturalMapResidual(z, w);
 }
 
 bool IsLcpSolution(const FactoredLcpMatrix& M, const VectorX& q, const VectorX& z, double tol) {
@@ -521,6 +519,28 @@ class Path {
                           : Shrink(enter_w, leave_col, theta);
   }
 
+  // w_i has left the basis (its row joined R): it becomes the nonbasic pair
+  // whose complement z_i enters next.
+  void LeaveRow(int i) {
+    role_[i] = Role::kNone;
+    w_[i] = 0;
+    none_ = i;
+    last_left_z_ = false;
+  }
+
+  // The variable `leaving` (−1: z₀) has left Z: with z₀ the path ends
+  // (the basis is complementary); else w_leaving enters next.
+  void LeaveColumn(int leaving) {
+    if (leaving < 0) {
+      z0_pos_ = -1;
+      return;
+    }
+    col_pos_[leaving] = -1;
+    role_[leaving] = Role::kNone;
+    none_ = leaving;
+    last_left_z_ = true;
+  }
+
   // z_var enters, w_i leaves: C grows by row i and the entering column
   // (bordering). h = H a_R = −Δ; s = a_i − r·h = ω_i, the Schur complement.
   bool Border(int var, int i, double theta) {
@@ -543,10 +563,7 @@ class Path {
     else
       z0_pos_ = kk;
     x_[kk] = theta;
-    role_[i] = Role::kNone;
-    w_[i] = 0;
-    none_ = i;
-    last_left_z_ = false;
+    LeaveRow(i);
     return true;
   }
 
@@ -568,14 +585,7 @@ class Path {
     else
       z0_pos_ = p;
     x_[p] = theta;
-    if (leaving < 0) {
-      z0_pos_ = -1;  // z₀ left: complementary.
-    } else {
-      col_pos_[leaving] = -1;
-      role_[leaving] = Role::kNone;
-      none_ = leaving;
-      last_left_z_ = true;
-    }
+    LeaveColumn(leaving);
     return true;
   }
 
@@ -596,10 +606,7 @@ class Path {
     row_pos_[c] = -1;
     role_[c] = Role::kW;
     w_[c] = theta;
-    role_[i] = Role::kNone;
-    w_[i] = 0;
-    none_ = i;
-    last_left_z_ = false;
+    LeaveRow(i);
     return true;
   }
 
@@ -635,14 +642,7 @@ class Path {
     row_pos_[c] = -1;
     role_[c] = Role::kW;
     w_[c] = theta;
-    if (leaving < 0) {
-      z0_pos_ = -1;
-    } else {
-      col_pos_[leaving] = -1;
-      role_[leaving] = Role::kNone;
-      none_ = leaving;
-      last_left_z_ = true;
-    }
+    LeaveColumn(leaving);
     return true;
   }
 
@@ -702,8 +702,7 @@ bool Finish(const Problem& pb, VectorX z, const LcpBasis& basis, LcpResult* resu
   VectorX w;
   pb.M.Multiply(z, &w);
   w += pb.q;
-  double res = 0;
-  for (int i = 0; i < pb.n; ++i) res = std::max(res, std::abs(std::min(z[i], w[i])));
+  const double res = NaturalMapResidual(z, w);
   result->z = std::move(z);
   result->w = std::move(w);
   result->residual = res;

@@ -74,13 +74,6 @@ namespace {
 
 constexpr double kEps = std::numeric_limits<double>::epsilon();
 
-// The natural-map residual with w already known.
-double NaturalMapResidual(const VectorX& z, const VectorX& w) {
-  double r = 0.0;
-  for (Eigen::Index i = 0; i < z.size(); ++i) r = std::max(r, std::abs(std::min(z[i], w[i])));
-  return r;
-}
-
 // Solves the complementary basis {z_i basic : basic_z[i]} from the original
 // data: M_αα z_α = −q_α by LU with partial pivoting plus one refinement step,
 // z = 0 off α. Returns false when M_αα is numerically singular or the result
@@ -362,6 +355,12 @@ bool FollowPath(const MatrixX& M, const VectorX& q, double scale, double tol, in
 }
 
 }  // namespace
+
+double NaturalMapResidual(const VectorX& z, const VectorX& w) {
+  double r = 0.0;
+  for (Eigen::Index i = 0; i < z.size(); ++i) r = std::max(r, std::abs(std::min(z[i], w[i])));
+  return r;
+}
 
 const char* to_string(LcpStatus status) {
   switch (status) {

@@ -28,12 +28,6 @@ const char* to_string(MotionVerdict v) {
 
 namespace {
 
-std::string Names(const Assembly& a, const std::vector<int>& parts) {
-  std::string out;
-  for (size_t i = 0; i < parts.size(); ++i) out += (i ? ", " : "") + a.part(parts[i]).name;
-  return out;
-}
-
 // The unit direction from s towards larger s (forward) or smaller s
 // (backward) along the step's path; zero at that end of the path.
 Vector3 TravelDirection(const PlanStep& step, double s, bool forward) {
@@ -167,21 +161,21 @@ std::string Describe(const Assembly& a, const MotionFailure& f, const PlanStep& 
   switch (f.verdict) {
     case MotionVerdict::kUnstable:
       if (!f.pushed.empty())
-        os << Names(a, step.remove) << " pushes " << Names(a, f.pushed) << ": ";
+        os << a.NameList(step.remove) << " pushes " << a.NameList(f.pushed) << ": ";
       for (size_t i = 0; i < f.motions.size(); ++i) {
         const PartMotion& m = f.motions[i];
         os << (i ? "; " : "") << a.part(m.part).name << ' ' << DescribeMotion(m, dim);
       }
       break;
     case MotionVerdict::kUnsupported:
-      os << Names(a, f.parts)
+      os << a.NameList(f.parts)
          << " can no longer rest on the assembly: the gripper must carry it here";
       break;
     case MotionVerdict::kInfeasible:
       if (f.parts.size() >= 2)
         os << a.part(f.parts[0]).name << " runs into " << a.part(f.parts[1]).name;
       else
-        os << "the motion of " << Names(a, f.parts) << " is blocked";
+        os << "the motion of " << a.NameList(f.parts) << " is blocked";
       break;
     case MotionVerdict::kStable:
       os << "stable";

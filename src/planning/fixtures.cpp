@@ -38,12 +38,6 @@ bool PassesStep(const Plan& plan, const SimulationResult& r, int step) {
   return r.stable() || RunPosition(plan, r.failure->step) > RunPosition(plan, step);
 }
 
-std::string Names(const Assembly& a, const std::vector<int>& parts) {
-  std::string out;
-  for (size_t i = 0; i < parts.size(); ++i) out += (i ? ", " : "") + a.part(parts[i]).name;
-  return out;
-}
-
 // The contacts of the failing tick (from the run's timeline).
 std::vector<Contact> ContactsAt(const SimulationResult& r, const MotionFailure& f) {
   std::vector<Contact> out;
@@ -241,7 +235,7 @@ FixtureSuggestion SuggestFixtures(const AssemblyDef& def, const Assembly& assemb
     for (int p : f.parts)
       if (eligible[p]) movers.push_back(p);
     if (movers.empty()) {
-      why = at + ": the parts that move (" + Names(assembly, f.parts) +
+      why = at + ": the parts that move (" + assembly.NameList(f.parts) +
             ") are removed later in the plan, and a fixel would have to leave "
             "with them";
       break;
@@ -283,7 +277,7 @@ FixtureSuggestion SuggestFixtures(const AssemblyDef& def, const Assembly& assemb
     }
     out.candidates += static_cast<int>(pool.size());
     if (pool.empty()) {
-      why = at + ": no free face of " + Names(assembly, movers) + " opposes its motion";
+      why = at + ": no free face of " + assembly.NameList(movers) + " opposes its motion";
       break;
     }
 
@@ -322,7 +316,7 @@ FixtureSuggestion SuggestFixtures(const AssemblyDef& def, const Assembly& assemb
             (budget ? "the budget of " + std::to_string(options.max_simulations) +
                           " simulations ran out"
                     : "no set of at most " + std::to_string(std::min(room, n)) + " of the " +
-                          std::to_string(n) + " candidate fixels on " + Names(assembly, movers) +
+                          std::to_string(n) + " candidate fixels on " + assembly.NameList(movers) +
                           " keeps it stable");
       break;
     }

@@ -86,12 +86,6 @@ void ParallelFor(int n, int threads, const std::function<void(int)>& task) {
   if (error) std::rethrow_exception(error);
 }
 
-std::string Num(double x) {
-  std::ostringstream os;
-  os << x;
-  return os.str();
-}
-
 // A direction for people: "up", "down", "+x", or "(0.7071, 0.7071)".
 std::string DirectionLabel(const Vector3& d, const Vector3& up, int dimension) {
   if (d.dot(up) > 1 - 1e-9) return "up";
@@ -731,7 +725,7 @@ void Planner::ListSequences() {
   if (ways_as[0] > 0) walk(0, true, false);
   if (result_.sequences.size() < ways[0])
     result_.message = "listed the first " + std::to_string(result_.sequences.size()) + " of " +
-                      Num(ways[0]) + " stable sequences";
+                      FormatNumber(ways[0]) + " stable sequences";
 }
 
 // --allow-fixtures: when no sequence is stable as it is, a search over

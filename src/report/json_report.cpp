@@ -10,7 +10,7 @@ using report_internal::Angular;
 using report_internal::Clean;
 using report_internal::Tangential;
 using report_internal::Vec;
-std::string PartName(const Assembly& a, int i) { return i >= 0 ? a.part(i).name : "world"; }
+std::string PartName(const Assembly& a, int i) { return report_internal::PartName(a, i, "world"); }
 }  // namespace
 
 std::pair<double, std::string> ForceScale(const Assembly& assembly, const ReportOptions& options) {

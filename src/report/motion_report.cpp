@@ -12,7 +12,7 @@ using report_internal::Angular;
 using report_internal::Clean;
 using report_internal::Tangential;
 using report_internal::Vec;
-std::string PartName(const Assembly& a, int i) { return i >= 0 ? a.part(i).name : "world"; }
+std::string PartName(const Assembly& a, int i) { return report_internal::PartName(a, i, "world"); }
 using report_internal::Names;
 // The timeline CSV keeps 10 significant digits.
 std::string Num(double x) { return report_internal::Num(x, 10); }

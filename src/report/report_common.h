@@ -48,6 +48,12 @@ inline nlohmann::json Names(const Assembly& a, const std::vector<int>& parts) {
   return out;
 }
 
+// The name of part i of a contact, or `world` (JSON, CSV) / `fixture` (text)
+// for the world side (i < 0).
+inline std::string PartName(const Assembly& a, int i, const char* world) {
+  return i >= 0 ? a.part(i).name : world;
+}
+
 // A fixel as a scene file's `fixtures` entry: part, point, normal.
 inline nlohmann::json FixtureToJson(const FixtureDef& f, int dim) {
   return {{"part", f.part}, {"point", Vec(f.point, dim)}, {"normal", Vec(f.normal, dim)}};

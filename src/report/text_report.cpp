@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "cairn/report/report.h"
+#include "report/report_common.h"
 
 namespace cairn {
 
@@ -13,7 +14,9 @@ std::string Fmt(const char* format, double x) {
   std::snprintf(buf, sizeof buf, format, std::abs(x) < 5e-13 ? 0.0 : x);
   return buf;
 }
-std::string PartName(const Assembly& a, int i) { return i >= 0 ? a.part(i).name : "fixture"; }
+std::string PartName(const Assembly& a, int i) {
+  return report_internal::PartName(a, i, "fixture");
+}
 }  // namespace
 
 std::string StabilityToText(const Assembly& assembly, const Configuration& config,

@@ -152,7 +152,7 @@ ContactLcp BuildComponent(const Assembly& assembly, const Configuration& config,
     b.F_ext.head<3>() = part.mass * assembly.gravity();
     if (drive && !drive->nu_prev.empty()) b.nu_prev = drive->nu_prev[p];
     const PartRole role = RoleOf(drive, p);
-    if (role == PartRole::kPrescribed || role == PartRole::kGuided) {
+    if (IsDriven(role)) {
       const Vector3 v = drive->velocity[p];
       b.nu_prescribed.head<3>() = v;
       b.motion = role == PartRole::kPrescribed ? BodyMotion::kPrescribed : BodyMotion::kGuided;
@@ -453,7 +453,7 @@ StabilityResult AnalyzeConfiguration(const Assembly& assembly, const Configurati
     for (int p : comp.parts) {
       const PartRole role = RoleOf(drive, p);
       ctx.has_guided |= role == PartRole::kGuided;
-      ctx.has_driven |= role == PartRole::kGuided || role == PartRole::kPrescribed;
+      ctx.has_driven |= IsDriven(role);
       carried |= role == PartRole::kCarried;
     }
     // The rest hypothesis (StabilityOptions::rest_first): a driven 3-D
@@ -493,7 +493,7 @@ StabilityResult AnalyzeConfiguration(const Assembly& assembly, const Configurati
                        (report.message.empty() ? "" : "; " + report.message);
       for (int p : comp.parts) {
         const PartRole role = RoleOf(drive, p);
-        if (role == PartRole::kGuided || role == PartRole::kPrescribed) result.jammed.push_back(p);
+        if (IsDriven(role)) result.jammed.push_back(p);
       }
     }
     if (!report.message.empty())

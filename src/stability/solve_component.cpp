@@ -80,10 +80,7 @@ double CheckTolerance(const ContactLcp& lcp, const LemkeParameters& p) {
 }
 
 double NaturalResidual(const ContactLcp& lcp, const VectorX& z) {
-  const VectorX w = lcp.Multiply(z) + lcp.q;
-  double r = 0;
-  for (Eigen::Index i = 0; i < z.size(); ++i) r = std::max(r, std::abs(std::min(z[i], w[i])));
-  return r;
+  return NaturalMapResidual(z, lcp.Multiply(z) + lcp.q);
 }
 
 bool Solved(const LcpResult& r) {

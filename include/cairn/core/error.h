@@ -28,6 +28,9 @@ class InputError : public std::runtime_error {
   std::string message_;
 };
 
+/// A number in a message, as `operator<<` writes it (6 significant digits).
+std::string FormatNumber(double x);
+
 /// A name as a JSON string: in double quotes, with `"`, `\` and control
 /// characters escaped as JSON escapes them (`\"`, `\\`, `\n`, `\u0001`), so
 /// that no name can break a one-line message. `"A"` for A.

@@ -138,6 +138,8 @@ class Assembly {
   const std::vector<Part>& parts() const { return parts_; }
   const Part& part(int i) const { return parts_.at(i); }
   /// Index of the part with this name, or -1.
+  /// The names of `parts`, joined by ", " (for messages: "A, B").
+  std::string NameList(const std::vector<int>& parts) const;
   int FindPart(const std::string& name) const;
   const std::vector<Fixture>& fixtures() const { return fixtures_; }
   /// The given contact interfaces (AssemblyDef::interfaces); empty when the

@@ -91,6 +91,11 @@ struct LcpResult {
 LcpResult SolveLemke(const MatrixX& M, const VectorX& q, const LemkeParameters& params = {},
                      const LcpBasis* warm_start = nullptr);
 
+/// The natural-map residual max_i |min(z_i, w_i)| of z and w = M z + q, both
+/// given (0 for n = 0): the one measure of an LCP answer every solver and
+/// check reports.
+double NaturalMapResidual(const VectorX& z, const VectorX& w);
+
 /// The natural-map residual max_i |min(z_i, (M z + q)_i)| (0 for n = 0).
 double LcpResidual(const MatrixX& M, const VectorX& q, const VectorX& z);
 

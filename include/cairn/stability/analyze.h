@@ -54,6 +54,11 @@ enum class PartRole {
 /// "judged", "carried", "guided", "prescribed".
 const char* to_string(PartRole role);
 
+/// Moved by the gripper (guided or prescribed): its motion is an input.
+inline bool IsDriven(PartRole role) {
+  return role == PartRole::kGuided || role == PartRole::kPrescribed;
+}
+
 /// The motion of one movable part.
 struct PartMotion {
   int part = -1;
