@@ -17,7 +17,7 @@
 #include "cairn/motion/simulate.h"
 #include "cairn/planning/fixtures.h"
 #include "cairn/report/fixture_report.h"
-#include "cairn/report/report.h"
+#include "cairn/report/simulation_report.h"
 #include "cairn/stability/analyze.h"
 #include "cli/command.h"
 #include "cli/model.h"

@@ -1,8 +1,9 @@
+#include "cairn/report/simulation_report.h"
+
 #include <cmath>
 #include <cstdio>
 #include <sstream>
 
-#include "cairn/report/report.h"
 #include "report/report_common.h"
 
 namespace cairn {
