@@ -101,9 +101,9 @@ cairn::ContactLcp Rebuild(const cairn::ContactLcp& lcp, const std::vector<int>& 
   std::vector<cairn::Contact> contacts;
   contacts.reserve(keep.size());
   for (int i : keep) contacts.push_back(lcp.contacts[i]);
-  const bool gaps = lcp.normal_offset.size() > 0 && lcp.normal_offset.cwiseAbs().maxCoeff() > 0;
-  return cairn::BuildContactLcp(lcp.bodies, contacts, lcp.formulation, lcp.dt, gaps,
-                                cairn::LcpStorage::kFactored, 3, lcp.num_directions);
+  cairn::LcpBuildOptions build = lcp.build;
+  build.storage = cairn::LcpStorage::kFactored;
+  return cairn::BuildContactLcp(lcp.bodies, contacts, build);
 }
 
 // The reduced solution z_r extended to the full LCP: zero at the dropped

@@ -183,9 +183,15 @@ FactoredLcpMatrix Factored(const std::vector<const JacobianRow*>& rows, int n,
 }  // namespace
 
 ContactLcp BuildContactLcp(std::vector<BodyDynamics> bodies, std::vector<Contact> contacts,
-                           Formulation formulation, double dt, bool use_gaps, LcpStorage storage,
-                           int dimension, int directions) {
+                           const LcpBuildOptions& options) {
+  const Formulation formulation = options.formulation;
+  const double dt = options.dt;
+  const bool use_gaps = options.use_gaps;
+  const LcpStorage storage = options.storage;
+  const int dimension = options.dimension;
+  const int directions = options.directions;
   ContactLcp lcp;
+  lcp.build = options;
   lcp.formulation = formulation;
   lcp.dt = dt;
   lcp.bodies = std::move(bodies);

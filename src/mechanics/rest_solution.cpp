@@ -363,10 +363,9 @@ RestSolution FindRestSolution(const ContactLcp& lcp, RestLpBasis* warm, RestHypo
     add_body(lcp.normal_rows[c].body[1]);
     contacts.push_back(lcp.contacts[c]);
   }
-  const int dimension = lcp.tangent2_rows.empty() ? 2 : 3;
-  const bool gaps = lcp.normal_offset.size() > 0 && lcp.normal_offset.cwiseAbs().maxCoeff() > 0;
-  const ContactLcp sub = BuildContactLcp(bodies, contacts, lcp.formulation, lcp.dt, gaps,
-                                         LcpStorage::kAuto, dimension, D);
+  LcpBuildOptions build = lcp.build;
+  build.storage = LcpStorage::kAuto;
+  const ContactLcp sub = BuildContactLcp(bodies, contacts, build);
   const LcpResult r = SolveContactLcp(sub);
   if (r.status != LcpStatus::kSolved && r.status != LcpStatus::kTrivial) {
     out.outcome = RestSolution::Outcome::kSolverTrouble;

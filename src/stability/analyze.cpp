@@ -185,9 +185,13 @@ ContactLcp BuildComponent(const Assembly& assembly, const Configuration& config,
     if (lcp_index) (*lcp_index)[i] = static_cast<int>(kept.size());
     kept.push_back(comp_contacts[i]);
   }
-  return BuildContactLcp(std::move(bodies), std::move(kept), formulation, dt,
-                         /*use_gaps=*/false, storage, assembly.dimension(),
-                         assembly.friction_directions());
+  LcpBuildOptions build;
+  build.formulation = formulation;
+  build.dt = dt;
+  build.storage = storage;
+  build.dimension = assembly.dimension();
+  build.directions = assembly.friction_directions();
+  return BuildContactLcp(std::move(bodies), std::move(kept), build);
 }
 
 // The structure of a component for warm starts (StabilityWorkspace::Entry::key):

@@ -173,10 +173,10 @@ void SolveWithOthersHeld(const ContactLcp& lcp, const SolveContext& ctx,
     out.held.push_back(static_cast<int>(b));
   }
   if (out.held.empty()) return;  // nothing to hold: the component's own LCP failed
-  const int dimension = lcp.bodies.front().planar ? 2 : 3;
-  ContactLcp held =
-      BuildContactLcp(std::move(bodies), lcp.contacts, lcp.formulation, lcp.dt,
-                      /*use_gaps=*/false, LcpStorage::kAuto, dimension, lcp.num_directions);
+  LcpBuildOptions build = lcp.build;
+  build.use_gaps = false;
+  build.storage = LcpStorage::kAuto;
+  ContactLcp held = BuildContactLcp(std::move(bodies), lcp.contacts, build);
   LemkeParameters p = ctx.lemke;
   const int budget = ProbePivots(held);
   if (budget < 0) {

@@ -125,13 +125,13 @@ struct Outcome {
 
 Outcome SolveReducedAndExtend(const BodyDynamics& body, Formulation formulation,
                               const std::vector<Contact>& contacts) {
-  const ContactLcp full =
-      BuildContactLcp({body}, contacts, formulation, 0.01, false, LcpStorage::kDense, 3, 4);
+  const ContactLcp full = BuildContactLcp(
+      {body}, contacts, LcpBuildOptions{formulation, 0.01, false, LcpStorage::kDense, 3, 4});
   const std::vector<int> keep = HullContactSubset(contacts);
   std::vector<Contact> kept;
   for (int i : keep) kept.push_back(contacts[i]);
-  const ContactLcp reduced =
-      BuildContactLcp({body}, kept, formulation, 0.01, false, LcpStorage::kDense, 3, 4);
+  const ContactLcp reduced = BuildContactLcp(
+      {body}, kept, LcpBuildOptions{formulation, 0.01, false, LcpStorage::kDense, 3, 4});
   const LcpResult r = SolveContactLcp(reduced);
   EXPECT_EQ(r.status, LcpStatus::kSolved);
   const VectorX z = testing::ExtendReducedSolution(full, reduced, keep, r.z);
@@ -191,13 +191,15 @@ TEST(HullContactSubsetLcp, DroppingAPointOutsideTheHullWouldNotBeExact) {
   // and the extension penetrates there.
   const std::vector<Contact> contacts = SquarePatch(5.0);
   const BodyDynamics body = Cube(kG, 1.0);
-  const ContactLcp full = BuildContactLcp({body}, contacts, Formulation::kStewartTrinkle, 0.01,
-                                          false, LcpStorage::kDense, 3, 4);
+  const ContactLcp full = BuildContactLcp(
+      {body}, contacts,
+      LcpBuildOptions{Formulation::kStewartTrinkle, 0.01, false, LcpStorage::kDense, 3, 4});
   const std::vector<int> keep = {0, 1, 3};
   std::vector<Contact> kept;
   for (int i : keep) kept.push_back(contacts[i]);
-  const ContactLcp reduced = BuildContactLcp({body}, kept, Formulation::kStewartTrinkle, 0.01,
-                                             false, LcpStorage::kDense, 3, 4);
+  const ContactLcp reduced = BuildContactLcp(
+      {body}, kept,
+      LcpBuildOptions{Formulation::kStewartTrinkle, 0.01, false, LcpStorage::kDense, 3, 4});
   const LcpResult r = SolveContactLcp(reduced);
   ASSERT_EQ(r.status, LcpStatus::kSolved);
   const VectorX z = testing::ExtendReducedSolution(full, reduced, keep, r.z);

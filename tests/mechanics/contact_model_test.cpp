@@ -38,8 +38,8 @@ struct BoxOnTable {
 TEST(Baraff, DelassusMatrixOfABoxOnItsCornersMatchesTheHandFormula) {
   // A_ij = 1/m + r_i r_j / I with r = ∓w/2 (the lever of the vertical normal).
   const BoxOnTable box;
-  const ContactLcp lcp =
-      BuildContactLcp(box.Bodies(), box.Contacts(), Formulation::kBaraff, 1, false);
+  const ContactLcp lcp = BuildContactLcp(box.Bodies(), box.Contacts(),
+                                         LcpBuildOptions{Formulation::kBaraff, 1, false});
   const double I = box.m * (box.w * box.w + box.h * box.h) / 12;
   const double r = box.w / 2;
   ASSERT_EQ(lcp.size(), 2);
@@ -65,7 +65,8 @@ TEST(Baraff, DelassusIsSymmetricPsdWithTheRankOfTheBodies) {
   auto extra = cs;
   for (auto& c : extra) c.p_WC.x() *= 0.5;
   cs.insert(cs.end(), extra.begin(), extra.end());
-  const ContactLcp lcp = BuildContactLcp(box.Bodies(), cs, Formulation::kBaraff, 1, false);
+  const ContactLcp lcp =
+      BuildContactLcp(box.Bodies(), cs, LcpBuildOptions{Formulation::kBaraff, 1, false});
   EXPECT_TRUE(lcp.M.isApprox(lcp.M.transpose(), 1e-14));
   Eigen::SelfAdjointEigenSolver<MatrixX> eig(lcp.M);
   EXPECT_GT(eig.eigenvalues().minCoeff(), -1e-12);
@@ -77,8 +78,8 @@ TEST(Baraff, DelassusIsSymmetricPsdWithTheRankOfTheBodies) {
 TEST(StewartTrinkle, LcpHasThePapersBlockStructure) {
   BoxOnTable box;
   box.mu = 0.3;
-  const ContactLcp lcp =
-      BuildContactLcp(box.Bodies(), box.Contacts(), Formulation::kStewartTrinkle, 0.5, false);
+  const ContactLcp lcp = BuildContactLcp(box.Bodies(), box.Contacts(),
+                                         LcpBuildOptions{Formulation::kStewartTrinkle, 0.5, false});
   // nc normal + 2 nc friction + nc λ.
   ASSERT_EQ(lcp.size(), 8);
   EXPECT_EQ(lcp.num_friction, 2);
@@ -105,7 +106,8 @@ TEST(StewartTrinkle, FrictionlessContactsCarryNoFrictionUnknowns) {
   BoxOnTable box;
   auto cs = box.Contacts();
   cs[0].mu = 0.5;  // one frictional, one frictionless
-  const ContactLcp lcp = BuildContactLcp(box.Bodies(), cs, Formulation::kStewartTrinkle, 1, false);
+  const ContactLcp lcp =
+      BuildContactLcp(box.Bodies(), cs, LcpBuildOptions{Formulation::kStewartTrinkle, 1, false});
   EXPECT_EQ(lcp.num_friction, 1);
   EXPECT_EQ(lcp.size(), 2 + 3);
 }
@@ -116,9 +118,9 @@ TEST(StewartTrinkle, GapsEnterAsDOverDtWhenAsked) {
   auto cs = box.Contacts();
   cs[0].gap = 1e-3;
   const ContactLcp with =
-      BuildContactLcp(box.Bodies(), cs, Formulation::kStewartTrinkle, 0.1, true);
+      BuildContactLcp(box.Bodies(), cs, LcpBuildOptions{Formulation::kStewartTrinkle, 0.1, true});
   const ContactLcp without =
-      BuildContactLcp(box.Bodies(), cs, Formulation::kStewartTrinkle, 0.1, false);
+      BuildContactLcp(box.Bodies(), cs, LcpBuildOptions{Formulation::kStewartTrinkle, 0.1, false});
   EXPECT_NEAR(with.q(0) - without.q(0), 1e-3 / 0.1, 1e-15);
   EXPECT_EQ(with.q(1), without.q(1));
 }

@@ -108,8 +108,19 @@ struct JacobianRow {
   double Dot(const std::vector<Vector6>& nu) const;
 };
 
+/// How BuildContactLcp builds a component's LCP.
+struct LcpBuildOptions {
+  Formulation formulation = Formulation::kStewartTrinkle;
+  double dt = 1.0;        ///< the time step (s) of the Stewart–Trinkle LCP
+  bool use_gaps = false;  ///< each contact's gap in the d/Δt term; false: every contact closed
+  LcpStorage storage = LcpStorage::kAuto;
+  int dimension = 2;   ///< 2 or 3: chooses the friction directions
+  int directions = 4;  ///< D, friction directions per contact in 3-D (ignored in 2-D)
+};
+
 /// The LCP of one component, and what is needed to read its solution.
 struct ContactLcp {
+  LcpBuildOptions build;  ///< how it was built (to build a variant of it)
   Formulation formulation = Formulation::kBaraff;
   double dt = 1.0;                       ///< s (Stewart–Trinkle only)
   std::vector<BodyDynamics> bodies;      ///< (nb)
@@ -145,9 +156,7 @@ struct ContactLcp {
 /// closed (d = 0, for a static check). `dimension` (2 or 3) chooses the
 /// friction directions, `directions` is D in 3-D (ignored in 2-D).
 ContactLcp BuildContactLcp(std::vector<BodyDynamics> bodies, std::vector<Contact> contacts,
-                           Formulation formulation, double dt, bool use_gaps,
-                           LcpStorage storage = LcpStorage::kAuto, int dimension = 2,
-                           int directions = 4);
+                           const LcpBuildOptions& options);
 
 /// Solves the component's LCP: SolveLemke on the dense M when it is stored,
 /// else SolveLemkeFactored.
