@@ -209,7 +209,7 @@ PassStats RunTicks(const Scene& s, std::span<const Tick> ticks, bool warm, bool 
     if (keep) st.results.push_back(std::move(r));
   }
   st.seconds = Since(t0);
-  st.warm = ws.warm_starts;
+  st.warm = ws.warm_starts();
   return st;
 }
 

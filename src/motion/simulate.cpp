@@ -550,8 +550,7 @@ class PlanSimulation {
   // The step is over: removed parts leave (or, assembling, stay placed);
   // tools always leave.
   void LeaveStep(StepState& st) {
-    st.report.warm_starts = workspace_.warm_starts;
-    workspace_.warm_starts = 0;
+    st.report.warm_starts = workspace_.TakeWarmStarts();
     time_ += st.length / plan_.speed;
     st.report.end_time = time_;
     result_.steps.push_back(st.report);

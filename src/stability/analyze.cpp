@@ -8,6 +8,7 @@
 #include <limits>
 #include <numeric>
 #include <sstream>
+#include <unordered_map>
 
 #include "cairn/contact/contact_reduction.h"
 #include "cairn/contact/detect_contacts.h"
@@ -15,6 +16,35 @@
 #include "cairn/stability/solve_component.h"
 
 namespace cairn {
+
+// The workspace's contents: the last Lemke basis of each component structure
+// and the last rest-hypothesis LP basis.
+struct StabilityWorkspace::Impl {
+  /// One component structure and its last basis.
+  struct Entry {
+    /// The structure: LCP size, the bodies' part indices, then each contact's
+    /// part_a, part_b, feature, index_a, index_b (compared exactly).
+    std::vector<int> key;
+    LcpBasis basis;
+  };
+  std::unordered_multimap<std::uint64_t, Entry> bases;  ///< hash of Entry::key → entry
+  int warm_starts = 0;                                  ///< solves answered by a warm start
+  /// The last rest-hypothesis LP basis of each structure (same hash; a hint,
+  /// so no exact compare: a wrong basis costs iterations, not answers).
+  std::unordered_map<std::uint64_t, RestLpBasis> rest_bases;
+};
+
+StabilityWorkspace::StabilityWorkspace() : impl_(std::make_unique<Impl>()) {}
+StabilityWorkspace::~StabilityWorkspace() = default;
+StabilityWorkspace::StabilityWorkspace(StabilityWorkspace&&) noexcept = default;
+StabilityWorkspace& StabilityWorkspace::operator=(StabilityWorkspace&&) noexcept = default;
+int StabilityWorkspace::warm_starts() const { return impl_->warm_starts; }
+int StabilityWorkspace::TakeWarmStarts() {
+  const int n = impl_->warm_starts;
+  impl_->warm_starts = 0;
+  return n;
+}
+int StabilityWorkspace::num_structures() const { return static_cast<int>(impl_->bases.size()); }
 
 const char* to_string(MotionKind kind) {
   switch (kind) {
@@ -243,7 +273,7 @@ std::vector<int> MakeKey(const ContactLcp& lcp) {
 }
 
 // The workspace's basis for this component's structure, or null.
-LcpBasis* FindBasis(StabilityWorkspace& ws, std::uint64_t hash, const ContactLcp& lcp) {
+LcpBasis* FindBasis(StabilityWorkspace::Impl& ws, std::uint64_t hash, const ContactLcp& lcp) {
   const auto [first, last] = ws.bases.equal_range(hash);
   for (auto it = first; it != last; ++it)
     if (KeyMatches(it->second.key, lcp)) return &it->second.basis;
@@ -469,19 +499,19 @@ StabilityResult AnalyzeConfiguration(const Assembly& assembly, const Configurati
     LcpBasis* basis = nullptr;
     if (workspace) {
       hash = KeyHash(lcp);
-      basis = FindBasis(*workspace, hash, lcp);
+      basis = FindBasis(workspace->impl(), hash, lcp);
       ctx.warm_start = basis;
-      if (ctx.rest_first) ctx.rest_warm = &workspace->rest_bases[hash];
+      if (ctx.rest_first) ctx.rest_warm = &workspace->impl().rest_bases[hash];
     }
     ComponentSolution s = SolveComponent(lcp, ctx);
     if (workspace && s.decided_by == DecidedBy::kLemke) {
       // A warm start returns the basis it was given: nothing to store.
       if (!basis)
-        workspace->bases.emplace(hash,
-                                 StabilityWorkspace::Entry{MakeKey(lcp), std::move(s.lemke.basis)});
+        workspace->impl().bases.emplace(
+            hash, StabilityWorkspace::Impl::Entry{MakeKey(lcp), std::move(s.lemke.basis)});
       else if (!s.lemke.warm_start_used)
         *basis = std::move(s.lemke.basis);
-      if (s.lemke.warm_start_used) ++workspace->warm_starts;
+      if (s.lemke.warm_start_used) ++workspace->impl().warm_starts;
     }
     if (options.check_equilibrium && !static_check) {
       const StaticEquilibrium eq = FindStaticEquilibrium(lcp);

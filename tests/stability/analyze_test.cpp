@@ -303,16 +303,16 @@ TEST(WarmStart, TheSameAnalysisTwiceIsAnsweredByTheWorkspaceWithTheSameResult) {
   StabilityWorkspace ws;
   const StabilityResult first = AnalyzeConfiguration(a, config, {}, nullptr, &ws);
   ASSERT_EQ(first.components.size(), 2u);
-  EXPECT_EQ(ws.warm_starts, 0);
-  EXPECT_EQ(ws.bases.size(), 2u);  // one entry per component structure
+  EXPECT_EQ(ws.warm_starts(), 0);
+  EXPECT_EQ(ws.num_structures(), 2);  // one entry per component structure
   for (const ComponentReport& c : first.components) {
     EXPECT_FALSE(c.warm_start_used);
     EXPECT_GT(c.pivots, 0);  // a cold solve pivots: the second's 0 means something
   }
 
   const StabilityResult second = AnalyzeConfiguration(a, config, {}, nullptr, &ws);
-  EXPECT_EQ(ws.warm_starts, 2);
-  EXPECT_EQ(ws.bases.size(), 2u);
+  EXPECT_EQ(ws.warm_starts(), 2);
+  EXPECT_EQ(ws.num_structures(), 2);
   EXPECT_EQ(TotalPivots(second), 0);
   for (const ComponentReport& c : second.components) EXPECT_TRUE(c.warm_start_used);
 
@@ -342,7 +342,7 @@ TEST(WarmStart, AComponentOfAnotherStructureNeverGetsItsBasis) {
   ASSERT_EQ(r.components[0].lcp_size, r.components[1].lcp_size);
   EXPECT_EQ(r.components[0].pivots, r.components[1].pivots);
   EXPECT_FALSE(r.components[1].warm_start_used);
-  EXPECT_EQ(ws.warm_starts, 0);
+  EXPECT_EQ(ws.warm_starts(), 0);
 
   // Without D, C alone is a third structure (solved cold); A-B is unchanged
   // (warm). Then the whole scene again: both stacks' own bases are still there.
@@ -353,14 +353,14 @@ TEST(WarmStart, AComponentOfAnotherStructureNeverGetsItsBasis) {
   EXPECT_TRUE(r2.components[0].warm_start_used);
   EXPECT_FALSE(r2.components[1].warm_start_used);
   EXPECT_GT(r2.components[1].pivots, 0);
-  EXPECT_EQ(ws.warm_starts, 1);
-  EXPECT_EQ(ws.bases.size(), 3u);
+  EXPECT_EQ(ws.warm_starts(), 1);
+  EXPECT_EQ(ws.num_structures(), 3);
 
   const StabilityResult r3 = AnalyzeConfiguration(a, config, {}, nullptr, &ws);
   EXPECT_TRUE(r3.components[0].warm_start_used);
   EXPECT_TRUE(r3.components[1].warm_start_used);
-  EXPECT_EQ(ws.warm_starts, 3);
-  EXPECT_EQ(ws.bases.size(), 3u);
+  EXPECT_EQ(ws.warm_starts(), 3);
+  EXPECT_EQ(ws.num_structures(), 3);
 }
 
 TEST(Postconditions, LcpSolutionsAreConsistentWithBodyMotion) {

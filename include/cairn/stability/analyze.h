@@ -16,6 +16,7 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <unordered_map>
@@ -204,19 +205,28 @@ struct DriveInputs {
 /// each component structure (the same bodies, the same contact features in the
 /// same order, the same LCP size). A basis is only ever offered to a component
 /// of exactly its structure.
-struct StabilityWorkspace {
-  /// One component structure and its last basis.
-  struct Entry {
-    /// The structure: LCP size, the bodies' part indices, then each contact's
-    /// part_a, part_b, feature, index_a, index_b (compared exactly).
-    std::vector<int> key;
-    LcpBasis basis;
-  };
-  std::unordered_multimap<std::uint64_t, Entry> bases;  ///< hash of Entry::key → entry
-  int warm_starts = 0;                                  ///< solves answered by a warm start
-  /// The last rest-hypothesis LP basis of each structure (same hash; a hint,
-  /// so no exact compare: a wrong basis costs iterations, not answers).
-  std::unordered_map<std::uint64_t, RestLpBasis> rest_bases;
+class StabilityWorkspace {
+ public:
+  StabilityWorkspace();
+  ~StabilityWorkspace();
+  StabilityWorkspace(StabilityWorkspace&&) noexcept;
+  StabilityWorkspace& operator=(StabilityWorkspace&&) noexcept;
+  StabilityWorkspace(const StabilityWorkspace&) = delete;
+  StabilityWorkspace& operator=(const StabilityWorkspace&) = delete;
+
+  /// Solves answered by a warm start since the last TakeWarmStarts.
+  int warm_starts() const;
+  /// warm_starts(), and the count starts again from 0.
+  int TakeWarmStarts();
+  /// Component structures with a stored basis.
+  int num_structures() const;
+
+  /// The stored bases and LP hints (defined in analyze.cpp only).
+  struct Impl;
+  Impl& impl() { return *impl_; }
+
+ private:
+  std::unique_ptr<Impl> impl_;
 };
 
 /// Options of AnalyzeConfiguration.
