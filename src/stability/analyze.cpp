@@ -426,116 +426,67 @@ StabilityProof Summarize(const StabilityResult& r) {
 
 }  // namespace
 
-StabilityResult AnalyzeConfiguration(const Assembly& assembly, const Configuration& config,
-                                     const StabilityOptions& options, const DriveInputs* drive,
-                                     StabilityWorkspace* workspace) {
-  StabilityResult result;
-  result.dt = options.dt;
-  result.tolerances =
-      options.tolerances ? *options.tolerances : assembly.MakeTolerances(options.dt);
-  result.formulation = ChooseFormulation(assembly, options, drive);
-  const Tolerances& tol = result.tolerances;
-  const bool st = result.formulation == Formulation::kStewartTrinkle;
-  const double motion_tol = st ? tol.velocity : tol.acceleration;
-  const bool static_check = drive == nullptr;
+namespace {
 
-  // DetectContacts.
-  auto t0 = Clock::now();
-  const std::vector<Contact> contacts = DetectContacts(assembly, config, tol.length, tol.angle);
-  result.profile.detect = Seconds(t0);
+// AnalyzeConfiguration's stages over the state they share: the options, the
+// contacts and components of the configuration, and the result being filled.
+class ConfigurationAnalysis {
+ public:
+  ConfigurationAnalysis(const Assembly& assembly, const Configuration& config,
+                        const StabilityOptions& options, const DriveInputs* drive,
+                        StabilityWorkspace* workspace)
+      : assembly_(assembly),
+        config_(config),
+        options_(options),
+        drive_(drive),
+        workspace_(workspace),
+        static_check_(drive == nullptr) {
+    result_.dt = options.dt;
+    result_.tolerances =
+        options.tolerances ? *options.tolerances : assembly.MakeTolerances(options.dt);
+    result_.formulation = ChooseFormulation(assembly, options, drive);
+    st_ = result_.formulation == Formulation::kStewartTrinkle;
+    motion_tol_ = st_ ? result_.tolerances.velocity : result_.tolerances.acceleration;
+  }
 
-  // SplitComponents.
-  const std::vector<Component> components = SplitComponents(assembly, config, contacts);
-  result.contacts.resize(contacts.size());
-  for (size_t c = 0; c < contacts.size(); ++c) result.contacts[c].contact = contacts[c];
+  StabilityResult Run() {
+    Detect();
+    for (int ci = 0; ci < static_cast<int>(components_.size()); ++ci) AnalyzeComponent(ci);
+    Conclude();
+    return std::move(result_);
+  }
 
-  // Each part's vertices, once: the point motions are measured at them.
-  std::vector<std::vector<Vector3>> vertices(assembly.num_parts());
-  for (const Component& comp : components)
-    for (int p : comp.parts) vertices[p] = config.WorldVertices(assembly, p);
-  // Whether an LCP solution moves a part that must stay put.
-  const auto judged_moves = [&](const ContactLcp& l, const VectorX& z) {
-    const ContactSolution s = RecoverSolution(l, z);
-    for (size_t b = 0; b < l.bodies.size(); ++b) {
-      const int p = l.bodies[b].part;
-      if (RoleOf(drive, p) != PartRole::kJudged) continue;
-      if (LargestPointMotion(s.body_motion[b], l.bodies[b].p_WBcm, vertices[p]) > motion_tol)
-        return true;
-    }
-    return false;
-  };
+ private:
+  // DetectContacts, then SplitComponents; each part's vertices, once (the
+  // point motions are measured at them).
+  void Detect() {
+    const Tolerances& tol = result_.tolerances;
+    const auto t0 = Clock::now();
+    contacts_ = DetectContacts(assembly_, config_, tol.length, tol.angle);
+    result_.profile.detect = Seconds(t0);
+    components_ = SplitComponents(assembly_, config_, contacts_);
+    result_.contacts.resize(contacts_.size());
+    for (size_t c = 0; c < contacts_.size(); ++c) result_.contacts[c].contact = contacts_[c];
+    vertices_.resize(assembly_.num_parts());
+    for (const Component& comp : components_)
+      for (int p : comp.parts) vertices_[p] = config_.WorldVertices(assembly_, p);
+  }
 
-  bool any_moving = false, any_undecided = false;
-  for (int ci = 0; ci < static_cast<int>(components.size()); ++ci) {
-    const Component& comp = components[ci];
-
-    // BuildContactLcp.
-    t0 = Clock::now();
+  // One component: BuildContactLcp, SolveComponent, the report of the solve,
+  // RecoverSolution, ClassifyMotion.
+  void AnalyzeComponent(int ci) {
+    const Component& comp = components_[ci];
+    auto t0 = Clock::now();
     std::vector<int> lcp_index;
     const ContactLcp lcp =
-        BuildComponent(assembly, config, contacts, comp, result.formulation, options.dt, drive,
-                       options.lcp_storage, tol.length, &lcp_index);
-    result.profile.build += Seconds(t0);
+        BuildComponent(assembly_, config_, contacts_, comp, result_.formulation, options_.dt,
+                       drive_, options_.lcp_storage, result_.tolerances.length, &lcp_index);
+    result_.profile.build += Seconds(t0);
 
-    // SolveComponent: the policy of stability/solve_component.h.
     t0 = Clock::now();
-    SolveContext ctx;
-    ctx.lemke = options.lemke;
-    ctx.static_check = static_check;
-    ctx.moves = judged_moves;
-    bool carried = false;
-    for (int p : comp.parts) {
-      const PartRole role = RoleOf(drive, p);
-      ctx.has_guided |= role == PartRole::kGuided;
-      ctx.has_driven |= IsDriven(role);
-      carried |= role == PartRole::kCarried;
-    }
-    // The rest hypothesis (StabilityOptions::rest_first): a driven 3-D
-    // component with friction whose every part is judged or driven (a carried
-    // part's motion is what the LCP must find).
-    ctx.rest_first = options.rest_first && !static_check && assembly.is_3d() && st &&
-                     lcp.num_friction > 0 && ctx.has_driven && !carried;
-    std::uint64_t hash = 0;
-    LcpBasis* basis = nullptr;
-    if (workspace) {
-      hash = KeyHash(lcp);
-      basis = FindBasis(workspace->impl(), hash, lcp);
-      ctx.warm_start = basis;
-      if (ctx.rest_first) ctx.rest_warm = &workspace->impl().rest_bases[hash];
-    }
-    ComponentSolution s = SolveComponent(lcp, ctx);
-    if (workspace && s.decided_by == DecidedBy::kLemke) {
-      // A warm start returns the basis it was given: nothing to store.
-      if (!basis)
-        workspace->impl().bases.emplace(
-            hash, StabilityWorkspace::Impl::Entry{MakeKey(lcp), std::move(s.lemke.basis)});
-      else if (!s.lemke.warm_start_used)
-        *basis = std::move(s.lemke.basis);
-      if (s.lemke.warm_start_used) ++workspace->impl().warm_starts;
-    }
-    if (options.check_equilibrium && !static_check) {
-      const StaticEquilibrium eq = FindStaticEquilibrium(lcp);
-      if (eq.solved) s.equilibrium = eq;
-    }
-    result.profile.solve += Seconds(t0);
-    ComponentReport report = ReportSolve(comp, lcp, s);
-
-    // A driven part whose prescribed motion no contact forces allow is
-    // jammed: the path drives it into something that cannot give way.
-    if (s.decided_by == DecidedBy::kJammed) {
-      report.message = "the gripper's motion is blocked (no contact forces allow it)" +
-                       (report.message.empty() ? "" : "; " + report.message);
-      for (int p : comp.parts) {
-        const PartRole role = RoleOf(drive, p);
-        if (IsDriven(role)) result.jammed.push_back(p);
-      }
-    }
-    if (!report.message.empty())
-      result.diagnostics += "component " + std::to_string(ci) + " (" +
-                            std::to_string(comp.parts.size()) + " parts, " +
-                            std::to_string(lcp.size()) + " LCP variables): decided by " +
-                            to_string(s.decided_by) + ": " + report.message + "; ";
-    for (int c : comp.contacts) result.contacts[c].component = ci;
+    const ComponentSolution s = Solve(comp, lcp);
+    result_.profile.solve += Seconds(t0);
+    ComponentReport report = Record(ci, comp, lcp, s);
 
     // RecoverSolution: from the verified LCP solution, or the mechanism's
     // virtual motion.
@@ -547,105 +498,220 @@ StabilityResult AnalyzeConfiguration(const Assembly& assembly, const Configurati
     else if (s.mechanism && s.mechanism->found)
       phys = MechanismMotion(lcp, *s.mechanism);
     if (!phys) {
-      if (s.decided_by != DecidedBy::kJammed) any_undecided = true;
+      if (s.decided_by != DecidedBy::kJammed) any_undecided_ = true;
       for (int p : comp.parts) {
         PartMotion m;
         m.part = p;
         m.component = ci;
-        m.role = RoleOf(drive, p);
-        result.parts.push_back(m);
+        m.role = RoleOf(drive_, p);
+        result_.parts.push_back(m);
       }
-      result.components.push_back(report);
-      continue;
+      result_.components.push_back(report);
+      return;
     }
     report.consistency_residual = phys->consistency_residual;
-
     // ClassifyMotion: contacts first, then parts.
+    const std::vector<bool> keeps_contact = ClassifyContacts(comp, lcp, lcp_index, *phys);
+    ClassifyParts(ci, comp, lcp, *phys, keeps_contact);
+    result_.profile.classify += Seconds(t0);
+    result_.components.push_back(report);
+  }
+
+  // SolveComponent: the policy of stability/solve_component.h, with the
+  // workspace's warm starts.
+  ComponentSolution Solve(const Component& comp, const ContactLcp& lcp) {
+    SolveContext ctx;
+    ctx.lemke = options_.lemke;
+    ctx.static_check = static_check_;
+    // Whether an LCP solution moves a part that must stay put.
+    ctx.moves = [this](const ContactLcp& l, const VectorX& z) {
+      const ContactSolution sol = RecoverSolution(l, z);
+      for (size_t b = 0; b < l.bodies.size(); ++b) {
+        const int p = l.bodies[b].part;
+        if (RoleOf(drive_, p) != PartRole::kJudged) continue;
+        if (LargestPointMotion(sol.body_motion[b], l.bodies[b].p_WBcm, vertices_[p]) > motion_tol_)
+          return true;
+      }
+      return false;
+    };
+    bool carried = false;
+    for (int p : comp.parts) {
+      const PartRole role = RoleOf(drive_, p);
+      ctx.has_guided |= role == PartRole::kGuided;
+      ctx.has_driven |= IsDriven(role);
+      carried |= role == PartRole::kCarried;
+    }
+    // The rest hypothesis (StabilityOptions::rest_first): a driven 3-D
+    // component with friction whose every part is judged or driven (a carried
+    // part's motion is what the LCP must find).
+    ctx.rest_first = options_.rest_first && !static_check_ && assembly_.is_3d() && st_ &&
+                     lcp.num_friction > 0 && ctx.has_driven && !carried;
+    std::uint64_t hash = 0;
+    LcpBasis* basis = nullptr;
+    if (workspace_) {
+      hash = KeyHash(lcp);
+      basis = FindBasis(workspace_->impl(), hash, lcp);
+      ctx.warm_start = basis;
+      if (ctx.rest_first) ctx.rest_warm = &workspace_->impl().rest_bases[hash];
+    }
+    ComponentSolution s = SolveComponent(lcp, ctx);
+    if (workspace_ && s.decided_by == DecidedBy::kLemke) {
+      // A warm start returns the basis it was given: nothing to store.
+      if (!basis)
+        workspace_->impl().bases.emplace(
+            hash, StabilityWorkspace::Impl::Entry{MakeKey(lcp), std::move(s.lemke.basis)});
+      else if (!s.lemke.warm_start_used)
+        *basis = std::move(s.lemke.basis);
+      if (s.lemke.warm_start_used) ++workspace_->impl().warm_starts;
+    }
+    if (options_.check_equilibrium && !static_check_) {
+      const StaticEquilibrium eq = FindStaticEquilibrium(lcp);
+      if (eq.solved) s.equilibrium = eq;
+    }
+    return s;
+  }
+
+  // The component's report, the jammed parts and the diagnostics line.
+  ComponentReport Record(int ci, const Component& comp, const ContactLcp& lcp,
+                         const ComponentSolution& s) {
+    ComponentReport report = ReportSolve(comp, lcp, s);
+    // A driven part whose prescribed motion no contact forces allow is
+    // jammed: the path drives it into something that cannot give way.
+    if (s.decided_by == DecidedBy::kJammed) {
+      report.message = "the gripper's motion is blocked (no contact forces allow it)" +
+                       (report.message.empty() ? "" : "; " + report.message);
+      for (int p : comp.parts)
+        if (IsDriven(RoleOf(drive_, p))) result_.jammed.push_back(p);
+    }
+    if (!report.message.empty())
+      result_.diagnostics += "component " + std::to_string(ci) + " (" +
+                             std::to_string(comp.parts.size()) + " parts, " +
+                             std::to_string(lcp.size()) + " LCP variables): decided by " +
+                             to_string(s.decided_by) + ": " + report.message + "; ";
+    for (int c : comp.contacts) result_.contacts[c].component = ci;
+    return report;
+  }
+
+  // Each contact's forces and relative motion, and whether it breaks or
+  // slides; whether each body keeps a closed contact.
+  std::vector<bool> ClassifyContacts(const Component& comp, const ContactLcp& lcp,
+                                     const std::vector<int>& lcp_index,
+                                     const ContactSolution& phys) {
     std::vector<bool> keeps_contact(comp.parts.size(), false);
     for (size_t k = 0; k < comp.contacts.size(); ++k) {
-      ContactReport& cr = result.contacts[comp.contacts[k]];
+      ContactReport& cr = result_.contacts[comp.contacts[k]];
       if (const int m = lcp_index[k]; m >= 0) {
-        cr.normal_force = phys->normal_force(m);
-        cr.friction_force = phys->friction_force[m];
-        cr.normal_motion = phys->normal_motion(m);
-        cr.tangent_motion = phys->tangent_motion[m];
+        cr.normal_force = phys.normal_force(m);
+        cr.friction_force = phys.friction_force[m];
+        cr.normal_motion = phys.normal_motion(m);
+        cr.tangent_motion = phys.tangent_motion[m];
       } else {  // a dropped point of a patch: no force, the bodies' motion
-        const Vector3 u = RelativeMotion(lcp, *phys, cr.contact);
+        const Vector3 u = RelativeMotion(lcp, phys, cr.contact);
         cr.normal_force = 0;
         cr.friction_force.setZero();
         cr.normal_motion = u.dot(cr.contact.n_W);
         cr.tangent_motion = u - cr.normal_motion * cr.contact.n_W;
       }
-      cr.breaking = cr.normal_motion > motion_tol;
-      cr.sliding = !cr.breaking && cr.tangent_motion.norm() > motion_tol;
+      cr.breaking = cr.normal_motion > motion_tol_;
+      cr.sliding = !cr.breaking && cr.tangent_motion.norm() > motion_tol_;
       if (!cr.breaking) {
         for (size_t b = 0; b < comp.parts.size(); ++b)
           if (comp.parts[b] == cr.contact.part_a || comp.parts[b] == cr.contact.part_b)
             keeps_contact[b] = true;
       }
     }
+    return keeps_contact;
+  }
+
+  // Each part's motion and its kind; judged parts that move, guided parts
+  // off their path.
+  void ClassifyParts(int ci, const Component& comp, const ContactLcp& lcp,
+                     const ContactSolution& phys, const std::vector<bool>& keeps_contact) {
     for (size_t b = 0; b < comp.parts.size(); ++b) {
       const int p = comp.parts[b];
       PartMotion m;
       m.part = p;
       m.component = ci;
-      m.linear = phys->body_motion[b].head<3>();
-      m.angular = phys->body_motion[b].tail<3>();
+      m.linear = phys.body_motion[b].head<3>();
+      m.angular = phys.body_motion[b].tail<3>();
       const Vector3 c = lcp.bodies[b].p_WBcm;
       double radius = 0;
-      for (const Vector3& v : vertices[p]) radius = std::max(radius, (v - c).norm());
-      m.point_motion = LargestPointMotion(phys->body_motion[b], c, vertices[p]);
-      m.role = RoleOf(drive, p);
-      m.moving = m.point_motion > motion_tol;
-      ClassifyMotion(m, keeps_contact[b], radius, assembly.scene_size());
+      for (const Vector3& v : vertices_[p]) radius = std::max(radius, (v - c).norm());
+      m.point_motion = LargestPointMotion(phys.body_motion[b], c, vertices_[p]);
+      m.role = RoleOf(drive_, p);
+      m.moving = m.point_motion > motion_tol_;
+      ClassifyMotion(m, keeps_contact[b], radius, assembly_.scene_size());
       if (m.pivot) m.pivot = *m.pivot + c;
       switch (m.role) {
         case PartRole::kJudged:
-          if (m.moving) any_moving = true;
+          if (m.moving) any_moving_ = true;
           break;
         case PartRole::kGuided: {
           // Off-path motion: everything but the gripper's own velocity.
-          const Vector3 v_g = drive->velocity[p];
+          const Vector3 v_g = drive_->velocity[p];
           double off = 0;
-          for (const Vector3& v : vertices[p])
+          for (const Vector3& v : vertices_[p])
             off = std::max(off, (m.linear - v_g + m.angular.cross(v - c)).norm());
-          if (off > motion_tol) result.unsupported.push_back(p);
+          if (off > motion_tol_) result_.unsupported.push_back(p);
           break;
         }
         case PartRole::kCarried:
         case PartRole::kPrescribed:
           break;
       }
-      result.parts.push_back(m);
+      result_.parts.push_back(m);
     }
-    result.profile.classify += Seconds(t0);
-    result.components.push_back(report);
   }
 
   // The verdict, and what is proved about rest.
-  std::sort(result.parts.begin(), result.parts.end(),
-            [](const PartMotion& x, const PartMotion& y) { return x.part < y.part; });
-  for (const PartMotion& m : result.parts)
-    if (m.moving && m.role == PartRole::kJudged) result.moving.push_back(m.part);
-  std::sort(result.unsupported.begin(), result.unsupported.end());
-  std::sort(result.jammed.begin(), result.jammed.end());
-  // Unstable when a part that should stay put moves, or a driven part cannot
-  // move as the gripper says; undecided only when no solve, equilibrium or
-  // mechanism could decide a component (a defect, reported); else stable. (A
-  // guided part off its path is the caller's concern: see `unsupported`.)
-  result.verdict = (any_moving || !result.jammed.empty())
-                       ? Verdict::kUnstable
-                       : (any_undecided ? Verdict::kSolverFailure : Verdict::kStable);
-  bool all = true, known = true;
-  for (const ComponentReport& c : result.components) {
-    known = known && c.static_equilibrium.has_value();
-    all = all && c.static_equilibrium.value_or(false);
+  void Conclude() {
+    StabilityResult& r = result_;
+    std::sort(r.parts.begin(), r.parts.end(),
+              [](const PartMotion& x, const PartMotion& y) { return x.part < y.part; });
+    for (const PartMotion& m : r.parts)
+      if (m.moving && m.role == PartRole::kJudged) r.moving.push_back(m.part);
+    std::sort(r.unsupported.begin(), r.unsupported.end());
+    std::sort(r.jammed.begin(), r.jammed.end());
+    // Unstable when a part that should stay put moves, or a driven part
+    // cannot move as the gripper says; undecided only when no solve,
+    // equilibrium or mechanism could decide a component (a defect, reported);
+    // else stable. (A guided part off its path is the caller's concern: see
+    // `unsupported`.)
+    r.verdict = (any_moving_ || !r.jammed.empty())
+                    ? Verdict::kUnstable
+                    : (any_undecided_ ? Verdict::kSolverFailure : Verdict::kStable);
+    bool all = true, known = true;
+    for (const ComponentReport& c : r.components) {
+      known = known && c.static_equilibrium.has_value();
+      all = all && c.static_equilibrium.value_or(false);
+    }
+    if (known && (static_check_ || options_.check_equilibrium)) r.static_equilibrium = all;
+    r.weakly_stable =
+        r.verdict == Verdict::kUnstable && r.jammed.empty() && r.static_equilibrium.value_or(false);
+    if (static_check_) r.stability = Summarize(r);
   }
-  if (known && (static_check || options.check_equilibrium)) result.static_equilibrium = all;
-  result.weakly_stable = result.verdict == Verdict::kUnstable && result.jammed.empty() &&
-                         result.static_equilibrium.value_or(false);
-  if (static_check) result.stability = Summarize(result);
-  return result;
+
+  const Assembly& assembly_;
+  const Configuration& config_;
+  const StabilityOptions& options_;
+  const DriveInputs* drive_;
+  StabilityWorkspace* workspace_;
+  const bool static_check_;
+  bool st_ = false;        // Stewart–Trinkle (velocities) rather than Baraff
+  double motion_tol_ = 0;  // velocity or acceleration tolerance of a point
+  std::vector<Contact> contacts_;
+  std::vector<Component> components_;
+  std::vector<std::vector<Vector3>> vertices_;  // per part, world frame
+  bool any_moving_ = false, any_undecided_ = false;
+  StabilityResult result_;
+};
+
+}  // namespace
+
+StabilityResult AnalyzeConfiguration(const Assembly& assembly, const Configuration& config,
+                                     const StabilityOptions& options, const DriveInputs* drive,
+                                     StabilityWorkspace* workspace) {
+  return ConfigurationAnalysis(assembly, config, options, drive, workspace).Run();
 }
 
 }  // namespace cairn
