@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <numeric>
 #include <optional>
@@ -192,33 +193,41 @@ bool PointsInto3d(const Polyhedron& poly, const Vector3& p, const Vector3& n, do
 
 }  // namespace
 
-Assembly Assembly::Create(const AssemblyDef& def, const std::string& source_file) {
-  const Validator check(source_file);
-  Assembly out;
-  out.name_ = def.name;
-  const int num_parts = static_cast<int>(def.parts.size());
+namespace {
 
-  // The dimension: that of the parts' shapes, which must agree.
-  for (int i = 0; i < num_parts; ++i) {
+// The dimension: that of the parts' shapes, which must agree.
+int SceneDimension(const AssemblyDef& def, const Validator& check) {
+  int dimension = 2;
+  for (int i = 0; i < static_cast<int>(def.parts.size()); ++i) {
     const int dim = def.parts[i].polyhedron ? 3 : 2;
-    if (i == 0) out.dimension_ = dim;
-    if (dim != out.dimension_) {
+    if (i == 0) dimension = dim;
+    if (dim != dimension) {
       check.Fail(ShapePath(def.parts[i], i), "mixes 2-D and 3-D shapes (this part is " +
                                                  std::to_string(dim) + "-D, parts[0] is " +
-                                                 std::to_string(out.dimension_) + "-D)");
+                                                 std::to_string(dimension) + "-D)");
     }
   }
-  const bool is3 = out.dimension_ == 3;
+  return dimension;
+}
 
-  // Scene-wide numbers.
-  const Vector3 gravity = def.gravity.value_or(is3 ? Vector3(0, 0, -9.81) : Vector3(0, -9.81, 0));
-  check.FinitePoint(gravity, "gravity");
-  if (!is3 && gravity.z() != 0) check.Fail("gravity", "must have z = 0 in a 2-D scene");
+// Scene-wide numbers: gravity, friction, the tolerance override and the
+// friction directions of a 3-D scene.
+struct SceneNumbers {
+  Vector3 gravity;
+  double friction = 0;
+  double tolerance_override = 0;
+  int friction_directions = 2;
+};
+
+SceneNumbers ReadSceneNumbers(const AssemblyDef& def, bool is3, const Validator& check) {
+  SceneNumbers out;
+  out.gravity = def.gravity.value_or(is3 ? Vector3(0, 0, -9.81) : Vector3(0, -9.81, 0));
+  check.FinitePoint(out.gravity, "gravity");
+  if (!is3 && out.gravity.z() != 0) check.Fail("gravity", "must have z = 0 in a 2-D scene");
   check.NonNegative(def.friction, "friction");
   check.FiniteNumber(def.tolerance, "tolerance");
-  out.gravity_ = gravity;
-  out.default_friction_ = def.friction;
-  out.tolerance_override_ = def.tolerance > 0 ? def.tolerance : 0.0;
+  out.friction = def.friction;
+  out.tolerance_override = def.tolerance > 0 ? def.tolerance : 0.0;
   if (def.friction_directions != 0) {
     if (!is3) {
       check.Fail("friction_directions",
@@ -229,12 +238,17 @@ Assembly Assembly::Create(const AssemblyDef& def, const std::string& source_file
                  "must be at least 3 (got " + std::to_string(def.friction_directions) + ")");
     }
   }
-  out.friction_directions_ = is3 ? (def.friction_directions ? def.friction_directions : 4) : 2;
+  out.friction_directions = is3 ? (def.friction_directions ? def.friction_directions : 4) : 2;
+  return out;
+}
 
-  // Names, mass numbers and vertex counts of every part. A fault of the
-  // name is reported at the bare path; every other at the named one.
+// Names, mass numbers and vertex counts of every part; the index of each
+// name. A fault of the name is reported at the bare path; every other at the
+// named one.
+std::unordered_map<std::string, int> CheckPartNumbers(const AssemblyDef& def, bool is3,
+                                                      const Validator& check) {
   std::unordered_map<std::string, int> index;
-  for (int i = 0; i < num_parts; ++i) {
+  for (int i = 0; i < static_cast<int>(def.parts.size()); ++i) {
     const PartDef& p = def.parts[i];
     if (p.name.empty()) check.Fail(Indexed("parts", i) + ".name", "must not be empty");
     const auto [it, inserted] = index.emplace(p.name, i);
@@ -266,8 +280,11 @@ Assembly Assembly::Create(const AssemblyDef& def, const std::string& source_file
       check.FinitePoint(p.polygon[k], path + ".polygon" + Indexed("", k));
     }
   }
+  return index;
+}
 
-  // The scene's size and its length tolerance.
+// The diagonal of the box around every vertex of the scene (its size).
+double SceneSize(const AssemblyDef& def, bool is3) {
   Vector3 lo = Vector3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
   for (const PartDef& p : def.parts) {
     if (is3)
@@ -275,29 +292,20 @@ Assembly Assembly::Create(const AssemblyDef& def, const std::string& source_file
     else
       for (const Vector2& v : p.polygon) lo = lo.cwiseMin(Embed(v)), hi = hi.cwiseMax(Embed(v));
   }
-  out.scene_size_ = num_parts ? (hi - lo).norm() : 0.0;
-  const double tol =
-      Tolerances::Scaled(out.scene_size_, 1.0, 1.0, 1.0, out.tolerance_override_).length;
-  const double angle_tol = Tolerances{}.angle;
+  return def.parts.empty() ? 0.0 : (hi - lo).norm();
+}
 
-  // Each part's shape, then its mass properties.
-  for (int i = 0; i < num_parts; ++i) {
-    const PartDef& p = def.parts[i];
-    Part part = is3 ? Make3dPart(p, ShapePath(p, i), tol, check)
-                    : Make2dPart(p, PartPath(p, i) + ".polygon", tol, check);
-    part.name = p.name;
-    part.fixed = p.fixed;
-    part.tool = p.tool;
-    out.parts_.push_back(std::move(part));
-  }
-
-  // Overlap between every pair of parts, skipping pairs whose bounding boxes
-  // are apart (a sweep over boxes sorted by their low x). Of all the
-  // overlapping pairs the one with the lowest indices is reported.
+// Overlap between every pair of parts, skipping pairs whose bounding boxes
+// are apart (a sweep over boxes sorted by their low x). Of all the
+// overlapping pairs the one with the lowest indices is reported.
+void CheckOverlaps(const AssemblyDef& def, const std::vector<Part>& parts, int dimension,
+                   double tol, const Validator& check) {
+  const int num_parts = static_cast<int>(parts.size());
+  const bool is3 = dimension == 3;
   std::vector<std::pair<Vector3, Vector3>> boxes(num_parts);
   for (int i = 0; i < num_parts; ++i) {
-    boxes[i] = {out.parts_[i].vertices[0], out.parts_[i].vertices[0]};
-    for (const Vector3& v : out.parts_[i].vertices)
+    boxes[i] = {parts[i].vertices[0], parts[i].vertices[0]};
+    for (const Vector3& v : parts[i].vertices)
       boxes[i] = {boxes[i].first.cwiseMin(v), boxes[i].second.cwiseMax(v)};
   }
   std::vector<int> order(num_parts);
@@ -305,17 +313,14 @@ Assembly Assembly::Create(const AssemblyDef& def, const std::string& source_file
   std::sort(order.begin(), order.end(),
             [&](int a, int b) { return boxes[a].first.x() < boxes[b].first.x(); });
   std::optional<std::pair<int, int>> worst;  // (later, earlier) index
-  // Given interfaces say how the parts touch; their shapes may interpenetrate
-  // (InterfaceDef): no overlap test then.
-  const int overlap_parts = def.interfaces.empty() ? num_parts : 0;
   Vector3 witness(0, 0, 0);
-  for (int oi = 0; oi < overlap_parts; ++oi) {
+  for (int oi = 0; oi < num_parts; ++oi) {
     const int i = order[oi];
-    for (int oj = oi + 1; oj < overlap_parts; ++oj) {
+    for (int oj = oi + 1; oj < num_parts; ++oj) {
       const int j = order[oj];
       if (boxes[j].first.x() >= boxes[i].second.x() - tol) break;
       bool apart = false;
-      for (int d = 1; d < out.dimension_; ++d)
+      for (int d = 1; d < dimension; ++d)
         apart = apart || boxes[j].first(d) >= boxes[i].second(d) - tol ||
                 boxes[i].first(d) >= boxes[j].second(d) - tol;
       if (apart) continue;
@@ -323,12 +328,12 @@ Assembly Assembly::Create(const AssemblyDef& def, const std::string& source_file
       if (worst && *worst <= key) continue;
       if (is3) {
         const Eigen::Isometry3d I = Eigen::Isometry3d::Identity();
-        if (const auto w = FindPolyhedronOverlap(*out.parts_[i].polyhedron, I,
-                                                 *out.parts_[j].polyhedron, I, tol)) {
+        if (const auto w =
+                FindPolyhedronOverlap(*parts[i].polyhedron, I, *parts[j].polyhedron, I, tol)) {
           worst = key;
           witness = *w;
         }
-      } else if (const auto w = FindOverlap(out.parts_[i].polygon, out.parts_[j].polygon, tol)) {
+      } else if (const auto w = FindOverlap(parts[i].polygon, parts[j].polygon, tol)) {
         worst = key;
         witness = Embed(*w);
       }
@@ -337,17 +342,20 @@ Assembly Assembly::Create(const AssemblyDef& def, const std::string& source_file
   if (worst) {
     const auto [later, earlier] = *worst;
     check.Fail(PartPath(def.parts[later], later),
-               "part '" + EscapedName(out.parts_[later].name) + "' overlaps part '" +
-                   EscapedName(out.parts_[earlier].name) + "' (" + Indexed("parts", earlier) +
+               "part '" + EscapedName(parts[later].name) + "' overlaps part '" +
+                   EscapedName(parts[earlier].name) + "' (" + Indexed("parts", earlier) +
                    ") by more than the tolerance " + FormatNumber(tol) + ", e.g. at " +
                    (is3 ? Point(witness) : Point(Vector2(witness.head<2>()))));
   }
+}
 
-  // Friction pairs.
-  const auto find = [&](const std::string& name) {
-    const auto it = index.find(name);
-    return it == index.end() ? -1 : it->second;
-  };
+using PartFinder = std::function<int(const std::string&)>;
+
+// Friction pairs: two named parts each, once, with μ ≥ 0; sorted by index pair.
+std::vector<std::pair<std::pair<int, int>, double>> MakeFrictionPairs(const AssemblyDef& def,
+                                                                      const PartFinder& find,
+                                                                      const Validator& check) {
+  std::vector<std::pair<std::pair<int, int>, double>> pair_mu;
   for (int k = 0; k < static_cast<int>(def.friction_pairs.size()); ++k) {
     const FrictionPairDef& fp = def.friction_pairs[k];
     const std::string path = Indexed("friction_pairs", k);
@@ -358,16 +366,22 @@ Assembly Assembly::Create(const AssemblyDef& def, const std::string& source_file
     check.NonNegative(fp.mu, path + ".mu");
     const std::pair<int, int> key{std::min(a, b), std::max(a, b)};
     for (int l = 0; l < k; ++l) {
-      if (out.pair_mu_[l].first == key) {
+      if (pair_mu[l].first == key) {
         check.Fail(path, "repeats the pair '" + EscapedName(fp.part_a) + "', '" +
                              EscapedName(fp.part_b) + "' of " + Indexed("friction_pairs", l));
       }
     }
-    out.pair_mu_.push_back({key, fp.mu});
+    pair_mu.push_back({key, fp.mu});
   }
-  std::sort(out.pair_mu_.begin(), out.pair_mu_.end());
+  std::sort(pair_mu.begin(), pair_mu.end());
+  return pair_mu;
+}
 
-  // Fixtures: on their part's boundary, pushing into it.
+// Fixtures: on their part's boundary, pushing into it.
+std::vector<Fixture> MakeFixtures(const AssemblyDef& def, const std::vector<Part>& parts, bool is3,
+                                  const PartFinder& find, double tol, double angle_tol,
+                                  const Validator& check) {
+  std::vector<Fixture> fixtures;
   for (int f = 0; f < static_cast<int>(def.fixtures.size()); ++f) {
     const FixtureDef& fd = def.fixtures[f];
     const std::string path = Indexed("fixtures", f);
@@ -384,11 +398,11 @@ Assembly Assembly::Create(const AssemblyDef& def, const std::string& source_file
     double dist = 0;
     bool into = false;
     if (is3) {
-      const Polyhedron& poly = *out.parts_[part].polyhedron;
+      const Polyhedron& poly = *parts[part].polyhedron;
       dist = std::abs(SignedDistance(poly, Eigen::Isometry3d::Identity(), fd.point));
       into = dist <= tol && PointsInto3d(poly, fd.point, n, tol);
     } else {
-      const Polygon& poly = out.parts_[part].polygon;
+      const Polygon& poly = parts[part].polygon;
       dist = DistanceToBoundary(poly, fd.point.head<2>());
       into = dist <= tol && PointsInto(poly, fd.point.head<2>(), n.head<2>(), tol, angle_tol);
     }
@@ -402,10 +416,16 @@ Assembly Assembly::Create(const AssemblyDef& def, const std::string& source_file
                                        EscapedName(fd.part) +
                                        "' (a fixel pushes: its normal must point into the part)");
     }
-    out.fixtures_.push_back(Fixture{part, fd.point, n});
+    fixtures.push_back(Fixture{part, fd.point, n});
   }
 
-  // Interfaces: 3-D, between two named parts, a planar polygon.
+  return fixtures;
+}
+
+// Interfaces: 3-D, between two named parts, a planar polygon.
+std::vector<Interface> MakeInterfaces(const AssemblyDef& def, bool is3, const PartFinder& find,
+                                      double tol, const Validator& check) {
+  std::vector<Interface> interfaces;
   for (int k = 0; k < static_cast<int>(def.interfaces.size()); ++k) {
     const InterfaceDef& id = def.interfaces[k];
     const std::string path = Indexed("interfaces", k);
@@ -442,8 +462,54 @@ Assembly Assembly::Create(const AssemblyDef& def, const std::string& source_file
                        ")");
     }
     in.points = id.points;
-    out.interfaces_.push_back(std::move(in));
+    interfaces.push_back(std::move(in));
   }
+
+  return interfaces;
+}
+
+}  // namespace
+
+Assembly Assembly::Create(const AssemblyDef& def, const std::string& source_file) {
+  const Validator check(source_file);
+  Assembly out;
+  out.name_ = def.name;
+  out.dimension_ = SceneDimension(def, check);
+  const bool is3 = out.dimension_ == 3;
+  const SceneNumbers numbers = ReadSceneNumbers(def, is3, check);
+  out.gravity_ = numbers.gravity;
+  out.default_friction_ = numbers.friction;
+  out.tolerance_override_ = numbers.tolerance_override;
+  out.friction_directions_ = numbers.friction_directions;
+  const std::unordered_map<std::string, int> index = CheckPartNumbers(def, is3, check);
+
+  // The scene's size and its length tolerance.
+  out.scene_size_ = SceneSize(def, is3);
+  const double tol =
+      Tolerances::Scaled(out.scene_size_, 1.0, 1.0, 1.0, out.tolerance_override_).length;
+  const double angle_tol = Tolerances{}.angle;
+
+  // Each part's shape, then its mass properties.
+  for (int i = 0; i < static_cast<int>(def.parts.size()); ++i) {
+    const PartDef& p = def.parts[i];
+    Part part = is3 ? Make3dPart(p, ShapePath(p, i), tol, check)
+                    : Make2dPart(p, PartPath(p, i) + ".polygon", tol, check);
+    part.name = p.name;
+    part.fixed = p.fixed;
+    part.tool = p.tool;
+    out.parts_.push_back(std::move(part));
+  }
+  // Given interfaces say how the parts touch; their shapes may interpenetrate
+  // (InterfaceDef): no overlap test then.
+  if (def.interfaces.empty()) CheckOverlaps(def, out.parts_, out.dimension_, tol, check);
+
+  const PartFinder find = [&](const std::string& name) {
+    const auto it = index.find(name);
+    return it == index.end() ? -1 : it->second;
+  };
+  out.pair_mu_ = MakeFrictionPairs(def, find, check);
+  out.fixtures_ = MakeFixtures(def, out.parts_, is3, find, tol, angle_tol, check);
+  out.interfaces_ = MakeInterfaces(def, is3, find, tol, check);
 
   // Tolerances scaled to the scene and its heaviest movable part.
   for (const Part& p : out.parts_) {
