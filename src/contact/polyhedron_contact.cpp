@@ -132,68 +132,87 @@ struct Patch {
 
 }  // namespace
 
-std::vector<PolyhedronContactPoint> FindPolyhedronContacts(const Polyhedron& a,
-                                                           const Eigen::Isometry3d& X_WA,
-                                                           const Polyhedron& b,
-                                                           const Eigen::Isometry3d& X_WB,
-                                                           double length_tol, double angle_tol) {
-  const Placed A(a, X_WA), B(b, X_WB);
-  const double cos_tol = std::cos(angle_tol);
-  const double area_tol = length_tol * length_tol;
-  std::vector<PolyhedronContactPoint> out;
-  std::vector<Patch> patches;  // by face of b (face–face, a's faces pressed onto b's)
-  std::vector<std::pair<int, int>> face_pairs;  // (face a, face b) of each patch
-  int next_patch = 0;
+namespace {
 
-  // Face–face.
-  for (int fb = 0; fb < static_cast<int>(B.n.size()); ++fb) {
-    Vector3 u, w;
-    PlaneBasis(B.n[fb], &u, &w);
-    const Vector3 o = B.v[b.faces()[fb][0]];
-    Polygon2 poly_b;
-    bool have_b = false;
-    for (int fa = 0; fa < static_cast<int>(A.n.size()); ++fa) {
-      if (A.n[fa].dot(B.n[fb]) > -cos_tol) continue;
-      if (BoxesApart(A.lo[fa], A.hi[fa], B.lo[fb], B.hi[fb], length_tol)) continue;
-      bool on_plane = true;
-      double gap = 0;
-      for (int i : a.faces()[fa]) {
-        const double d = B.n[fb].dot(A.v[i]) - B.offset[fb];
-        on_plane = on_plane && std::abs(d) <= length_tol;
-        gap += d;
-      }
-      if (!on_plane) continue;
-      gap /= static_cast<double>(a.faces()[fa].size());
-      if (!have_b) poly_b = FacePolygon(B, fb, o, u, w), have_b = true;
-      MultiPolygon2 pieces;
-      bg::intersection(FacePolygon(A, fa, o, u, w), poly_b, pieces);
-      MultiPolygon2 kept;
-      for (const Polygon2& piece : pieces) {
-        if (bg::area(piece) <= area_tol) continue;
-        kept.push_back(piece);
-        const auto& ring = piece.outer();
-        for (size_t k = 0; k + 1 < ring.size(); ++k) {  // the ring repeats its first point
-          PolyhedronContactPoint c;
-          c.p_W = o + ring[k].x() * u + ring[k].y() * w + gap * B.n[fb];
-          c.n_W = B.n[fb];
-          c.gap = gap;
-          c.kind = ContactKind3::kFaceFace;
-          c.patch = next_patch;
-          c.feature_a = fa;
-          c.feature_b = fb;
-          out.push_back(c);
+// The contacts between two placed polyhedra, found kind by kind; the
+// face–face patches found first are remembered, so that the vertex and edge
+// points inside them are not found again.
+class PairContacts {
+ public:
+  PairContacts(const Polyhedron& shape_a, const Eigen::Isometry3d& X_WA, const Polyhedron& shape_b,
+               const Eigen::Isometry3d& X_WB, double length, double angle)
+      : a(shape_a),
+        b(shape_b),
+        A(shape_a, X_WA),
+        B(shape_b, X_WB),
+        length_tol(length),
+        angle_tol(angle),
+        cos_tol(std::cos(angle)),
+        area_tol(length * length) {}
+
+  // Vertex–face and edge–face contacts, both ways (a's features on b's faces,
+  // then b's on a's).
+  void VertexFaces() {
+    VertexFace(A, B, true);
+    VertexFace(B, A, false);
+  }
+  void EdgeFaces() {
+    EdgeFace(A, B, true);
+    EdgeFace(B, A, false);
+  }
+
+  // Face–face: a face of a pressed onto a face of b (opposite normals, every
+  // vertex on b's plane): their intersection, one patch per piece.
+  void FaceFace() {
+    for (int fb = 0; fb < static_cast<int>(B.n.size()); ++fb) {
+      Vector3 u, w;
+      PlaneBasis(B.n[fb], &u, &w);
+      const Vector3 o = B.v[b.faces()[fb][0]];
+      Polygon2 poly_b;
+      bool have_b = false;
+      for (int fa = 0; fa < static_cast<int>(A.n.size()); ++fa) {
+        if (A.n[fa].dot(B.n[fb]) > -cos_tol) continue;
+        if (BoxesApart(A.lo[fa], A.hi[fa], B.lo[fb], B.hi[fb], length_tol)) continue;
+        bool on_plane = true;
+        double gap = 0;
+        for (int i : a.faces()[fa]) {
+          const double d = B.n[fb].dot(A.v[i]) - B.offset[fb];
+          on_plane = on_plane && std::abs(d) <= length_tol;
+          gap += d;
         }
-        ++next_patch;
-      }
-      if (!kept.empty()) {
-        patches.push_back({fb, kept});
-        face_pairs.emplace_back(fa, fb);
+        if (!on_plane) continue;
+        gap /= static_cast<double>(a.faces()[fa].size());
+        if (!have_b) poly_b = FacePolygon(B, fb, o, u, w), have_b = true;
+        MultiPolygon2 pieces;
+        bg::intersection(FacePolygon(A, fa, o, u, w), poly_b, pieces);
+        MultiPolygon2 kept;
+        for (const Polygon2& piece : pieces) {
+          if (bg::area(piece) <= area_tol) continue;
+          kept.push_back(piece);
+          const auto& ring = piece.outer();
+          for (size_t k = 0; k + 1 < ring.size(); ++k) {  // the ring repeats its first point
+            PolyhedronContactPoint c;
+            c.p_W = o + ring[k].x() * u + ring[k].y() * w + gap * B.n[fb];
+            c.n_W = B.n[fb];
+            c.gap = gap;
+            c.kind = ContactKind3::kFaceFace;
+            c.patch = next_patch;
+            c.feature_a = fa;
+            c.feature_b = fb;
+            out.push_back(c);
+          }
+          ++next_patch;
+        }
+        if (!kept.empty()) {
+          patches.push_back({fb, kept});
+          face_pairs.emplace_back(fa, fb);
+        }
       }
     }
   }
 
   // Is the point p (on face f of `faces_of`'s side) inside a face–face patch?
-  const auto in_patch = [&](const Vector3& p, int face, bool face_is_b) {
+  bool InPatch(const Vector3& p, int face, bool face_is_b) const {
     for (size_t k = 0; k < patches.size(); ++k) {
       const int f = face_is_b ? patches[k].face_b : face_pairs[k].first;
       if (f != face) continue;
@@ -204,10 +223,10 @@ std::vector<PolyhedronContactPoint> FindPolyhedronContacts(const Polyhedron& a,
       if (bg::distance(Point2(d.dot(u), d.dot(w)), patches[k].area) <= length_tol) return true;
     }
     return false;
-  };
+  }
 
   // Vertex–face, both ways: a vertex of P on a face of Q.
-  const auto vertex_face = [&](const Placed& P, const Placed& Q, bool p_is_a) {
+  void VertexFace(const Placed& P, const Placed& Q, bool p_is_a) {
     for (int i = 0; i < static_cast<int>(P.v.size()); ++i) {
       for (int f = 0; f < static_cast<int>(Q.n.size()); ++f) {
         const double d = Q.n[f].dot(P.v[i]) - Q.offset[f];
@@ -221,7 +240,7 @@ std::vector<PolyhedronContactPoint> FindPolyhedronContacts(const Polyhedron& a,
         if (bg::distance(Point2(r.dot(u), r.dot(w)), FacePolygon(Q, f, o, u, w)) > length_tol)
           continue;
         // Inside a face–face patch of this face: already a contact.
-        if (p_is_a ? in_patch(P.v[i], f, true) : in_patch(P.v[i], f, false)) continue;
+        if (p_is_a ? InPatch(P.v[i], f, true) : InPatch(P.v[i], f, false)) continue;
         PolyhedronContactPoint c;
         c.p_W = P.v[i];
         c.n_W = p_is_a ? Q.n[f] : Vector3(-Q.n[f]);
@@ -233,14 +252,12 @@ std::vector<PolyhedronContactPoint> FindPolyhedronContacts(const Polyhedron& a,
         out.push_back(c);
       }
     }
-  };
-  vertex_face(A, B, true);
-  vertex_face(B, A, false);
+  }
 
   // Edge–face, both ways: an edge of P lying on a face of Q, clipped to it
   // (its ends inside the face are vertex–face points already; the clip points
   // on the face's boundary are new).
-  const auto edge_face = [&](const Placed& P, const Placed& Q, bool p_is_a) {
+  void EdgeFace(const Placed& P, const Placed& Q, bool p_is_a) {
     for (int e = 0; e < static_cast<int>(P.edges.size()); ++e) {
       const int i = P.edges[e][0], j = P.edges[e][1];
       for (int f = 0; f < static_cast<int>(Q.n.size()); ++f) {
@@ -288,56 +305,83 @@ std::vector<PolyhedronContactPoint> FindPolyhedronContacts(const Polyhedron& a,
         }
       }
     }
-  };
-  edge_face(A, B, true);
-  edge_face(B, A, false);
+  }
 
   // Edge–edge crossings.
-  for (int ea = 0; ea < static_cast<int>(A.edges.size()); ++ea) {
-    const Vector3 p0 = A.v[A.edges[ea][0]], p1 = A.v[A.edges[ea][1]];
-    for (int eb = 0; eb < static_cast<int>(B.edges.size()); ++eb) {
-      const Vector3 q0 = B.v[B.edges[eb][0]], q1 = B.v[B.edges[eb][1]];
-      if (BoxesApart(p0.cwiseMin(p1), p0.cwiseMax(p1), q0.cwiseMin(q1), q0.cwiseMax(q1),
-                     length_tol))
-        continue;
-      const Vector3 d1 = p1 - p0, d2 = q1 - q0, r = p0 - q0;
-      const Vector3 cr = d1.cross(d2);
-      if (cr.norm() <= std::sin(angle_tol) * d1.norm() * d2.norm()) continue;  // parallel
-      // Closest points p0 + s d1, q0 + t d2.
-      const double a11 = d1.dot(d1), a12 = d1.dot(d2), a22 = d2.dot(d2);
-      const double det = a11 * a22 - a12 * a12;
-      const double s = (a12 * d2.dot(r) - a22 * d1.dot(r)) / det;
-      const double t = (a11 * d2.dot(r) - a12 * d1.dot(r)) / det;
-      const double margin1 = length_tol / std::sqrt(a11), margin2 = length_tol / std::sqrt(a22);
-      if (s <= margin1 || s >= 1 - margin1 || t <= margin2 || t >= 1 - margin2) continue;
-      const Vector3 pa = p0 + s * d1, pb = q0 + t * d2;
-      if ((pa - pb).norm() > length_tol) continue;
-      // Into a's material: against the outward normals of a's faces at ea.
-      Vector3 n = cr.normalized();
-      const Vector3 out_a = A.n[A.edge_faces[ea][0]] + A.n[A.edge_faces[ea][1]];
-      if (n.dot(out_a) > 0) n = -n;
-      PolyhedronContactPoint c;
-      c.p_W = 0.5 * (pa + pb);
-      c.n_W = n;
-      c.gap = n.dot(pa - pb);
-      c.kind = ContactKind3::kEdgeEdge;
-      c.patch = next_patch++;
-      c.feature_a = ea;
-      c.feature_b = eb;
-      out.push_back(c);
+  void EdgeEdge() {
+    for (int ea = 0; ea < static_cast<int>(A.edges.size()); ++ea) {
+      const Vector3 p0 = A.v[A.edges[ea][0]], p1 = A.v[A.edges[ea][1]];
+      for (int eb = 0; eb < static_cast<int>(B.edges.size()); ++eb) {
+        const Vector3 q0 = B.v[B.edges[eb][0]], q1 = B.v[B.edges[eb][1]];
+        if (BoxesApart(p0.cwiseMin(p1), p0.cwiseMax(p1), q0.cwiseMin(q1), q0.cwiseMax(q1),
+                       length_tol))
+          continue;
+        const Vector3 d1 = p1 - p0, d2 = q1 - q0, r = p0 - q0;
+        const Vector3 cr = d1.cross(d2);
+        if (cr.norm() <= std::sin(angle_tol) * d1.norm() * d2.norm()) continue;  // parallel
+        // Closest points p0 + s d1, q0 + t d2.
+        const double a11 = d1.dot(d1), a12 = d1.dot(d2), a22 = d2.dot(d2);
+        const double det = a11 * a22 - a12 * a12;
+        const double s = (a12 * d2.dot(r) - a22 * d1.dot(r)) / det;
+        const double t = (a11 * d2.dot(r) - a12 * d1.dot(r)) / det;
+        const double margin1 = length_tol / std::sqrt(a11), margin2 = length_tol / std::sqrt(a22);
+        if (s <= margin1 || s >= 1 - margin1 || t <= margin2 || t >= 1 - margin2) continue;
+        const Vector3 pa = p0 + s * d1, pb = q0 + t * d2;
+        if ((pa - pb).norm() > length_tol) continue;
+        // Into a's material: against the outward normals of a's faces at ea.
+        Vector3 n = cr.normalized();
+        const Vector3 out_a = A.n[A.edge_faces[ea][0]] + A.n[A.edge_faces[ea][1]];
+        if (n.dot(out_a) > 0) n = -n;
+        PolyhedronContactPoint c;
+        c.p_W = 0.5 * (pa + pb);
+        c.n_W = n;
+        c.gap = n.dot(pa - pb);
+        c.kind = ContactKind3::kEdgeEdge;
+        c.patch = next_patch++;
+        c.feature_a = ea;
+        c.feature_b = eb;
+        out.push_back(c);
+      }
     }
   }
 
   // Merge points closer than length_tol with the same normal (an edge end on
   // a face that is also a vertex–face point, ...): the first one stays.
-  std::vector<PolyhedronContactPoint> merged;
-  for (const PolyhedronContactPoint& c : out) {
-    bool dup = false;
-    for (const PolyhedronContactPoint& m : merged)
-      dup = dup || ((m.p_W - c.p_W).norm() <= length_tol && m.n_W.dot(c.n_W) >= cos_tol);
-    if (!dup) merged.push_back(c);
+  std::vector<PolyhedronContactPoint> Merged() const {
+    std::vector<PolyhedronContactPoint> merged;
+    for (const PolyhedronContactPoint& c : out) {
+      bool dup = false;
+      for (const PolyhedronContactPoint& m : merged)
+        dup = dup || ((m.p_W - c.p_W).norm() <= length_tol && m.n_W.dot(c.n_W) >= cos_tol);
+      if (!dup) merged.push_back(c);
+    }
+    return merged;
   }
-  return merged;
+
+ private:
+  const Polyhedron& a;
+  const Polyhedron& b;
+  const Placed A, B;
+  const double length_tol, angle_tol, cos_tol, area_tol;
+  std::vector<PolyhedronContactPoint> out;
+  std::vector<Patch> patches;  // by face of b (face–face, a's faces pressed onto b's)
+  std::vector<std::pair<int, int>> face_pairs;  // (face a, face b) of each patch
+  int next_patch = 0;
+};
+
+}  // namespace
+
+std::vector<PolyhedronContactPoint> FindPolyhedronContacts(const Polyhedron& a,
+                                                           const Eigen::Isometry3d& X_WA,
+                                                           const Polyhedron& b,
+                                                           const Eigen::Isometry3d& X_WB,
+                                                           double length_tol, double angle_tol) {
+  PairContacts pair(a, X_WA, b, X_WB, length_tol, angle_tol);
+  pair.FaceFace();
+  pair.VertexFaces();
+  pair.EdgeFaces();
+  pair.EdgeEdge();
+  return pair.Merged();
 }
 
 }  // namespace cairn
