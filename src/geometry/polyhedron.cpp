@@ -294,86 +294,79 @@ struct Checked {
   PolyhedronMass mass;
 };
 
-std::optional<PolyhedronFault> Validate(const PolyhedronDef& def, double tol, Checked& out) {
-  CAIRN_THROW_UNLESS(std::isfinite(tol) && tol >= 0,
-                     "the polyhedron tolerance must be finite and >= 0 (got " << tol << ")");
+// One face on its own: indices, area, planarity, simplicity; its normal and
+// triangles into `out`.
+std::optional<PolyhedronFault> CheckFace(const PolyhedronDef& def, int f, double tol,
+                                         Checked& out) {
   const std::vector<Vector3>& x = def.vertices;
   const int num_vertices = static_cast<int>(x.size());
+  const std::vector<int>& face = def.faces[f];
+  const int m = Size(face);
+  const std::string name = FaceName(f);
+  if (m < 3) {
+    return Fault(f, name + " has " + std::to_string(m) + " vertices (at least 3 needed)");
+  }
+  for (int i = 0; i < m; ++i) {
+    if (face[i] < 0 || face[i] >= num_vertices) {
+      return Fault(f, name + ": vertex index " + std::to_string(face[i]) +
+                          " is out of range (there are " + std::to_string(num_vertices) +
+                          " vertices)");
+    }
+  }
+  for (int i = 0; i < m; ++i) {
+    for (int j = i + 1; j < m; ++j) {
+      if (face[i] == face[j]) {
+        return Fault(f, name + " lists vertex " + std::to_string(face[i]) + " twice");
+      }
+    }
+  }
+  const Vector3 center = Centroid(x, face);
+  const Vector3 newell = NewellNormal(x, face, center);
+  const double area = newell.norm() / 2;
+  double perimeter = 0;
+  for (int i = 0; i < m; ++i) perimeter += (x[face[(i + 1) % m]] - x[face[i]]).norm();
+  // A face of width w and perimeter P has area about w P / 2: zero area or
+  // collinear vertices (within tol) make it degenerate.
+  if (area <= std::max(tol * perimeter / 2, kRelEps * perimeter * perimeter)) {
+    return Fault(f, name + " is degenerate: zero area or collinear vertices (area " +
+                        FormatNumber(area) + ")");
+  }
+  const Vector3 n = newell / (2 * area);
+  for (int v : face) {
+    const double off = std::abs(n.dot(x[v] - center));
+    if (off > tol) {
+      return Fault(f, name + " is not planar: vertex " + std::to_string(v) + " is " +
+                          FormatNumber(off) + " off its plane (tolerance " + FormatNumber(tol) +
+                          ")");
+    }
+  }
+  // Project onto the plane; (u, w, n) is right-handed, so the projection runs
+  // counter-clockwise.
+  const Vector3 u = n.unitOrthogonal();
+  const Vector3 w = n.cross(u);
+  Polygon poly;
+  poly.reserve(m);
+  for (int v : face) poly.push_back(Vector2(u.dot(x[v] - center), w.dot(x[v] - center)));
+  if (const auto hit = FindSelfIntersection(poly, tol)) {
+    const int a = hit->edge_a, b = hit->edge_b;
+    return Fault(f, name + " is self-intersecting: its edges " +
+                        VertexPair(face[a], face[(a + 1) % m]) + " and " +
+                        VertexPair(face[b], face[(b + 1) % m]) + " cross or touch");
+  }
+  out.normals[f] = n;
+  for (const Triangle& t : EarClip(poly)) {
+    out.triangles[f].push_back({face[t[0]], face[t[1]], face[t[2]]});
+  }
+  return std::nullopt;
+}
+
+using EdgeUsers = std::map<std::pair<int, int>, std::vector<std::pair<int, int>>>;
+
+// The faces using each edge: key (low, high) → (face, direction: +1 low →
+// high).
+EdgeUsers EdgesOf(const PolyhedronDef& def) {
   const int num_faces = static_cast<int>(def.faces.size());
-  for (int v = 0; v < num_vertices; ++v) {
-    if (!x[v].allFinite()) return Fault(-1, "vertex " + std::to_string(v) + " is not finite");
-  }
-  if (num_faces < 4) {
-    return Fault(-1, "a polyhedron needs at least 4 faces (got " + std::to_string(num_faces) + ")");
-  }
-
-  // Each face on its own: indices, area, planarity, simplicity; triangles.
-  out.faces = def.faces;
-  out.normals.assign(num_faces, Vector3::Zero());
-  out.triangles.assign(num_faces, {});
-  for (int f = 0; f < num_faces; ++f) {
-    const std::vector<int>& face = def.faces[f];
-    const int m = Size(face);
-    const std::string name = FaceName(f);
-    if (m < 3) {
-      return Fault(f, name + " has " + std::to_string(m) + " vertices (at least 3 needed)");
-    }
-    for (int i = 0; i < m; ++i) {
-      if (face[i] < 0 || face[i] >= num_vertices) {
-        return Fault(f, name + ": vertex index " + std::to_string(face[i]) +
-                            " is out of range (there are " + std::to_string(num_vertices) +
-                            " vertices)");
-      }
-    }
-    for (int i = 0; i < m; ++i) {
-      for (int j = i + 1; j < m; ++j) {
-        if (face[i] == face[j]) {
-          return Fault(f, name + " lists vertex " + std::to_string(face[i]) + " twice");
-        }
-      }
-    }
-    const Vector3 center = Centroid(x, face);
-    const Vector3 newell = NewellNormal(x, face, center);
-    const double area = newell.norm() / 2;
-    double perimeter = 0;
-    for (int i = 0; i < m; ++i) perimeter += (x[face[(i + 1) % m]] - x[face[i]]).norm();
-    // A face of width w and perimeter P has area about w P / 2: zero area or
-    // collinear vertices (within tol) make it degenerate.
-    if (area <= std::max(tol * perimeter / 2, kRelEps * perimeter * perimeter)) {
-      return Fault(f, name + " is degenerate: zero area or collinear vertices (area " +
-                          FormatNumber(area) + ")");
-    }
-    const Vector3 n = newell / (2 * area);
-    for (int v : face) {
-      const double off = std::abs(n.dot(x[v] - center));
-      if (off > tol) {
-        return Fault(f, name + " is not planar: vertex " + std::to_string(v) + " is " +
-                            FormatNumber(off) + " off its plane (tolerance " + FormatNumber(tol) +
-                            ")");
-      }
-    }
-    // Project onto the plane; (u, w, n) is right-handed, so the projection runs
-    // counter-clockwise.
-    const Vector3 u = n.unitOrthogonal();
-    const Vector3 w = n.cross(u);
-    Polygon poly;
-    poly.reserve(m);
-    for (int v : face) poly.push_back(Vector2(u.dot(x[v] - center), w.dot(x[v] - center)));
-    if (const auto hit = FindSelfIntersection(poly, tol)) {
-      const int a = hit->edge_a, b = hit->edge_b;
-      return Fault(f, name + " is self-intersecting: its edges " +
-                          VertexPair(face[a], face[(a + 1) % m]) + " and " +
-                          VertexPair(face[b], face[(b + 1) % m]) + " cross or touch");
-    }
-    out.normals[f] = n;
-    for (const Triangle& t : EarClip(poly)) {
-      out.triangles[f].push_back({face[t[0]], face[t[1]], face[t[2]]});
-    }
-  }
-
-  // Edges: each must be used by exactly two faces. key (low, high) → the
-  // faces using it and the direction (+1: low → high).
-  std::map<std::pair<int, int>, std::vector<std::pair<int, int>>> edges;
+  EdgeUsers edges;
   for (int f = 0; f < num_faces; ++f) {
     const std::vector<int>& face = def.faces[f];
     const int m = Size(face);
@@ -382,6 +375,13 @@ std::optional<PolyhedronFault> Validate(const PolyhedronDef& def, double tol, Ch
       edges[{std::min(a, b), std::max(a, b)}].push_back({f, a < b ? 1 : -1});
     }
   }
+  return edges;
+}
+
+// Each edge must be used by exactly two faces: else the surface is open or
+// non-manifold.
+std::optional<PolyhedronFault> CheckEdges(const PolyhedronDef& def, const EdgeUsers& edges) {
+  const int num_faces = static_cast<int>(def.faces.size());
   for (int f = 0; f < num_faces; ++f) {
     const std::vector<int>& face = def.faces[f];
     const int m = Size(face);
@@ -401,9 +401,14 @@ std::optional<PolyhedronFault> Validate(const PolyhedronDef& def, double tol, Ch
       }
     }
   }
+  return std::nullopt;
+}
 
-  // Orientation: breadth-first over the faces, flipping a face when it runs a
-  // shared edge the same way as its (already oriented) neighbour.
+// Orientation: breadth-first over the faces, flipping a face when it runs a
+// shared edge the same way as its (already oriented) neighbour; one shell.
+std::optional<PolyhedronFault> Orient(const PolyhedronDef& def, const EdgeUsers& edges,
+                                      Checked& out) {
+  const int num_faces = static_cast<int>(def.faces.size());
   std::vector<std::vector<std::pair<int, int>>> neighbours(num_faces);  // (face, same way?)
   for (const auto& [key, users] : edges) {
     const bool same = users[0].second == users[1].second;
@@ -447,8 +452,13 @@ std::optional<PolyhedronFault> Validate(const PolyhedronDef& def, double tol, Ch
     out.normals[f] = -out.normals[f];
     for (Triangle& t : out.triangles[f]) std::swap(t[1], t[2]);
   }
+  return std::nullopt;
+}
 
-  // Outward: positive volume.
+// Outward: positive volume (and not a zero one); the mass properties.
+std::optional<PolyhedronFault> OrientOutward(const PolyhedronDef& def, double tol, Checked& out) {
+  const std::vector<Vector3>& x = def.vertices;
+  const int num_faces = static_cast<int>(def.faces.size());
   std::vector<Triangle> all;
   double surface = 0;
   for (int f = 0; f < num_faces; ++f) {
@@ -472,11 +482,17 @@ std::optional<PolyhedronFault> Validate(const PolyhedronDef& def, double tol, Ch
     for (Triangle& t : all) std::swap(t[1], t[2]);
     out.mass = ComputePolyhedronMass(x, all);
   }
+  return std::nullopt;
+}
 
-  // Faces intersecting each other. Every pair of triangles of different faces
-  // is tested: O(T²), acceptable for parts of tens to hundreds of faces; a
-  // bounding-volume hierarchy would be the next step. Bounding boxes apart by
-  // more than tol skip the exact test.
+// Faces intersecting each other. Every pair of triangles of different faces
+// is tested: O(T²), acceptable for parts of tens to hundreds of faces; a
+// bounding-volume hierarchy would be the next step. Bounding boxes apart by
+// more than tol skip the exact test.
+std::optional<PolyhedronFault> CheckFacesApart(const PolyhedronDef& def, double tol,
+                                               const Checked& out) {
+  const std::vector<Vector3>& x = def.vertices;
+  const int num_faces = static_cast<int>(def.faces.size());
   std::vector<FaceTriangle> tris;
   for (int f = 0; f < num_faces; ++f) {
     for (const Triangle& t : out.triangles[f]) {
@@ -501,6 +517,30 @@ std::optional<PolyhedronFault> Validate(const PolyhedronDef& def, double tol, Ch
     }
   }
   return std::nullopt;
+}
+
+std::optional<PolyhedronFault> Validate(const PolyhedronDef& def, double tol, Checked& out) {
+  CAIRN_THROW_UNLESS(std::isfinite(tol) && tol >= 0,
+                     "the polyhedron tolerance must be finite and >= 0 (got " << tol << ")");
+  const int num_vertices = static_cast<int>(def.vertices.size());
+  const int num_faces = static_cast<int>(def.faces.size());
+  for (int v = 0; v < num_vertices; ++v) {
+    if (!def.vertices[v].allFinite())
+      return Fault(-1, "vertex " + std::to_string(v) + " is not finite");
+  }
+  if (num_faces < 4) {
+    return Fault(-1, "a polyhedron needs at least 4 faces (got " + std::to_string(num_faces) + ")");
+  }
+  out.faces = def.faces;
+  out.normals.assign(num_faces, Vector3::Zero());
+  out.triangles.assign(num_faces, {});
+  for (int f = 0; f < num_faces; ++f)
+    if (auto fault = CheckFace(def, f, tol, out)) return fault;
+  const EdgeUsers edges = EdgesOf(def);
+  if (auto fault = CheckEdges(def, edges)) return fault;
+  if (auto fault = Orient(def, edges, out)) return fault;
+  if (auto fault = OrientOutward(def, tol, out)) return fault;
+  return CheckFacesApart(def, tol, out);
 }
 
 }  // namespace
