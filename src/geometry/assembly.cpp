@@ -377,6 +377,38 @@ std::vector<std::pair<std::pair<int, int>, double>> MakeFrictionPairs(const Asse
   return pair_mu;
 }
 
+// Where a fixel of `part` fails to touch it or to push into it: (".point" or
+// ".normal", what is wrong); n is its unit normal. Empty when it is valid.
+std::optional<std::pair<std::string, std::string>> FixtureContactFault(const Part& part, bool is3,
+                                                                       const FixtureDef& fd,
+                                                                       const Vector3& n, double tol,
+                                                                       double angle_tol) {
+  const auto show = [&](const Vector3& v) { return is3 ? Point(v) : Point(Vector2(v.head<2>())); };
+  double dist = 0;
+  bool into = false;
+  if (is3) {
+    const Polyhedron& poly = *part.polyhedron;
+    dist = std::abs(SignedDistance(poly, Eigen::Isometry3d::Identity(), fd.point));
+    into = dist <= tol && PointsInto3d(poly, fd.point, n, tol);
+  } else {
+    const Polygon& poly = part.polygon;
+    dist = DistanceToBoundary(poly, fd.point.head<2>());
+    into = dist <= tol && PointsInto(poly, fd.point.head<2>(), n.head<2>(), tol, angle_tol);
+  }
+  if (dist > tol) {
+    return std::make_pair(std::string(".point"),
+                          show(fd.point) + " is not on the boundary of part '" +
+                              EscapedName(fd.part) + "' (distance " + FormatNumber(dist) +
+                              " > tolerance " + FormatNumber(tol) + ")");
+  }
+  if (!into) {
+    return std::make_pair(std::string(".normal"),
+                          show(fd.normal) + " points out of part '" + EscapedName(fd.part) +
+                              "' (a fixel pushes: its normal must point into the part)");
+  }
+  return std::nullopt;
+}
+
 // Fixtures: on their part's boundary, pushing into it.
 std::vector<Fixture> MakeFixtures(const AssemblyDef& def, const std::vector<Part>& parts, bool is3,
                                   const PartFinder& find, double tol, double angle_tol,
@@ -392,30 +424,8 @@ std::vector<Fixture> MakeFixtures(const AssemblyDef& def, const std::vector<Part
     const double len = fd.normal.norm();
     if (len == 0) check.Fail(path + ".normal", "must not be zero");
     const Vector3 n = fd.normal / len;
-    const auto show = [&](const Vector3& v) {
-      return is3 ? Point(v) : Point(Vector2(v.head<2>()));
-    };
-    double dist = 0;
-    bool into = false;
-    if (is3) {
-      const Polyhedron& poly = *parts[part].polyhedron;
-      dist = std::abs(SignedDistance(poly, Eigen::Isometry3d::Identity(), fd.point));
-      into = dist <= tol && PointsInto3d(poly, fd.point, n, tol);
-    } else {
-      const Polygon& poly = parts[part].polygon;
-      dist = DistanceToBoundary(poly, fd.point.head<2>());
-      into = dist <= tol && PointsInto(poly, fd.point.head<2>(), n.head<2>(), tol, angle_tol);
-    }
-    if (dist > tol) {
-      check.Fail(path + ".point", show(fd.point) + " is not on the boundary of part '" +
-                                      EscapedName(fd.part) + "' (distance " + FormatNumber(dist) +
-                                      " > tolerance " + FormatNumber(tol) + ")");
-    }
-    if (!into) {
-      check.Fail(path + ".normal", show(fd.normal) + " points out of part '" +
-                                       EscapedName(fd.part) +
-                                       "' (a fixel pushes: its normal must point into the part)");
-    }
+    if (const auto fault = FixtureContactFault(parts[part], is3, fd, n, tol, angle_tol))
+      check.Fail(path + fault->first, fault->second);
     fixtures.push_back(Fixture{part, fd.point, n});
   }
 
@@ -546,6 +556,20 @@ double Assembly::Friction(int i, int j) const {
 bool Assembly::IsFrictionless() const {
   return default_friction_ == 0 &&
          std::all_of(pair_mu_.begin(), pair_mu_.end(), [](const auto& e) { return e.second == 0; });
+}
+
+std::optional<std::string> Assembly::FixtureFault(const FixtureDef& f) const {
+  const int part = FindPart(f.part);
+  if (part < 0) return "no part named '" + EscapedName(f.part) + "'";
+  if (!f.point.allFinite() || !f.normal.allFinite()) return "a coordinate is not finite";
+  const double len = f.normal.norm();
+  if (len == 0) return "the normal is zero";
+  // The tolerances Create checks fixtures with.
+  const double tol = Tolerances::Scaled(scene_size_, 1.0, 1.0, 1.0, tolerance_override_).length;
+  if (const auto fault =
+          FixtureContactFault(parts_[part], is_3d(), f, f.normal / len, tol, Tolerances{}.angle))
+    return fault->second;
+  return std::nullopt;
 }
 
 Tolerances Assembly::MakeTolerances(double dt) const {

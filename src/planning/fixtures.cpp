@@ -15,6 +15,18 @@ namespace cairn {
 
 namespace {
 
+// A candidate fixel opposes the motion when the power it could absorb,
+// relative to the fastest point of the moving parts, exceeds this
+// (dimensionless: roundoff of a unit-speed motion's projection).
+constexpr double kLeastOpposition = 1e-6;
+// Candidates whose opposition agrees to this relative resolution rank as
+// ties (then: centres first, part, face, generation order).
+constexpr double kRankResolution = 1e6;
+
+}  // namespace
+
+namespace {
+
 // A candidate fixel: a point of a moving part's free boundary, pushing into it.
 struct Candidate {
   int part = -1;
@@ -158,6 +170,130 @@ bool NextSubset(std::vector<int>& idx, int n) {
 
 }  // namespace
 
+namespace {
+
+// Parts that may carry a fixel: movable, not tools, never removed by the plan.
+std::vector<bool> EligibleParts(const Assembly& assembly, const Plan& plan) {
+  std::vector<bool> eligible(assembly.num_parts(), true);
+  for (int p = 0; p < assembly.num_parts(); ++p)
+    eligible[p] = !assembly.part(p).fixed && !assembly.part(p).tool;
+  for (const PlanStep& step : plan.steps) {
+    for (int p : step.remove) eligible[p] = false;
+    for (int p : step.grip) eligible[p] = false;
+  }
+  return eligible;
+}
+
+// Why fixels cannot help with the failure `f` (at: where it happened), or
+// empty; `room` is how many more fixels are allowed.
+std::optional<std::string> Hopeless(const MotionFailure& f, const std::string& at, int room,
+                                    const FixtureSearchOptions& options) {
+  if (f.verdict == MotionVerdict::kInfeasible)
+    return at + " is infeasible: fixels cannot free a blocked motion";
+  if (f.verdict == MotionVerdict::kUnsupported)
+    return at +
+           " is unsupported: the gripper must carry the part; fixels do "
+           "not help";
+  if (f.parts.empty())
+    return at +
+           " failed without a moving part (a solver failure): no fixels "
+           "suggested";
+  if (room <= 0)
+    return at + " needs more than the " + std::to_string(options.max_fixels) + " fixels allowed";
+  return std::nullopt;
+}
+
+// Candidates on the free faces of the moving parts `movers`, those that
+// oppose the motion ranked by how much (near-ties: centres first, then part,
+// face and generation order), each one the scene accepts (on the boundary,
+// pushing into the part); at most options.max_candidates.
+std::vector<Candidate> CandidatePool(const Assembly& assembly, const SimulationResult& current,
+                                     const MotionFailure& f, const std::vector<int>& movers,
+                                     const FixtureSearchOptions& options) {
+  const std::vector<Contact> contacts = ContactsAt(current, f);
+  std::vector<Candidate> all;
+  double fastest = 0;
+  for (const PartMotion& m : f.motions) {
+    if (std::find(movers.begin(), movers.end(), m.part) == movers.end()) continue;
+    PartCandidates(assembly, m, contacts, assembly.length_tolerance(), all);
+    fastest = std::max(fastest, m.point_motion);
+  }
+  const double least = kLeastOpposition * fastest;
+  std::vector<Candidate> opposing;
+  for (const Candidate& c : all)
+    if (c.opposition > least) opposing.push_back(c);
+  double best = 0;
+  for (const Candidate& c : opposing) best = std::max(best, c.opposition);
+  const auto rank = [&](const Candidate& c) {
+    return std::make_tuple(-std::llround(kRankResolution * c.opposition / best), c.centre ? 0 : 1,
+                           c.part, c.face, c.order);
+  };
+  std::sort(opposing.begin(), opposing.end(),
+            [&](const Candidate& x, const Candidate& y) { return rank(x) < rank(y); });
+  std::vector<Candidate> pool;
+  for (const Candidate& c : opposing) {
+    if (static_cast<int>(pool.size()) >= options.max_candidates) break;
+    if (!assembly.FixtureFault(ToFixture(assembly, c))) pool.push_back(c);
+  }
+  return pool;
+}
+
+// Subsets of `pool` by increasing size (at most `room`), each verified by
+// re-running the plan with the fixels chosen so far: the first that passes
+// the failing step, with its run. `budget` tells whether the simulation
+// budget ran out first.
+std::optional<std::pair<std::vector<int>, SimulationResult>> FirstPassingSubset(
+    const AssemblyDef& def, const Assembly& assembly, const Plan& plan,
+    const SimulationOptions& sim, const std::vector<FixtureDef>& chosen_defs,
+    const std::vector<Candidate>& pool, int room, int failing_step,
+    const FixtureSearchOptions& options, FixtureSuggestion& out, bool* budget) {
+  const int n = static_cast<int>(pool.size());
+  for (int size = 1; size <= std::min(room, n); ++size) {
+    std::vector<int> idx(size);
+    for (int i = 0; i < size; ++i) idx[i] = i;
+    do {
+      if (out.simulations >= options.max_simulations) {
+        *budget = true;
+        return std::nullopt;
+      }
+      std::vector<FixtureDef> trial = chosen_defs;
+      for (int i : idx) trial.push_back(ToFixture(assembly, pool[i]));
+      // Every fixel passed FixtureFault: the scene accepts them.
+      const Assembly scene = Assembly::Create(WithFixels(def, trial));
+      SimulationResult r = SimulatePlan(scene, plan, sim);
+      ++out.simulations;
+      if (PassesStep(plan, r, failing_step)) return std::make_pair(idx, std::move(r));
+    } while (NextSubset(idx, n));
+  }
+  return std::nullopt;
+}
+
+// The verification (the last run, with every fixel chosen), each fixel's
+// largest force in it, and the message.
+void Conclude(const AssemblyDef& def, const SimulationResult& failed,
+              const SimulationResult& current, const std::vector<SuggestedFixel>& chosen,
+              const std::string& why, FixtureSuggestion& out) {
+  out.found = current.stable();
+  out.fixels = chosen;
+  out.verification = chosen.empty() ? failed : current;
+  const int base = static_cast<int>(def.fixtures.size());
+  for (const TimelineRow& row : out.verification.timeline) {
+    const Contact& c = row.contact.contact;
+    if (c.feature != ContactFeature::kFixture || c.index_a < base) continue;
+    SuggestedFixel& s = out.fixels[c.index_a - base];
+    s.max_force = std::max(s.max_force, row.contact.normal_force);
+  }
+  const int k = static_cast<int>(out.fixels.size());
+  std::ostringstream msg;
+  if (out.found)
+    msg << k << (k == 1 ? " fixel makes" : " fixels make") << " the plan stable";
+  else
+    msg << "no fixels found: " << why;
+  out.message = msg.str();
+}
+
+}  // namespace
+
 FixtureSuggestion SuggestFixtures(const AssemblyDef& def, const Assembly& assembly,
                                   const Plan& plan, const SimulationResult& failed,
                                   const FixtureSearchOptions& options) {
@@ -176,23 +312,11 @@ FixtureSuggestion SuggestFixtures(const AssemblyDef& def, const Assembly& assemb
     out.message = "the plan is stable without fixels";
     return out;
   }
-
   // Runs stop at their first failure and keep their contacts.
   SimulationOptions sim = options.simulation;
   sim.continue_after_failure = false;
   sim.record_timeline = true;
-  const double tol = assembly.length_tolerance();
-
-  // Parts that may carry a fixel: movable, not tools, never removed by the
-  // plan.
-  std::vector<bool> eligible(assembly.num_parts(), true);
-  for (int p = 0; p < assembly.num_parts(); ++p)
-    eligible[p] = !assembly.part(p).fixed && !assembly.part(p).tool;
-  for (const PlanStep& step : plan.steps) {
-    for (int p : step.remove) eligible[p] = false;
-    for (int p : step.grip) eligible[p] = false;
-  }
-
+  const std::vector<bool> eligible = EligibleParts(assembly, plan);
   // The run without fixels, with its timeline (`failed` may have none).
   SimulationResult current;
   if (!failed.timeline.empty()) {
@@ -202,35 +326,19 @@ FixtureSuggestion SuggestFixtures(const AssemblyDef& def, const Assembly& assemb
     ++out.simulations;
   }
 
+  // Failure by failure: candidates on the parts that move, then the fewest
+  // of them that keep the failing step stable.
   std::vector<SuggestedFixel> chosen;
   std::vector<FixtureDef> chosen_defs;
   std::string why;  // why the search stopped short, when it did
   while (!current.stable()) {
     const MotionFailure& f = *current.failure;
     const std::string at = "step " + std::to_string(f.step) + " (" + f.description + ")";
-    if (f.verdict == MotionVerdict::kInfeasible) {
-      why = at + " is infeasible: fixels cannot free a blocked motion";
-      break;
-    }
-    if (f.verdict == MotionVerdict::kUnsupported) {
-      why = at +
-            " is unsupported: the gripper must carry the part; fixels do "
-            "not help";
-      break;
-    }
-    if (f.parts.empty()) {
-      why = at +
-            " failed without a moving part (a solver failure): no fixels "
-            "suggested";
-      break;
-    }
     const int room = options.max_fixels - static_cast<int>(chosen.size());
-    if (room <= 0) {
-      why = at + " needs more than the " + std::to_string(options.max_fixels) + " fixels allowed";
+    if (const auto hopeless = Hopeless(f, at, room, options)) {
+      why = *hopeless;
       break;
     }
-
-    // 1. Candidates on the free faces of the moving parts that may carry one.
     std::vector<int> movers;
     for (int p : f.parts)
       if (eligible[p]) movers.push_back(p);
@@ -240,78 +348,17 @@ FixtureSuggestion SuggestFixtures(const AssemblyDef& def, const Assembly& assemb
             "with them";
       break;
     }
-    const std::vector<Contact> contacts = ContactsAt(current, f);
-    std::vector<Candidate> all;
-    double fastest = 0;
-    for (const PartMotion& m : f.motions) {
-      if (std::find(movers.begin(), movers.end(), m.part) == movers.end()) continue;
-      PartCandidates(assembly, m, contacts, tol, all);
-      fastest = std::max(fastest, m.point_motion);
-    }
-    // Keep those that oppose the motion; rank by how much (near-ties: centres
-    // first, then part, face and generation order).
-    const double least = 1e-6 * fastest;
-    std::vector<Candidate> opposing;
-    for (const Candidate& c : all)
-      if (c.opposition > least) opposing.push_back(c);
-    double best = 0;
-    for (const Candidate& c : opposing) best = std::max(best, c.opposition);
-    const auto rank = [&](const Candidate& c) {
-      return std::make_tuple(-std::llround(1e6 * c.opposition / best), c.centre ? 0 : 1, c.part,
-                             c.face, c.order);
-    };
-    std::sort(opposing.begin(), opposing.end(),
-              [&](const Candidate& x, const Candidate& y) { return rank(x) < rank(y); });
-    // The scene must accept each (on the boundary, pushing into the part).
-    std::vector<Candidate> pool;
-    for (const Candidate& c : opposing) {
-      if (static_cast<int>(pool.size()) >= options.max_candidates) break;
-      std::vector<FixtureDef> trial = chosen_defs;
-      trial.push_back(ToFixture(assembly, c));
-      try {
-        (void)Assembly::Create(WithFixels(def, trial));
-      } catch (const InputError&) {
-        continue;
-      }
-      pool.push_back(c);
-    }
+    const std::vector<Candidate> pool = CandidatePool(assembly, current, f, movers, options);
     out.candidates += static_cast<int>(pool.size());
     if (pool.empty()) {
       why = at + ": no free face of " + assembly.NameList(movers) + " opposes its motion";
       break;
     }
-
-    // 2. Subsets by increasing size, each verified by re-running the plan.
-    const int n = static_cast<int>(pool.size());
-    std::vector<int> winner;
-    SimulationResult won;
     bool budget = false;
-    for (int size = 1; size <= std::min(room, n) && winner.empty() && !budget; ++size) {
-      std::vector<int> idx(size);
-      for (int i = 0; i < size; ++i) idx[i] = i;
-      do {
-        if (out.simulations >= options.max_simulations) {
-          budget = true;
-          break;
-        }
-        std::vector<FixtureDef> trial = chosen_defs;
-        for (int i : idx) trial.push_back(ToFixture(assembly, pool[i]));
-        std::optional<Assembly> scene;
-        try {
-          scene = Assembly::Create(WithFixels(def, trial));
-        } catch (const InputError&) {
-          continue;  // two fixels the scene rejects together (none so far)
-        }
-        SimulationResult r = SimulatePlan(*scene, plan, sim);
-        ++out.simulations;
-        if (PassesStep(plan, r, f.step)) {
-          winner = idx;
-          won = std::move(r);
-          break;
-        }
-      } while (NextSubset(idx, n));
-    }
-    if (winner.empty()) {
+    auto passing = FirstPassingSubset(def, assembly, plan, sim, chosen_defs, pool, room, f.step,
+                                      options, out, &budget);
+    if (!passing) {
+      const int n = static_cast<int>(pool.size());
       why = at + ": " +
             (budget ? "the budget of " + std::to_string(options.max_simulations) +
                           " simulations ran out"
@@ -320,7 +367,7 @@ FixtureSuggestion SuggestFixtures(const AssemblyDef& def, const Assembly& assemb
                           " keeps it stable");
       break;
     }
-    for (int i : winner) {
+    for (int i : passing->first) {
       SuggestedFixel s;
       s.fixture = ToFixture(assembly, pool[i]);
       s.part = pool[i].part;
@@ -329,27 +376,9 @@ FixtureSuggestion SuggestFixtures(const AssemblyDef& def, const Assembly& assemb
       chosen.push_back(s);
       chosen_defs.push_back(s.fixture);
     }
-    current = std::move(won);
+    current = std::move(passing->second);
   }
-
-  // 3. The verification: the last run, with every fixel chosen.
-  out.found = current.stable();
-  out.fixels = chosen;
-  out.verification = chosen.empty() ? failed : current;
-  const int base = static_cast<int>(def.fixtures.size());
-  for (const TimelineRow& row : out.verification.timeline) {
-    const Contact& c = row.contact.contact;
-    if (c.feature != ContactFeature::kFixture || c.index_a < base) continue;
-    SuggestedFixel& s = out.fixels[c.index_a - base];
-    s.max_force = std::max(s.max_force, row.contact.normal_force);
-  }
-  const int k = static_cast<int>(out.fixels.size());
-  std::ostringstream msg;
-  if (out.found)
-    msg << k << (k == 1 ? " fixel makes" : " fixels make") << " the plan stable";
-  else
-    msg << "no fixels found: " << why;
-  out.message = msg.str();
+  Conclude(def, failed, current, chosen, why, out);
   return out;
 }
 

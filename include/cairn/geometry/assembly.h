@@ -167,6 +167,11 @@ class Assembly {
   /// The contact distance tolerance (length): the scene's, or 1e-6 · size.
   double length_tolerance() const { return tolerances_.length; }
   /// All tolerances, scaled to this scene for a time step `dt` (s).
+  /// Why Create would reject the fixel `f` added to this scene's fixtures
+  /// (no such part, not finite, a zero normal, not on the part's boundary, not
+  /// pushing into it); empty when it would accept it. Does not throw: the
+  /// fixture search tests candidates with it.
+  std::optional<std::string> FixtureFault(const FixtureDef& f) const;
   Tolerances MakeTolerances(double dt = 1.0) const;
 
  private:
