@@ -253,64 +253,78 @@ bool BoxesTouch3(const Box3& x, const Box3& y, double tol) {
 
 }  // namespace
 
-std::vector<Contact> DetectContacts(const Assembly& assembly, const Configuration& config,
-                                    double tol, double angle_tol, ContactStats* stats) {
+namespace {
+
+// The configuration's shapes placed in the world: 2-D polygons or 3-D
+// transforms, and every present part's bounding box.
+struct PlacedParts {
+  std::vector<Polygon> polys;
+  std::vector<Eigen::Isometry3d> X;
+  std::vector<Box3> boxes;
+};
+
+PlacedParts PlaceParts(const Assembly& assembly, const Configuration& config) {
   const int n = assembly.num_parts();
-  const bool is3 = assembly.is_3d();
-  std::vector<Polygon> polys(n);
-  std::vector<Eigen::Isometry3d> X(n);
-  std::vector<Box3> boxes(n);
+  PlacedParts out;
+  out.polys.resize(n);
+  out.X.resize(n);
+  out.boxes.resize(n);
   for (int i = 0; i < n; ++i) {
     if (!config.present[i]) continue;
-    if (is3) {
-      X[i] = config.WorldTransform(assembly, i);
+    if (assembly.is_3d()) {
+      out.X[i] = config.WorldTransform(assembly, i);
     } else {
-      polys[i] = config.WorldPolygon(assembly, i);
+      out.polys[i] = config.WorldPolygon(assembly, i);
     }
     const std::vector<Vector3> v = config.WorldVertices(assembly, i);
-    boxes[i] = {v[0], v[0]};
-    for (const Vector3& p : v) boxes[i] = {boxes[i].first.cwiseMin(p), boxes[i].second.cwiseMax(p)};
+    out.boxes[i] = {v[0], v[0]};
+    for (const Vector3& p : v)
+      out.boxes[i] = {out.boxes[i].first.cwiseMin(p), out.boxes[i].second.cwiseMax(p)};
   }
-  ContactStats local;
-  std::vector<Contact> contacts;
-  int patches = 0;
-  // Given interfaces (Assembly::interfaces()) are the contacts of the
-  // assembled configuration: each point of each one between two present
-  // parts, not both fixed. They do not move with the parts: a configuration
-  // that moves a part is refused by the motion stage (SimulatePlan).
-  if (assembly.has_interfaces()) {
-    const auto& interfaces = assembly.interfaces();
-    for (int k = 0; k < static_cast<int>(interfaces.size()); ++k) {
-      const Interface& in = interfaces[k];
-      if (!config.present[in.part_a] || !config.present[in.part_b]) continue;
-      if (assembly.part(in.part_a).fixed && assembly.part(in.part_b).fixed) continue;
-      ++local.pairs_tested;
-      ++local.pairs_touching;
-      // The movable part is a, as for found contacts.
-      const bool swap = assembly.part(in.part_a).fixed;
-      for (int v = 0; v < static_cast<int>(in.points.size()); ++v) {
-        Contact c;
-        c.part_a = swap ? in.part_b : in.part_a;
-        c.part_b = swap ? in.part_a : in.part_b;
-        c.p_WC = in.points[v];
-        c.n_W = swap ? Vector3(-in.normal) : in.normal;
-        c.mu = assembly.Friction(in.part_a, in.part_b);
-        c.feature = ContactFeature::kInterface;
-        c.index_a = k;
-        c.index_b = v;
-        c.patch = patches;
-        contacts.push_back(c);
-      }
-      ++patches;
+  return out;
+}
+
+// Given interfaces (Assembly::interfaces()) are the contacts of the assembled
+// configuration: each point of each one between two present parts, not both
+// fixed. They do not move with the parts: a configuration that moves a part
+// is refused by the motion stage (SimulatePlan).
+void InterfaceContacts(const Assembly& assembly, const Configuration& config,
+                       std::vector<Contact>& contacts, int& patches, ContactStats& stats) {
+  const auto& interfaces = assembly.interfaces();
+  for (int k = 0; k < static_cast<int>(interfaces.size()); ++k) {
+    const Interface& in = interfaces[k];
+    if (!config.present[in.part_a] || !config.present[in.part_b]) continue;
+    if (assembly.part(in.part_a).fixed && assembly.part(in.part_b).fixed) continue;
+    ++stats.pairs_tested;
+    ++stats.pairs_touching;
+    // The movable part is a, as for found contacts.
+    const bool swap = assembly.part(in.part_a).fixed;
+    for (int v = 0; v < static_cast<int>(in.points.size()); ++v) {
+      Contact c;
+      c.part_a = swap ? in.part_b : in.part_a;
+      c.part_b = swap ? in.part_a : in.part_b;
+      c.p_WC = in.points[v];
+      c.n_W = swap ? Vector3(-in.normal) : in.normal;
+      c.mu = assembly.Friction(in.part_a, in.part_b);
+      c.feature = ContactFeature::kInterface;
+      c.index_a = k;
+      c.index_b = v;
+      c.patch = patches;
+      contacts.push_back(c);
     }
+    ++patches;
   }
-  // Part pairs, pruned by a sweep over the boxes sorted by their low x. The
-  // movable part of a movable–fixed pair is made part a, so that "the force
-  // on a" is the force on the part that might move. Pairs are visited in
-  // (i, j) order whatever the sweep: deterministic.
+}
+
+// Part pairs whose boxes touch, pruned by a sweep over the boxes sorted by
+// their low x; sorted by (i, j), so that they are visited in that order
+// whatever the sweep: deterministic. Pairs of two fixed parts are left out.
+std::vector<std::pair<int, int>> CandidatePairs(const Assembly& assembly,
+                                                const Configuration& config,
+                                                const std::vector<Box3>& boxes, double tol) {
   std::vector<int> order;
-  for (int i = 0; i < n; ++i)
-    if (config.present[i] && !assembly.has_interfaces()) order.push_back(i);  // found ones
+  for (int i = 0; i < assembly.num_parts(); ++i)
+    if (config.present[i]) order.push_back(i);
   std::sort(order.begin(), order.end(), [&](int x, int y) {
     return boxes[x].first.x() < boxes[y].first.x() ||
            (boxes[x].first.x() == boxes[y].first.x() && x < y);
@@ -327,54 +341,68 @@ std::vector<Contact> DetectContacts(const Assembly& assembly, const Configuratio
     }
   }
   std::sort(pairs.begin(), pairs.end());
-  for (const auto& [i, j] : pairs) {
-    ++local.pairs_tested;
-    const size_t before = contacts.size();
-    const double mu = assembly.Friction(i, j);
-    const bool swap = assembly.part(i).fixed;
-    const int a = swap ? j : i, b = swap ? i : j;
-    if (is3) {
-      for (const PolyhedronContactPoint& p :
-           FindPolyhedronContacts(*assembly.part(a).polyhedron, X[a], *assembly.part(b).polyhedron,
-                                  X[b], tol, angle_tol)) {
-        Contact c;
-        c.part_a = a;
-        c.part_b = b;
-        c.p_WC = p.p_W;
-        c.n_W = p.n_W;
-        c.gap = p.gap;
-        c.mu = mu;
-        c.feature = FeatureOf(p.kind);
-        c.index_a = p.feature_a;
-        c.index_b = p.feature_b;
-        c.patch = patches + p.patch;
-        contacts.push_back(c);
-      }
-      int most = -1;
-      for (size_t k = before; k < contacts.size(); ++k) most = std::max(most, contacts[k].patch);
-      if (most >= 0) patches = most + 1;
-    } else {
-      DetectPairContacts(polys[a], polys[b], a, b, mu, tol, angle_tol, contacts);
-    }
-    if (contacts.size() > before) ++local.pairs_touching;
+  return pairs;
+}
+
+// The contacts of one pair (i, j). The movable part of a movable–fixed pair
+// is made part a, so that "the force on a" is the force on the part that
+// might move.
+void PairContacts(const Assembly& assembly, const PlacedParts& placed, int i, int j, double tol,
+                  double angle_tol, std::vector<Contact>& contacts, int& patches) {
+  const double mu = assembly.Friction(i, j);
+  const bool swap = assembly.part(i).fixed;
+  const int a = swap ? j : i, b = swap ? i : j;
+  if (!assembly.is_3d()) {
+    DetectPairContacts(placed.polys[a], placed.polys[b], a, b, mu, tol, angle_tol, contacts);
+    return;
   }
-  // Corner touches and flush joints (docs/contacts.md): one normal, or the
-  // flush ones the configuration supports, where a corner touches a corner.
+  const size_t before = contacts.size();
+  for (const PolyhedronContactPoint& p :
+       FindPolyhedronContacts(*assembly.part(a).polyhedron, placed.X[a],
+                              *assembly.part(b).polyhedron, placed.X[b], tol, angle_tol)) {
+    Contact c;
+    c.part_a = a;
+    c.part_b = b;
+    c.p_WC = p.p_W;
+    c.n_W = p.n_W;
+    c.gap = p.gap;
+    c.mu = mu;
+    c.feature = FeatureOf(p.kind);
+    c.index_a = p.feature_a;
+    c.index_b = p.feature_b;
+    c.patch = patches + p.patch;
+    contacts.push_back(c);
+  }
+  int most = -1;
+  for (size_t k = before; k < contacts.size(); ++k) most = std::max(most, contacts[k].patch);
+  if (most >= 0) patches = most + 1;
+}
+
+// Corner touches and flush joints (docs/contacts.md): one normal, or the
+// flush ones the configuration supports, where a corner touches a corner.
+void CornerRule(const Assembly& assembly, const PlacedParts& placed, double tol, double angle_tol,
+                std::vector<Contact>& contacts) {
   const double cos_tol = std::cos(angle_tol);
+  const bool is3 = assembly.is_3d();
   CornerQueries queries;
   queries.has_face = [&](int part, const Vector3& p_W, const Vector3& m_W) {
     if (is3)
-      return PolyhedronHasFace(*assembly.part(part).polyhedron, X[part], p_W, m_W, tol, cos_tol);
-    return PolygonHasEdge(polys[part], p_W.head<2>(), m_W.head<2>(), tol, cos_tol);
+      return PolyhedronHasFace(*assembly.part(part).polyhedron, placed.X[part], p_W, m_W, tol,
+                               cos_tol);
+    return PolygonHasEdge(placed.polys[part], p_W.head<2>(), m_W.head<2>(), tol, cos_tol);
   };
   queries.on_side = [&](int part, const Vector3& p_W, const Vector3& m_W) {
     if (is3)
-      return PolyhedronOnSide(*assembly.part(part).polyhedron, X[part], p_W, m_W, tol, angle_tol);
-    return PolygonOnSide(polys[part], p_W.head<2>(), m_W.head<2>(), tol, angle_tol);
+      return PolyhedronOnSide(*assembly.part(part).polyhedron, placed.X[part], p_W, m_W, tol,
+                              angle_tol);
+    return PolygonOnSide(placed.polys[part], p_W.head<2>(), m_W.head<2>(), tol, angle_tol);
   };
   ApplyCornerRule(contacts, queries, assembly.gravity(), tol, angle_tol);
+}
 
-  // Fixtures: frictionless contacts with the fixed world, moving with their part.
+// Fixtures: frictionless contacts with the fixed world, moving with their part.
+void FixtureContacts(const Assembly& assembly, const Configuration& config,
+                     std::vector<Contact>& contacts, int& patches) {
   const auto& fixtures = assembly.fixtures();
   for (int f = 0; f < static_cast<int>(fixtures.size()); ++f) {
     const Fixture& fx = fixtures[f];
@@ -388,9 +416,31 @@ std::vector<Contact> DetectContacts(const Assembly& assembly, const Configuratio
     c.mu = 0;
     c.feature = ContactFeature::kFixture;
     c.index_a = f;
-    if (is3) c.patch = patches++;
+    if (assembly.is_3d()) c.patch = patches++;
     contacts.push_back(c);
   }
+}
+
+}  // namespace
+
+std::vector<Contact> DetectContacts(const Assembly& assembly, const Configuration& config,
+                                    double tol, double angle_tol, ContactStats* stats) {
+  const PlacedParts placed = PlaceParts(assembly, config);
+  ContactStats local;
+  std::vector<Contact> contacts;
+  int patches = 0;
+  if (assembly.has_interfaces()) {
+    InterfaceContacts(assembly, config, contacts, patches, local);
+  } else {
+    for (const auto& [i, j] : CandidatePairs(assembly, config, placed.boxes, tol)) {
+      ++local.pairs_tested;
+      const size_t before = contacts.size();
+      PairContacts(assembly, placed, i, j, tol, angle_tol, contacts, patches);
+      if (contacts.size() > before) ++local.pairs_touching;
+    }
+  }
+  CornerRule(assembly, placed, tol, angle_tol, contacts);
+  FixtureContacts(assembly, config, contacts, patches);
   if (stats) *stats = local;
   return contacts;
 }
