@@ -182,29 +182,14 @@ FactoredLcpMatrix Factored(const std::vector<const JacobianRow*>& rows, int n,
 
 }  // namespace
 
-ContactLcp BuildContactLcp(std::vector<BodyDynamics> bodies, std::vector<Contact> contacts,
-                           const LcpBuildOptions& options) {
-  const Formulation formulation = options.formulation;
-  const double dt = options.dt;
-  const bool use_gaps = options.use_gaps;
-  const LcpStorage storage = options.storage;
-  const int dimension = options.dimension;
-  const int directions = options.directions;
-  ContactLcp lcp;
-  lcp.build = options;
-  lcp.formulation = formulation;
-  lcp.dt = dt;
-  lcp.bodies = std::move(bodies);
-  lcp.contacts = std::move(contacts);
-  lcp.num_directions = dimension == 2 ? 2 : directions;
-  CAIRN_CHECK(lcp.num_directions >= 2);
+namespace {
+
+// Normal, tangent and friction-direction rows of every contact
+// (lcp.bodies and lcp.contacts set).
+void MakeContactRows(ContactLcp& lcp, int dimension) {
   const int nb = static_cast<int>(lcp.bodies.size());
   const int nc = static_cast<int>(lcp.contacts.size());
   const int D = lcp.num_directions;
-  for (const auto& b : lcp.bodies) CAIRN_CHECK(b.mass > 0 && b.inertia.diagonal().minCoeff() > 0);
-  // A prescribed velocity is a Stewart–Trinkle notion (the Baraff LCP is at
-  // rest, where prescribed bodies are simply fixed).
-
   // Local body index of each part.
   std::vector<std::pair<int, int>> part_to_body;
   for (int k = 0; k < nb; ++k) part_to_body.emplace_back(lcp.bodies[k].part, k);
@@ -213,8 +198,6 @@ ContactLcp BuildContactLcp(std::vector<BodyDynamics> bodies, std::vector<Contact
     auto it = std::lower_bound(part_to_body.begin(), part_to_body.end(), std::make_pair(part, -1));
     return (it != part_to_body.end() && it->first == part) ? it->second : -1;
   };
-
-  // Normal, tangent and friction-direction rows of every contact.
   lcp.friction_of.assign(nc, -1);
   lcp.normal_offset = VectorX::Zero(nc);
   for (int c = 0; c < nc; ++c) {
@@ -230,7 +213,7 @@ ContactLcp BuildContactLcp(std::vector<BodyDynamics> bodies, std::vector<Contact
       lcp.tangent_rows.push_back(MakeRow(ct, t1, ba, bb, lcp.bodies));
       lcp.tangent2_rows.push_back(MakeRow(ct, t2, ba, bb, lcp.bodies));
     }
-    if (formulation == Formulation::kStewartTrinkle && ct.mu > 0) {
+    if (lcp.formulation == Formulation::kStewartTrinkle && ct.mu > 0) {
       lcp.friction_of[c] = lcp.num_friction++;
       for (const Vector3& d : FrictionDirections(ct, dimension, D)) {
         lcp.direction_rows.push_back(MakeRow(ct, d, ba, bb, lcp.bodies));
@@ -238,28 +221,29 @@ ContactLcp BuildContactLcp(std::vector<BodyDynamics> bodies, std::vector<Contact
       }
     }
   }
+}
 
-  // Effective inverse masses, and the free motion W F (Baraff) or
-  // ν_p + P ν⁻ + W F Δt (Stewart–Trinkle).
-  std::vector<Matrix6> W_of(nb);
-  std::vector<Vector6> free_motion(nb);
-  for (int k = 0; k < nb; ++k) {
-    W_of[k] = lcp.bodies[k].InverseMass();
-    free_motion[k] = FreeMotion(lcp.bodies[k], W_of[k], formulation, dt);
-  }
+// Baraff's LCP (paper eq. 1): M = N W Nᵀ over the normal rows, q = N (W F).
+void FillBaraff(ContactLcp& lcp, const std::vector<Matrix6>& W_of,
+                const std::vector<Vector6>& free_motion, LcpStorage storage) {
+  const int nc = static_cast<int>(lcp.contacts.size());
+  std::vector<const JacobianRow*> rows;
+  for (const auto& r : lcp.normal_rows) rows.push_back(&r);
+  if (WantDense(storage, nc)) lcp.M = Delassus(rows, W_of);
+  if (WantFactored(storage, nc)) lcp.factored = Factored(rows, nc, lcp.bodies, W_of, {});
+  lcp.q.resize(nc);
+  for (int c = 0; c < nc; ++c) lcp.q(c) = lcp.normal_rows[c].Dot(free_motion);
+}
 
-  if (formulation == Formulation::kBaraff) {
-    std::vector<const JacobianRow*> rows;
-    for (const auto& r : lcp.normal_rows) rows.push_back(&r);
-    if (WantDense(storage, nc)) lcp.M = Delassus(rows, W_of);
-    if (WantFactored(storage, nc)) lcp.factored = Factored(rows, nc, lcp.bodies, W_of, {});
-    lcp.q.resize(nc);
-    for (int c = 0; c < nc; ++c) lcp.q(c) = lcp.normal_rows[c].Dot(free_motion);
-    return lcp;
-  }
-
-  // Stewart–Trinkle: rows are the normals, then D directions per frictional
-  // contact; then one λ per frictional contact.
+// Stewart–Trinkle's LCP (paper eq. 5): rows are the normals, then D
+// directions per frictional contact; then one λ per frictional contact, with
+// the coupling K: λ enters every friction row of its contact (E);
+// μ p_n − Eᵀ p_f ≥ 0. q adds the gaps over Δt when `use_gaps`.
+void FillStewartTrinkle(ContactLcp& lcp, const std::vector<Matrix6>& W_of,
+                        const std::vector<Vector6>& free_motion, LcpStorage storage,
+                        bool use_gaps) {
+  const int nc = static_cast<int>(lcp.contacts.size());
+  const int D = lcp.num_directions;
   const int nf = lcp.num_friction;
   std::vector<double> mu_of(nf);
   std::vector<int> contact_of(nf);
@@ -274,7 +258,6 @@ ContactLcp BuildContactLcp(std::vector<BodyDynamics> bodies, std::vector<Contact
   for (const auto& r : lcp.direction_rows) rows.push_back(&r);
   const int nr = nc + D * nf;
   const int n = nr + nf;
-  // K: λ enters every friction row of its contact (E); μ p_n − Eᵀ p_f ≥ 0.
   std::vector<Eigen::Triplet<double>> k_entries;
   for (int f = 0; f < nf; ++f) {
     const int lam = nr + f;
@@ -293,8 +276,39 @@ ContactLcp BuildContactLcp(std::vector<BodyDynamics> bodies, std::vector<Contact
   lcp.q = VectorX::Zero(n);
   for (int r = 0; r < nr; ++r) lcp.q(r) = rows[r]->Dot(free_motion);
   if (use_gaps)
-    for (int c = 0; c < nc; ++c) lcp.normal_offset(c) = lcp.contacts[c].gap / dt;
+    for (int c = 0; c < nc; ++c) lcp.normal_offset(c) = lcp.contacts[c].gap / lcp.dt;
   lcp.q.head(nc) += lcp.normal_offset;
+}
+
+}  // namespace
+
+ContactLcp BuildContactLcp(std::vector<BodyDynamics> bodies, std::vector<Contact> contacts,
+                           const LcpBuildOptions& options) {
+  ContactLcp lcp;
+  lcp.build = options;
+  lcp.formulation = options.formulation;
+  lcp.dt = options.dt;
+  lcp.bodies = std::move(bodies);
+  lcp.contacts = std::move(contacts);
+  lcp.num_directions = options.dimension == 2 ? 2 : options.directions;
+  CAIRN_CHECK(lcp.num_directions >= 2);
+  for (const auto& b : lcp.bodies) CAIRN_CHECK(b.mass > 0 && b.inertia.diagonal().minCoeff() > 0);
+  MakeContactRows(lcp, options.dimension);
+  // Effective inverse masses, and the free motion W F (Baraff) or
+  // ν_p + P ν⁻ + W F Δt (Stewart–Trinkle). (A prescribed velocity is a
+  // Stewart–Trinkle notion: the Baraff LCP is at rest, where prescribed
+  // bodies are simply fixed.)
+  const int nb = static_cast<int>(lcp.bodies.size());
+  std::vector<Matrix6> W_of(nb);
+  std::vector<Vector6> free_motion(nb);
+  for (int k = 0; k < nb; ++k) {
+    W_of[k] = lcp.bodies[k].InverseMass();
+    free_motion[k] = FreeMotion(lcp.bodies[k], W_of[k], lcp.formulation, lcp.dt);
+  }
+  if (lcp.formulation == Formulation::kBaraff)
+    FillBaraff(lcp, W_of, free_motion, options.storage);
+  else
+    FillStewartTrinkle(lcp, W_of, free_motion, options.storage, options.use_gaps);
   return lcp;
 }
 
