@@ -4,9 +4,16 @@
 #include <cmath>
 
 #include "cairn/contact/polyhedron_contact.h"
+#include "cairn/core/tolerances.h"
 #include "corner_touches.h"
 
 namespace cairn {
+
+namespace {
+// The roundoff of a dot product of two unit normals (dimensionless, ≈ 4.5 ε):
+// normals the angle tolerance calls equal must compare so despite it.
+constexpr double kCosineRoundoff = 1e-15;
+}  // namespace
 
 const char* to_string(ContactFeature feature) {
   switch (feature) {
@@ -124,7 +131,7 @@ void DetectPairContacts(const Polygon& poly_i, const Polygon& poly_j, int i, int
     bool duplicate = false;
     for (size_t k = first; k < kept; ++k) {
       if ((out[k].p_WC - out[c].p_WC).norm() <= tol &&
-          out[k].n_W.dot(out[c].n_W) >= std::cos(angle_tol) - 1e-15) {
+          out[k].n_W.dot(out[c].n_W) >= std::cos(angle_tol) - kCosineRoundoff) {
         duplicate = true;
         break;
       }
@@ -206,7 +213,7 @@ bool PolyhedronOnSide(const Polyhedron& poly, const Eigen::Isometry3d& X, const 
                       const Vector3& m, double tol, double angle_tol) {
   for (size_t f = 0; f < poly.faces().size(); ++f) {
     const Vector3 n = X.linear() * poly.face_normals()[f];
-    if (!PolyhedronHasFace(poly, X, p, n, tol, 1.0 - 1e-12)) continue;
+    if (!PolyhedronHasFace(poly, X, p, n, tol, 1.0 - numeric::kRoundoff)) continue;
     for (int i : poly.faces()[f]) {
       const Vector3 v = X * poly.vertices()[i];
       if (m.dot(v - p) < -(tol + angle_tol * (v - p).norm())) return false;

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "cairn/core/error.h"
+#include "cairn/core/tolerances.h"
 #include "io/json_checks.h"
 
 namespace cairn {
@@ -485,7 +486,7 @@ std::vector<std::array<int, 3>> SplitFace(const std::vector<Vector3>& x,
   }
   // Purely numerical decisions (a straight angle, a point on a diagonal):
   // 1e-12 of the face's size.
-  const double eps = 1e-12 * scale * scale;
+  const double eps = numeric::kRoundoff * scale * scale;
   const auto cross = [&](int a, int b, int c) {
     return (p[b] - p[a]).x() * (p[c] - p[a]).y() - (p[b] - p[a]).y() * (p[c] - p[a]).x();
   };

@@ -9,6 +9,7 @@
 #include <map>
 
 #include "cairn/core/error.h"
+#include "cairn/core/tolerances.h"
 
 namespace cairn {
 
@@ -57,8 +58,9 @@ PolyhedronDef ReadMesh(const std::string& path, const MeshReadOptions& options,
     for (int& v : t) v = weld[v];
   Vector3 lo = welded[0], hi = welded[0];
   for (const Vector3& v : welded) lo = lo.cwiseMin(v), hi = hi.cwiseMax(v);
-  const double length_tol =
-      options.length_tol > 0 ? options.length_tol : 1e-6 * std::max((hi - lo).norm(), 1e-300);
+  const double length_tol = options.length_tol > 0
+                                ? options.length_tol
+                                : ToleranceFactors{}.length * std::max((hi - lo).norm(), 1e-300);
   return MergeCoplanarTriangles(welded, triangles, options.angle_tol, length_tol, stats);
 }
 

@@ -7,6 +7,7 @@
 #include <tuple>
 
 #include "cairn/core/check.h"
+#include "cairn/core/tolerances.h"
 #include "cairn/geometry/polygon.h"
 #include "cairn/geometry/polyhedron.h"
 
@@ -32,7 +33,7 @@ namespace {
 // (backward) along the step's path; zero at that end of the path.
 Vector3 TravelDirection(const PlanStep& step, double s, bool forward) {
   const double L = step.Length();
-  const double eps = 1e-9 * std::max(1.0, L);
+  const double eps = numeric::kParameterSlack * std::max(1.0, L);
   if (forward ? s >= L - eps : s <= eps) return Vector3::Zero();
   const double s2 = forward ? std::min(L, s + eps) : std::max(0.0, s - eps);
   const Vector3 d = step.At(s2) - step.At(s);
@@ -95,7 +96,7 @@ std::optional<Hit> FindCollision(const Assembly& a, const Configuration& config,
 double FirstOverlap(const Assembly& a, Configuration config, const PlanStep& step, bool assemble,
                     const Hit& hit, double u_clear, double u_hit, double tol) {
   const double L = step.Length();
-  const double eps = 1e-9 * std::max(1.0, L);
+  const double eps = numeric::kParameterSlack * std::max(1.0, L);
   while (u_hit - u_clear > eps) {
     const double mid = 0.5 * (u_clear + u_hit);
     config.poses[hit.driven] = Pose::Translation(step.At(assemble ? L - mid : mid));
@@ -307,7 +308,8 @@ class PlanSimulation {
       config_.poses[p] = Pose::Translation(st.step->At(s_start));
       nu_[p].setZero();
     }
-    st.moves = std::max(1, static_cast<int>(std::ceil(st.length / tick_length_ - 1e-9)));
+    st.moves = std::max(
+        1, static_cast<int>(std::ceil(st.length / tick_length_ - numeric::kParameterSlack)));
     return st;
   }
 

@@ -78,6 +78,7 @@
 #include "cairn/contact/contact.h"
 #include "cairn/contact/detect_contacts.h"
 #include "cairn/core/check.h"
+#include "cairn/core/tolerances.h"
 
 namespace cairn {
 
@@ -166,7 +167,7 @@ std::vector<Vector3> PreferredAxes(const Assembly& assembly) {
   const Vector3& g = assembly.gravity();
   const Vector3 up = g.norm() > 0 ? Vector3(-g / g.norm()) : Vector3::Zero();
   std::stable_sort(axes.begin(), axes.end(), [&](const Vector3& a, const Vector3& b) {
-    return a.dot(up) > b.dot(up) + 1e-12;
+    return a.dot(up) > b.dot(up) + numeric::kRoundoff;
   });
   return axes;
 }
@@ -366,7 +367,8 @@ bool ConvexSweptOverlap(const Shape& a, const Shape& b, const Vector3& d, double
       for (const Vector3& f : b.edge_dirs) {
         const Vector3 u = e.cross(f);
         const double len = u.norm();
-        if (len < 1e-9) continue;  // parallel edges: their axis is a face normal's
+        if (len < numeric::kParameterSlack)
+          continue;  // parallel edges: their axis is a face normal's
         if (!axis(u / len)) return false;
       }
   }
@@ -392,7 +394,7 @@ void VertexEdgeEvents(const Vector2& p, const Vector2& d, const Vector2& q0, con
                       double tol, std::vector<double>& out) {
   const Vector2 e = q1 - q0, w = q0 - p;
   const double den = Cross2(d, e);
-  if (std::abs(den) <= 1e-12 * e.norm()) {
+  if (std::abs(den) <= numeric::kRoundoff * e.norm()) {
     // Parallel: when p slides along the edge's line it meets its ends.
     if (std::abs(Cross2(w, d)) <= tol) {
       out.push_back(w.dot(d));
@@ -401,7 +403,8 @@ void VertexEdgeEvents(const Vector2& p, const Vector2& d, const Vector2& q0, con
     return;
   }
   const double t = Cross2(w, e) / den, s = Cross2(w, d) / den;
-  if (t > tol && s >= -1e-9 && s <= 1 + 1e-9) out.push_back(t);
+  if (t > tol && s >= -numeric::kParameterSlack && s <= 1 + numeric::kParameterSlack)
+    out.push_back(t);
 }
 
 // Step 3c, 2-D: a moving along d, b still, either non-convex.
@@ -429,13 +432,14 @@ void VertexTriangleEvent(const Vector3& p, const Vector3& d, const Vector3& q0, 
   const Vector3 e1 = q1 - q0, e2 = q2 - q0;
   const Vector3 h = d.cross(e2);
   const double det = e1.dot(h);
-  if (std::abs(det) <= 1e-12 * e1.norm() * e2.norm()) return;  // d parallel to the triangle
+  if (std::abs(det) <= numeric::kRoundoff * e1.norm() * e2.norm())
+    return;  // d parallel to the triangle
   const Vector3 s = p - q0;
   const double u = s.dot(h) / det;
-  if (u < -1e-9 || u > 1 + 1e-9) return;
+  if (u < -numeric::kParameterSlack || u > 1 + numeric::kParameterSlack) return;
   const Vector3 q = s.cross(e1);
   const double v = d.dot(q) / det;
-  if (v < -1e-9 || u + v > 1 + 1e-9) return;
+  if (v < -numeric::kParameterSlack || u + v > 1 + numeric::kParameterSlack) return;
   const double t = e2.dot(q) / det;
   if (t > tol) out.push_back(t);
 }
@@ -458,9 +462,10 @@ bool EventSweptOverlap3(const Shape& a, const Shape& b, const Vector3& d, double
       Matrix3 M;
       M << d, e, -f;
       const double det = M.determinant();
-      if (std::abs(det) <= 1e-12 * e.norm() * f.norm()) continue;
+      if (std::abs(det) <= numeric::kRoundoff * e.norm() * f.norm()) continue;
       const Vector3 x = M.inverse() * (q0 - p0);
-      if (x[0] > tol && x[1] >= -1e-9 && x[1] <= 1 + 1e-9 && x[2] >= -1e-9 && x[2] <= 1 + 1e-9)
+      if (x[0] > tol && x[1] >= -numeric::kParameterSlack && x[1] <= 1 + numeric::kParameterSlack &&
+          x[2] >= -numeric::kParameterSlack && x[2] <= 1 + numeric::kParameterSlack)
         events.push_back(x[0]);
     }
   }
@@ -877,7 +882,7 @@ std::vector<ArrangementCell> Arrangement(const std::vector<Vector3>& normals,
   }
   for (const auto& [s, sums] : faces) {
     ArrangementCell c{2, sums.second, s};
-    if (sums.first.norm() > 1e-9) {
+    if (sums.first.norm() > numeric::kParameterSlack) {
       const Vector3 inside = sums.first.normalized();
       if (SignsOf(inside, normals, tol) == s) c.direction = inside;
     }

@@ -19,11 +19,21 @@
 #include "cairn/contact/detect_contacts.h"
 #include "cairn/core/check.h"
 #include "cairn/core/error.h"
+#include "cairn/core/tolerances.h"
 #include "cairn/mechanics/rest_solution.h"
 #include "cairn/planning/blocking.h"
 #include "cairn/stability/analyze.h"
 
 namespace cairn {
+
+namespace {
+// The fixture search on a failing path of `cairn plan --allow-fixtures`: at
+// most this many candidate fixels and this many verifying simulations per
+// path (a bounded search per edge, where `cairn simulate --suggest-fixtures`
+// has its own defaults): counts of candidates and of simulations.
+constexpr int kPathFixelCandidates = 8;
+constexpr int kPathFixelSimulations = 60;
+}  // namespace
 namespace {
 
 // The most sequences listed when the whole graph is enumerated and the user
@@ -88,12 +98,12 @@ void ParallelFor(int n, int threads, const std::function<void(int)>& task) {
 
 // A direction for people: "up", "down", "+x", or "(0.7071, 0.7071)".
 std::string DirectionLabel(const Vector3& d, const Vector3& up, int dimension) {
-  if (d.dot(up) > 1 - 1e-9) return "up";
-  if (d.dot(up) < -1 + 1e-9) return "down";
+  if (d.dot(up) > 1 - numeric::kParameterSlack) return "up";
+  if (d.dot(up) < -1 + numeric::kParameterSlack) return "down";
   const char* axes[3] = {"x", "y", "z"};
   for (int k = 0; k < dimension; ++k) {
-    if (d[k] > 1 - 1e-9) return std::string("+") + axes[k];
-    if (d[k] < -1 + 1e-9) return std::string("-") + axes[k];
+    if (d[k] > 1 - numeric::kParameterSlack) return std::string("+") + axes[k];
+    if (d[k] < -1 + numeric::kParameterSlack) return std::string("-") + axes[k];
   }
   return FormatPoint(d, dimension);
 }
@@ -221,12 +231,12 @@ void Planner::ComputeDirections() {
   std::vector<const NdbgCell*> cells;
   for (const NdbgCell& c : ndbg.cells) cells.push_back(&c);
   std::stable_sort(cells.begin(), cells.end(), [&](const NdbgCell* a, const NdbgCell* b) {
-    return a->direction.dot(up_) > b->direction.dot(up_) + 1e-12;
+    return a->direction.dot(up_) > b->direction.dot(up_) + numeric::kRoundoff;
   });
   for (const NdbgCell* c : cells) {
     bool duplicate = false;
     for (const BlockingGraph& g : graphs_)
-      duplicate = duplicate || (g.direction - c->direction).norm() < 1e-12;
+      duplicate = duplicate || (g.direction - c->direction).norm() < numeric::kRoundoff;
     if (!duplicate) graphs_.push_back(c->infinity);
   }
 }
@@ -317,7 +327,7 @@ double Planner::StraightDistance(const std::vector<bool>& present, const std::ve
       dmax = std::max(dmax, v.dot(d));
     }
   }
-  const double eps = 1e-12;
+  const double eps = numeric::kRoundoff;
   double clear = 0;
   for (int j = 0; j < assembly_.num_parts(); ++j) {
     if (!present[j] || in_s[j]) continue;
@@ -799,8 +809,8 @@ void Planner::FixtureSearch() {
           if (budget <= 0 || sim.verdict != MotionVerdict::kUnstable) continue;
           FixtureSearchOptions fo;
           fo.max_fixels = budget;
-          fo.max_candidates = 8;
-          fo.max_simulations = 60;
+          fo.max_candidates = kPathFixelCandidates;
+          fo.max_simulations = kPathFixelSimulations;
           fo.simulation = so;
           const FixtureSuggestion sug = SuggestFixtures(def, fixed, plan, sim, fo);
           result_.stats.path_simulations += sug.simulations;

@@ -5,6 +5,7 @@
 #include <numbers>
 #include <sstream>
 
+#include "cairn/core/tolerances.h"
 #include "report/report_common.h"
 
 namespace cairn {
@@ -19,7 +20,7 @@ constexpr double kDegrees = 180.0 / std::numbers::pi;
 double Degrees(double radians) {
   const double d = radians * kDegrees;
   const double r = std::round(d);
-  return std::abs(d - r) < 1e-9 ? r : d;
+  return std::abs(d - r) < numeric::kParameterSlack ? r : d;
 }
 
 std::string Fmt(const char* format, double x) {

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "cairn/contact/contact.h"
+#include "cairn/core/tolerances.h"
 #include "cairn/core/types.h"
 #include "cairn/geometry/assembly.h"
 
@@ -15,7 +16,9 @@ namespace cairn::report_internal {
 
 // Rounds away floating-point dust so that reports are stable across
 // platforms: values below 1e-12 of the scale print as 0.
-inline double Clean(double x, double scale = 1.0) { return std::abs(x) < 1e-12 * scale ? 0.0 : x; }
+inline double Clean(double x, double scale = 1.0) {
+  return std::abs(x) < numeric::kRoundoff * scale ? 0.0 : x;
+}
 
 // A point or vector: 2 numbers in a 2-D scene, 3 in a 3-D one.
 inline nlohmann::json Vec(const Vector3& v, int dim, double scale = 1.0) {

@@ -12,6 +12,7 @@
 
 #include "cairn/contact/contact_reduction.h"
 #include "cairn/contact/detect_contacts.h"
+#include "cairn/core/tolerances.h"
 #include "cairn/mechanics/static_equilibrium.h"
 #include "cairn/stability/solve_component.h"
 
@@ -63,7 +64,7 @@ const char* to_string(MotionKind kind) {
 std::string FormatPoint(const Vector3& p, int dimension) {
   std::ostringstream os;
   os.precision(4);
-  const double dust = 1e-9 * std::max(1.0, p.cwiseAbs().maxCoeff());
+  const double dust = numeric::kParameterSlack * std::max(1.0, p.cwiseAbs().maxCoeff());
   const auto clean = [dust](double x) { return std::abs(x) < dust ? 0.0 : x; };
   os << "(" << clean(p.x()) << ", " << clean(p.y());
   if (dimension == 3) os << ", " << clean(p.z());
@@ -288,6 +289,12 @@ Formulation ChooseFormulation(const Assembly& assembly, const StabilityOptions& 
       drive || !assembly.IsFrictionless() ? Formulation::kStewartTrinkle : Formulation::kBaraff);
 }
 
+// A part tips (rather than slides) when its instantaneous axis passes within
+// the larger of these reaches of its centroid: twice its own radius, or half
+// the scene's size (dimensionless factors of those lengths).
+constexpr double kTipReachParts = 2.0;
+constexpr double kTipReachScene = 0.5;
+
 // How a part with centroid motion (lin, ang) moves, given whether it keeps any
 // closed contact. `size` is the part's radius about its centroid.
 void ClassifyMotion(PartMotion& m, bool keeps_contact, double size, double scene_size) {
@@ -306,7 +313,7 @@ void ClassifyMotion(PartMotion& m, bool keeps_contact, double size, double scene
   const double w2 = m.angular.squaredNorm();
   if (w2 > 0) {
     const Vector3 r = m.angular.cross(m.linear) / w2;
-    if (r.norm() <= std::max(2 * size, 0.5 * scene_size)) {
+    if (r.norm() <= std::max(kTipReachParts * size, kTipReachScene * scene_size)) {
       m.kind = MotionKind::kTips;
       m.pivot = r;  // relative to the centroid; made absolute by the caller
       return;

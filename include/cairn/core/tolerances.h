@@ -17,6 +17,20 @@
 
 namespace cairn {
 
+/// Numerical thresholds: not physical tolerances (those are Tolerances, below,
+/// scaled to the scene) but the roundoff allowed in purely numerical
+/// decisions. Dimensionless, relative to the magnitudes compared.
+namespace numeric {
+/// Roundoff of a comparison of O(1) quantities: two unit vectors this close are
+/// the same, a determinant this small relative to its factors' lengths is
+/// singular, a gap this small is a tie (≈ 4500 ε).
+inline constexpr double kRoundoff = 1e-12;
+/// Slack on a parameter in [0, 1] (along a segment, a path, barycentric) or on
+/// a direction cosine near ±1 before it counts as outside: far above the
+/// roundoff of the products that make it, far below any tolerance a user sets.
+inline constexpr double kParameterSlack = 1e-9;
+}  // namespace numeric
+
 /// Relative factors from which Tolerances are scaled (dimensionless).
 struct ToleranceFactors {
   double length = 1e-6;        ///< × scene size L.
