@@ -17,39 +17,28 @@ using report_internal::Vec;
 std::string PartName(const Assembly& a, int i) { return report_internal::PartName(a, i, "world"); }
 }  // namespace
 
-nlohmann::json StabilityToJson(const Assembly& assembly, const Configuration& config,
-                               const StabilityResult& result, const ReportOptions& options) {
-  using nlohmann::json;
-  const bool st = result.formulation == Formulation::kStewartTrinkle;
-  const auto [force_scale, force_unit] = ForceScale(assembly, options);
-  const double g = assembly.gravity().norm() > 0 ? assembly.gravity().norm() : 1.0;
-  const int dim = assembly.dimension();
+namespace {
 
-  json doc;
-  doc["scene"] = assembly.name();
-  if (!options.scene_file.empty()) doc["scene_file"] = options.scene_file;
-  doc["verdict"] = to_string(result.verdict);
-  doc["stable"] = result.stable();
-  doc["dimension"] = dim;
-  doc["formulation"] = to_string(result.formulation);
-  if (dim == 3 && st) doc["friction_directions"] = assembly.friction_directions();
-  if (st) doc["dt"] = result.dt;
-  json without = json::array();
-  for (int i : options.without) without.push_back(assembly.part(i).name);
-  doc["without"] = without;
-  json moving = json::array();
-  for (int i : result.moving) moving.push_back(assembly.part(i).name);
-  doc["moving"] = moving;
-  doc["static_equilibrium"] =
-      result.static_equilibrium ? json(*result.static_equilibrium) : json(nullptr);
-  doc["weakly_stable"] = result.weakly_stable;
-  // What is proved about rest: "strong" | "weak" | "not certified"; null when
-  // no rest is possible (unstable without an equilibrium) or not examined.
-  doc["stability"] =
-      result.stability == StabilityProof::kNone ? json(nullptr) : json(to_string(result.stability));
-  doc["force_unit"] = force_unit;
+using nlohmann::json;
 
-  // Parts: every present part; movable ones carry their motion.
+// What the JSON writers of a check share: the scene's dimension, the
+// formulation's words (velocity or acceleration), the force unit and the
+// scale of motions.
+struct CheckJsonContext {
+  const Assembly& assembly;
+  int dim;
+  bool st;             // Stewart–Trinkle: velocities; else accelerations
+  double force_scale;  // forces are divided by it
+  double g;            // motions are cleaned relative to it
+};
+
+// Parts: every present part; movable ones carry their motion.
+json PartsToJson(const CheckJsonContext& cx, const Configuration& config,
+                 const StabilityResult& result) {
+  const Assembly& assembly = cx.assembly;
+  const int dim = cx.dim;
+  const bool st = cx.st;
+  const double g = cx.g;
   json parts = json::array();
   std::vector<const PartMotion*> motion_of(assembly.num_parts(), nullptr);
   for (const PartMotion& m : result.parts) motion_of[m.part] = &m;
@@ -73,8 +62,16 @@ nlohmann::json StabilityToJson(const Assembly& assembly, const Configuration& co
     }
     parts.push_back(jp);
   }
-  doc["parts"] = parts;
+  return parts;
+}
 
+// Each contact: where, its normal, the forces and the relative motion.
+json ContactsToJson(const CheckJsonContext& cx, const StabilityResult& result) {
+  const Assembly& assembly = cx.assembly;
+  const int dim = cx.dim;
+  const bool st = cx.st;
+  const double g = cx.g;
+  const double force_scale = cx.force_scale;
   json contacts = json::array();
   for (const ContactReport& cr : result.contacts) {
     const Contact& c = cr.contact;
@@ -95,8 +92,11 @@ nlohmann::json StabilityToJson(const Assembly& assembly, const Configuration& co
     jc["component"] = cr.component;
     contacts.push_back(jc);
   }
-  doc["contacts"] = contacts;
+  return contacts;
+}
 
+// Each component: what decided it, what is proved, the solver's numbers.
+json ComponentsToJson(const Assembly& assembly, const StabilityResult& result) {
   json comps = json::array();
   for (const ComponentReport& r : result.components) {
     json jr;
@@ -132,7 +132,45 @@ nlohmann::json StabilityToJson(const Assembly& assembly, const Configuration& co
     if (!r.message.empty()) jr["message"] = r.message;
     comps.push_back(jr);
   }
-  doc["components"] = comps;
+  return comps;
+}
+
+}  // namespace
+
+nlohmann::json StabilityToJson(const Assembly& assembly, const Configuration& config,
+                               const StabilityResult& result, const ReportOptions& options) {
+  const bool st = result.formulation == Formulation::kStewartTrinkle;
+  const auto [force_scale, force_unit] = ForceScale(assembly, options);
+  const double g = assembly.gravity().norm() > 0 ? assembly.gravity().norm() : 1.0;
+  const int dim = assembly.dimension();
+  const CheckJsonContext cx{assembly, dim, st, force_scale, g};
+  json doc;
+  doc["scene"] = assembly.name();
+  if (!options.scene_file.empty()) doc["scene_file"] = options.scene_file;
+  doc["verdict"] = to_string(result.verdict);
+  doc["stable"] = result.stable();
+  doc["dimension"] = dim;
+  doc["formulation"] = to_string(result.formulation);
+  if (dim == 3 && st) doc["friction_directions"] = assembly.friction_directions();
+  if (st) doc["dt"] = result.dt;
+  json without = json::array();
+  for (int i : options.without) without.push_back(assembly.part(i).name);
+  doc["without"] = without;
+  json moving = json::array();
+  for (int i : result.moving) moving.push_back(assembly.part(i).name);
+  doc["moving"] = moving;
+  doc["static_equilibrium"] =
+      result.static_equilibrium ? json(*result.static_equilibrium) : json(nullptr);
+  doc["weakly_stable"] = result.weakly_stable;
+  // What is proved about rest: "strong" | "weak" | "not certified"; null when
+  // no rest is possible (unstable without an equilibrium) or not examined.
+  doc["stability"] =
+      result.stability == StabilityProof::kNone ? json(nullptr) : json(to_string(result.stability));
+  doc["force_unit"] = force_unit;
+
+  doc["parts"] = PartsToJson(cx, config, result);
+  doc["contacts"] = ContactsToJson(cx, result);
+  doc["components"] = ComponentsToJson(assembly, result);
   doc["tolerances"] = {{"length", result.tolerances.length},
                        {"angle", result.tolerances.angle},
                        {st ? "velocity" : "acceleration",
