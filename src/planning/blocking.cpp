@@ -180,81 +180,68 @@ void AddUnique(std::vector<Vector3>& out, const Vector3& v, double tol) {
 }
 
 // Step 1: the shapes, the distinct normals and the pairs with their contacts.
-Scene BuildScene(const Assembly& assembly, const Configuration& config) {
-  const int n = assembly.num_parts();
-  CAIRN_THROW_UNLESS(
-      static_cast<int>(config.present.size()) == n && static_cast<int>(config.poses.size()) == n,
-      "blocking: the configuration has " + std::to_string(config.present.size()) +
-          " presence flags and " + std::to_string(config.poses.size()) + " poses for " +
-          std::to_string(n) + " parts");
-  const Tolerances tol = assembly.MakeTolerances();
-  Scene sc;
-  sc.dim = assembly.dimension();
-  sc.tol_length = tol.length;
-  sc.tol_angle = tol.angle;
-  sc.axes = PreferredAxes(assembly);
-  sc.shapes.resize(n);
-  for (int i = 0; i < n; ++i) {
-    Shape& s = sc.shapes[i];
-    const Part& part = assembly.part(i);
-    s.present = config.present[i];
-    s.fixed = part.fixed;
-    s.tool = part.tool;
-    if (!s.present) continue;
-    s.verts = config.WorldVertices(assembly, i);
-    s.lo = s.hi = s.verts[0];
-    for (const Vector3& v : s.verts) {
-      s.lo = s.lo.cwiseMin(v);
-      s.hi = s.hi.cwiseMax(v);
-    }
-    if (sc.dim == 2) {
-      s.poly = config.WorldPolygon(assembly, i);
-      s.verts.clear();
-      for (const Vector2& v : s.poly) s.verts.push_back(Embed(v));
-      // A simple counter-clockwise polygon is convex when it never turns right.
-      const int m = static_cast<int>(s.poly.size());
-      s.convex = true;
-      for (int k = 0; k < m && s.convex; ++k) {
-        const Vector2 &a = s.poly[k], &b = s.poly[(k + 1) % m], &c = s.poly[(k + 2) % m];
-        s.convex = LineSide(a, b, c) >= -tol.length;
-      }
-      if (s.convex)
-        for (int k = 0; k < m; ++k) AddUnique(s.axes, Embed(EdgeNormal(s.poly, k)), tol.angle);
-    } else {
-      s.solid = part.polyhedron.get();
-      s.X_WB = config.WorldTransform(assembly, i);
-      const Matrix3 R = s.X_WB.linear();
-      const auto& faces = s.solid->faces();
-      const auto& face_normals = s.solid->face_normals();
-      for (const auto& face : s.solid->face_triangles())
-        for (const auto& t : face) s.triangles.push_back(t);
-      for (const auto& face : faces) {
-        const int m = static_cast<int>(face.size());
-        for (int k = 0; k < m; ++k) {
-          const int a = face[k], b = face[(k + 1) % m];
-          if (a < b) s.edges.push_back({a, b});  // each edge once (the other face has b → a)
-        }
-      }
-      // Convex when every vertex lies behind every face's plane.
-      s.convex = true;
-      for (size_t f = 0; f < faces.size() && s.convex; ++f) {
-        const Vector3 nf = R * face_normals[f];
-        const Vector3& p = s.verts[faces[f][0]];
-        for (const Vector3& v : s.verts)
-          if (nf.dot(v - p) > tol.length) {
-            s.convex = false;
-            break;
-          }
-      }
-      if (s.convex) {
-        for (size_t f = 0; f < faces.size(); ++f) AddUnique(s.axes, R * face_normals[f], tol.angle);
-        for (const auto& e : s.edges)
-          AddUnique(s.edge_dirs, (s.verts[e[1]] - s.verts[e[0]]).normalized(), tol.angle);
-      }
+// A 2-D part's world polygon; when convex (a simple counter-clockwise
+// polygon that never turns right), its edge normals as separating axes.
+void PlaceShape2d(const Assembly& assembly, const Configuration& config, int i,
+                  const Tolerances& tol, Shape& s) {
+  s.poly = config.WorldPolygon(assembly, i);
+  s.verts.clear();
+  for (const Vector2& v : s.poly) s.verts.push_back(Embed(v));
+  // A simple counter-clockwise polygon is convex when it never turns right.
+  const int m = static_cast<int>(s.poly.size());
+  s.convex = true;
+  for (int k = 0; k < m && s.convex; ++k) {
+    const Vector2 &a = s.poly[k], &b = s.poly[(k + 1) % m], &c = s.poly[(k + 2) % m];
+    s.convex = LineSide(a, b, c) >= -tol.length;
+  }
+  if (s.convex)
+    for (int k = 0; k < m; ++k) AddUnique(s.axes, Embed(EdgeNormal(s.poly, k)), tol.angle);
+}
+
+// A 3-D part's world transform, triangles and edges; when convex (every
+// vertex behind every face's plane), its face normals as separating axes and
+// its edge directions.
+void PlaceShape3d(const Assembly& assembly, const Configuration& config, int i,
+                  const Tolerances& tol, Shape& s) {
+  const Part& part = assembly.part(i);
+  s.solid = part.polyhedron.get();
+  s.solid = part.polyhedron.get();
+  s.X_WB = config.WorldTransform(assembly, i);
+  const Matrix3 R = s.X_WB.linear();
+  const auto& faces = s.solid->faces();
+  const auto& face_normals = s.solid->face_normals();
+  for (const auto& face : s.solid->face_triangles())
+    for (const auto& t : face) s.triangles.push_back(t);
+  for (const auto& face : faces) {
+    const int m = static_cast<int>(face.size());
+    for (int k = 0; k < m; ++k) {
+      const int a = face[k], b = face[(k + 1) % m];
+      if (a < b) s.edges.push_back({a, b});  // each edge once (the other face has b → a)
     }
   }
+  // Convex when every vertex lies behind every face's plane.
+  s.convex = true;
+  for (size_t f = 0; f < faces.size() && s.convex; ++f) {
+    const Vector3 nf = R * face_normals[f];
+    const Vector3& p = s.verts[faces[f][0]];
+    for (const Vector3& v : s.verts)
+      if (nf.dot(v - p) > tol.length) {
+        s.convex = false;
+        break;
+      }
+  }
+  if (s.convex) {
+    for (size_t f = 0; f < faces.size(); ++f) AddUnique(s.axes, R * face_normals[f], tol.angle);
+    for (const auto& e : s.edges)
+      AddUnique(s.edge_dirs, (s.verts[e[1]] - s.verts[e[0]]).normalized(), tol.angle);
+  }
+}
 
-  // The pairs, in (i, j) order: every present pair, not both fixed.
+// The pairs, in (i, j) order: every present pair, not both fixed; then the
+// contacts, their normals deduplicated up to sign (first appearance).
+void AddPairsAndNormals(const Assembly& assembly, const Configuration& config,
+                        const Tolerances& tol, Scene& sc) {
+  const int n = assembly.num_parts();
   std::vector<int> pair_of(static_cast<size_t>(n) * n, -1);
   for (int i = 0; i < n; ++i) {
     if (!sc.shapes[i].present) continue;
@@ -291,6 +278,41 @@ Scene BuildScene(const Assembly& assembly, const Configuration& config) {
     if (!known) list.push_back({k, sign});
     if (c.feature == ContactFeature::kInterface) sc.pairs[p].given_interface = true;
   }
+}
+
+Scene BuildScene(const Assembly& assembly, const Configuration& config) {
+  const int n = assembly.num_parts();
+  CAIRN_THROW_UNLESS(
+      static_cast<int>(config.present.size()) == n && static_cast<int>(config.poses.size()) == n,
+      "blocking: the configuration has " + std::to_string(config.present.size()) +
+          " presence flags and " + std::to_string(config.poses.size()) + " poses for " +
+          std::to_string(n) + " parts");
+  const Tolerances tol = assembly.MakeTolerances();
+  Scene sc;
+  sc.dim = assembly.dimension();
+  sc.tol_length = tol.length;
+  sc.tol_angle = tol.angle;
+  sc.axes = PreferredAxes(assembly);
+  sc.shapes.resize(n);
+  for (int i = 0; i < n; ++i) {
+    Shape& s = sc.shapes[i];
+    const Part& part = assembly.part(i);
+    s.present = config.present[i];
+    s.fixed = part.fixed;
+    s.tool = part.tool;
+    if (!s.present) continue;
+    s.verts = config.WorldVertices(assembly, i);
+    s.lo = s.hi = s.verts[0];
+    for (const Vector3& v : s.verts) {
+      s.lo = s.lo.cwiseMin(v);
+      s.hi = s.hi.cwiseMax(v);
+    }
+    if (sc.dim == 2)
+      PlaceShape2d(assembly, config, i, tol, s);
+    else
+      PlaceShape3d(assembly, config, i, tol, s);
+  }
+  AddPairsAndNormals(assembly, config, tol, sc);
   return sc;
 }
 
