@@ -402,52 +402,130 @@ bool IsLcpSolution(const MatrixX& M, const VectorX& q, const VectorX& z, double 
   return IsComplementarySolution(z, M * z + q, tol);
 }
 
+namespace {
+
+// The problem as the dense path sees it: data, scale and tolerances.
+struct DenseProblem {
+  const MatrixX& M;
+  const VectorX& q;
+  Eigen::Index n = 0;
+  double q_inf = 0, m_max = 0, scale = 1;
+  double accept = 0;  // the natural-map residual a solution must reach
+  double tol = 0;     // the pivot tolerance (relative)
+  int max_pivots = 0;
+};
+
+// The warm start: one LU of the previous basis, accepted if it solves the
+// LCP. (It comes before the input check, which it implies: a NaN or infinite
+// entry of M or q makes w = M z + q non-finite, and the check of w fails.)
+bool SolvedByWarmStart(const DenseProblem& pb, const LcpBasis& warm, LcpResult* result) {
+  VectorX z;
+  if (!SolveComplementaryBasis(pb.M, pb.q, warm.basic_z, &z)) return false;
+  VectorX w = pb.M * z + pb.q;
+  const double res = NaturalMapResidual(z, w);
+  if (!(res <= pb.accept && IsComplementarySolution(z, w, pb.accept))) return false;
+  result->status = LcpStatus::kSolved;
+  result->z = std::move(z);
+  result->w = std::move(w);
+  result->residual = res;
+  result->warm_start_used = true;
+  result->basis = warm;
+  return true;
+}
+
+// Follows the path on q_path (q, or q perturbed), on the stack for small
+// problems; re-solves the final basis with the true q and checks it.
+void FollowAndCheck(const DenseProblem& pb, const VectorX& q_path, LcpResult* out) {
+  const MatrixX& M = pb.M;
+  const VectorX& q = pb.q;
+  const Eigen::Index n = pb.n;
+  const double accept = pb.accept;
+  LcpResult& res = *out;
+  bool at_solution = false;
+  LcpBasis basis;
+  if (n <= kSmallN) {
+    at_solution = FollowPath<kSmallN>(M, q_path, pb.scale, pb.tol, pb.max_pivots, &res, &basis);
+  } else {
+    at_solution =
+        FollowPath<Eigen::Dynamic>(M, q_path, pb.scale, pb.tol, pb.max_pivots, &res, &basis);
+  }
+  const bool perturbed = &q_path != &q;
+  if (perturbed) {  // the tableau's z and w answer the perturbed problem
+    res.w.noalias() = M * res.z;
+    res.w += q;
+    res.residual = NaturalMapResidual(res.z, res.w);
+  }
+
+  // Re-solve the basis from the data; keep the better of the two z. When
+  // the tableau's answer is already exact to roundoff (residual within a
+  // few ulps of the data), the re-solve cannot improve it: skip it, which
+  // is most of the fixed cost of the small LCPs that single contact
+  // components produce. (A looser bound lets the drift of long paths
+  // through: Murty's n = 8 problem ends 256 pivots later with w off by
+  // 2e-12, which the re-solve removes.)
+  const double roundoff = 4.0 * kEps * (pb.m_max * res.z.cwiseAbs().maxCoeff() + pb.q_inf);
+  VectorX z_lu;
+  if (!(at_solution && res.residual <= roundoff) &&
+      SolveComplementaryBasis(M, q, basis.basic_z, &z_lu)) {
+    VectorX w_lu = M * z_lu + q;
+    const double res_lu = NaturalMapResidual(z_lu, w_lu);
+    if (res_lu < res.residual) {
+      res.z = std::move(z_lu);
+      res.w = std::move(w_lu);
+      res.residual = res_lu;
+    }
+  }
+  const bool verified = res.residual <= accept && IsComplementarySolution(res.z, res.w, accept);
+
+  // A ray met with z₀ already below the solution tolerance is the end of
+  // the path up to roundoff: the iterate with z₀ dropped solves
+  // LCP(M, q + e z₀), and it is returned as a solution only when the
+  // independent check passes. Every other failure keeps its status.
+  if (at_solution || (res.status == LcpStatus::kRayTermination && verified)) {
+    res.basis = basis;
+    if (verified) {
+      res.status = LcpStatus::kSolved;
+      res.message.clear();
+    } else {
+      res.status = LcpStatus::kNumericalFailure;
+      std::ostringstream os;
+      os << "final basis does not solve the LCP: natural-map residual " << res.residual << " > "
+         << accept;
+      res.message = os.str();
+    }
+  }
+}
+
+}  // namespace
+
 LcpResult SolveLemke(const MatrixX& M, const VectorX& q, const LemkeParameters& params,
                      const LcpBasis* warm_start) {
   const Eigen::Index n = q.size();
   CAIRN_THROW_UNLESS(M.rows() == n && M.cols() == n, "SolveLemke: M is "
                                                          << M.rows() << "x" << M.cols()
                                                          << " but q has " << n << " entries");
-
   LcpResult result;
   if (n == 0) {
     result.status = LcpStatus::kTrivial;
     return result;
   }
-  const double q_inf = q.cwiseAbs().maxCoeff();
-  const double accept = params.solution_tolerance * std::max(1.0, q_inf);
-
-  // Warm start: one LU of the previous basis; accept it if it solves the LCP.
-  // This comes before the input check, which it implies: a NaN or infinite
-  // entry of M or q makes w = M z + q non-finite (0 · ∞ = NaN), and the check
-  // of w fails.
-  if (warm_start != nullptr && warm_start->basic_z.size() == static_cast<size_t>(n)) {
-    VectorX z;
-    if (SolveComplementaryBasis(M, q, warm_start->basic_z, &z)) {
-      VectorX w = M * z + q;
-      const double res = NaturalMapResidual(z, w);
-      if (res <= accept && IsComplementarySolution(z, w, accept)) {
-        result.status = LcpStatus::kSolved;
-        result.z = std::move(z);
-        result.w = std::move(w);
-        result.residual = res;
-        result.warm_start_used = true;
-        result.basis = *warm_start;
-        return result;
-      }
-    }
-  }
+  DenseProblem pb{M, q, n};
+  pb.q_inf = q.cwiseAbs().maxCoeff();
+  pb.accept = params.solution_tolerance * std::max(1.0, pb.q_inf);
+  if (warm_start != nullptr && warm_start->basic_z.size() == static_cast<size_t>(n) &&
+      SolvedByWarmStart(pb, *warm_start, &result))
+    return result;
   // Every entry finite: (M · 0) sums to 0 exactly, else to NaN (vectorised,
   // unlike a test per entry).
   CAIRN_THROW_UNLESS((M.array() * 0.0).sum() == 0.0 && (q.array() * 0.0).sum() == 0.0,
                      "SolveLemke: M or q has a NaN or infinite entry");
 
   // Tolerances: relative to s = max |entry| of [M q] through the scaling.
-  const double m_max = M.cwiseAbs().maxCoeff();
-  const double scale = std::max(m_max, q_inf);
-  const double tol =
+  pb.m_max = M.cwiseAbs().maxCoeff();
+  pb.scale = std::max(pb.m_max, pb.q_inf);
+  pb.tol =
       params.pivot_tolerance > 0.0 ? params.pivot_tolerance : static_cast<double>(n) * kEps * 16.0;
-  const int max_pivots =
+  pb.max_pivots =
       params.max_pivots > 0 ? params.max_pivots : std::max(1000, 50 * (static_cast<int>(n) + 1));
 
   // q ≥ 0: z = 0 with all w basic. (A q that is nonnegative only up to
@@ -460,66 +538,7 @@ LcpResult SolveLemke(const MatrixX& M, const VectorX& q, const LemkeParameters& 
     result.basis.basic_z.assign(static_cast<size_t>(n), false);
     return result;
   }
-
-  // Follow the path on q_path (q, or q perturbed), on the stack for small
-  // problems; re-solve the final basis with the true q and check it.
-  const auto solve = [&](const VectorX& q_path, LcpResult* out) {
-    LcpResult& res = *out;
-    bool at_solution = false;
-    LcpBasis basis;
-    if (n <= kSmallN) {
-      at_solution = FollowPath<kSmallN>(M, q_path, scale, tol, max_pivots, &res, &basis);
-    } else {
-      at_solution = FollowPath<Eigen::Dynamic>(M, q_path, scale, tol, max_pivots, &res, &basis);
-    }
-    const bool perturbed = &q_path != &q;
-    if (perturbed) {  // the tableau's z and w answer the perturbed problem
-      res.w.noalias() = M * res.z;
-      res.w += q;
-      res.residual = NaturalMapResidual(res.z, res.w);
-    }
-
-    // Re-solve the basis from the data; keep the better of the two z. When
-    // the tableau's answer is already exact to roundoff (residual within a
-    // few ulps of the data), the re-solve cannot improve it: skip it, which
-    // is most of the fixed cost of the small LCPs that single contact
-    // components produce. (A looser bound lets the drift of long paths
-    // through: Murty's n = 8 problem ends 256 pivots later with w off by
-    // 2e-12, which the re-solve removes.)
-    const double roundoff = 4.0 * kEps * (m_max * res.z.cwiseAbs().maxCoeff() + q_inf);
-    VectorX z_lu;
-    if (!(at_solution && res.residual <= roundoff) &&
-        SolveComplementaryBasis(M, q, basis.basic_z, &z_lu)) {
-      VectorX w_lu = M * z_lu + q;
-      const double res_lu = NaturalMapResidual(z_lu, w_lu);
-      if (res_lu < res.residual) {
-        res.z = std::move(z_lu);
-        res.w = std::move(w_lu);
-        res.residual = res_lu;
-      }
-    }
-    const bool verified = res.residual <= accept && IsComplementarySolution(res.z, res.w, accept);
-
-    // A ray met with z₀ already below the solution tolerance is the end of
-    // the path up to roundoff: the iterate with z₀ dropped solves
-    // LCP(M, q + e z₀), and it is returned as a solution only when the
-    // independent check passes. Every other failure keeps its status.
-    if (at_solution || (res.status == LcpStatus::kRayTermination && verified)) {
-      res.basis = basis;
-      if (verified) {
-        res.status = LcpStatus::kSolved;
-        res.message.clear();
-      } else {
-        res.status = LcpStatus::kNumericalFailure;
-        std::ostringstream os;
-        os << "final basis does not solve the LCP: natural-map residual " << res.residual << " > "
-           << accept;
-        res.message = os.str();
-      }
-    }
-  };
-  solve(q, &result);
-
+  FollowAndCheck(pb, q, &result);
   // The exact lexicographic rule cannot see ties that roundoff has blurred
   // (massively degenerate contact sets: a basis built on pivots of roundoff
   // size). Then the ties are broken by a perturbation of q instead (see
@@ -531,10 +550,10 @@ LcpResult SolveLemke(const MatrixX& M, const VectorX& q, const LemkeParameters& 
       result.status == LcpStatus::kRayTermination) {
     VectorX q_pert = q;
     for (Eigen::Index i = 0; i < n; ++i)
-      q_pert[i] += internal::PerturbationSize(tol, params.solution_tolerance) * scale *
+      q_pert[i] += internal::PerturbationSize(pb.tol, params.solution_tolerance) * pb.scale *
                    internal::PerturbationWeight(0, static_cast<uint64_t>(i));
     LcpResult retry;
-    solve(q_pert, &retry);
+    FollowAndCheck(pb, q_pert, &retry);
     retry.pivots += result.pivots;
     if (retry.status == LcpStatus::kSolved) return retry;
   }
