@@ -78,141 +78,189 @@ struct Touch {
 
 }  // namespace
 
-int ApplyCornerRule(std::vector<Contact>& contacts, const CornerQueries& queries,
-                    const Vector3& gravity, double tol, double angle_tol) {
-  const double cos_tol = std::cos(angle_tol);
-  const auto same = [&](const Vector3& x, const Vector3& y) { return x.dot(y) >= cos_tol; };
+namespace {
+
+// The corner rule over one set of contacts: the touches they form, then the
+// rules in order (docs/contacts.md).
+class CornerRule {
+ public:
+  CornerRule(std::vector<Contact>& contacts, const CornerQueries& queries, double tol,
+             double angle_tol)
+      : contacts_(contacts),
+        queries_(queries),
+        tol_(tol),
+        angle_tol_(angle_tol),
+        cos_tol_(std::cos(angle_tol)) {}
+
+  bool Same(const Vector3& x, const Vector3& y) const { return x.dot(y) >= cos_tol_; }
 
   // Group the found contacts into touches: same pair, points within tol.
-  std::vector<Touch> touches;
-  std::vector<int> touch_of(contacts.size(), -1);
-  for (int k = 0; k < static_cast<int>(contacts.size()); ++k) {
-    const Contact& c = contacts[k];
-    if (!Found(c)) continue;
-    // A pair's contacts are contiguous: look back over its touches only.
-    int t = -1;
-    for (int j = static_cast<int>(touches.size()) - 1; j >= 0 && t < 0; --j) {
-      if (touches[j].a != c.part_a || touches[j].b != c.part_b) break;
-      if ((touches[j].p_W - c.p_WC).norm() <= tol) t = j;
+  void GroupTouches() {
+    std::vector<Contact>& contacts = contacts_;
+    const double tol = tol_;
+    const auto same = [this](const Vector3& x, const Vector3& y) { return Same(x, y); };
+    std::vector<Touch>& touches = touches_;
+    std::vector<int>& touch_of = touch_of_;
+    touch_of.assign(contacts.size(), -1);
+    // Group the found contacts into touches: same pair, points within tol.
+    for (int k = 0; k < static_cast<int>(contacts.size()); ++k) {
+      const Contact& c = contacts[k];
+      if (!Found(c)) continue;
+      // A pair's contacts are contiguous: look back over its touches only.
+      int t = -1;
+      for (int j = static_cast<int>(touches.size()) - 1; j >= 0 && t < 0; --j) {
+        if (touches[j].a != c.part_a || touches[j].b != c.part_b) break;
+        if ((touches[j].p_W - c.p_WC).norm() <= tol) t = j;
+      }
+      if (t < 0) {
+        touches.push_back({});
+        t = static_cast<int>(touches.size()) - 1;
+        touches[t].a = c.part_a;
+        touches[t].b = c.part_b;
+        touches[t].p_W = c.p_WC;
+      }
+      touch_of[k] = t;
+      Touch& touch = touches[t];
+      const bool known = std::any_of(touch.normals.begin(), touch.normals.end(),
+                                     [&](const Vector3& n) { return same(n, c.n_W); });
+      if (!known) touch.normals.push_back(c.n_W);
     }
-    if (t < 0) {
-      touches.push_back({});
-      t = static_cast<int>(touches.size()) - 1;
-      touches[t].a = c.part_a;
-      touches[t].b = c.part_b;
-      touches[t].p_W = c.p_WC;
-    }
-    touch_of[k] = t;
-    Touch& touch = touches[t];
-    const bool known = std::any_of(touch.normals.begin(), touch.normals.end(),
-                                   [&](const Vector3& n) { return same(n, c.n_W); });
-    if (!known) touch.normals.push_back(c.n_W);
   }
 
   // Rules 0-2, per touch: every normal when one of them does not separate
   // the parts (an inner corner); else flush normals only, or every normal
-  // when none is flush.
-  std::vector<int> ambiguous;
-  for (int t = 0; t < static_cast<int>(touches.size()); ++t) {
-    Touch& touch = touches[t];
-    const int m = static_cast<int>(touch.normals.size());
-    touch.keep.assign(m, true);
-    touch.flush.assign(m, false);
-    if (m < 2) continue;
-    bool separating = true;
-    for (int i = 0; i < m && separating; ++i) {
-      const Vector3& n = touch.normals[i];
-      separating =
-          queries.on_side(touch.a, touch.p_W, n) && queries.on_side(touch.b, touch.p_W, -n);
+  // when none is flush. The touches left with two flush normals or more are
+  // ambiguous.
+  void FlushNormals() {
+    const CornerQueries& queries = queries_;
+    std::vector<Touch>& touches = touches_;
+    std::vector<int>& ambiguous = ambiguous_;
+    for (int t = 0; t < static_cast<int>(touches.size()); ++t) {
+      Touch& touch = touches[t];
+      const int m = static_cast<int>(touch.normals.size());
+      touch.keep.assign(m, true);
+      touch.flush.assign(m, false);
+      if (m < 2) continue;
+      bool separating = true;
+      for (int i = 0; i < m && separating; ++i) {
+        const Vector3& n = touch.normals[i];
+        separating =
+            queries.on_side(touch.a, touch.p_W, n) && queries.on_side(touch.b, touch.p_W, -n);
+      }
+      if (!separating) continue;
+      int flush = 0;
+      for (int i = 0; i < m; ++i) {
+        const Vector3& n = touch.normals[i];
+        touch.flush[i] =
+            queries.has_face(touch.a, touch.p_W, -n) && queries.has_face(touch.b, touch.p_W, n);
+        flush += touch.flush[i];
+      }
+      if (flush == 0) continue;
+      touch.keep = touch.flush;
+      if (flush >= 2) ambiguous.push_back(t);
     }
-    if (!separating) continue;
-    int flush = 0;
-    for (int i = 0; i < m; ++i) {
-      const Vector3& n = touch.normals[i];
-      touch.flush[i] =
-          queries.has_face(touch.a, touch.p_W, -n) && queries.has_face(touch.b, touch.p_W, n);
-      flush += touch.flush[i];
-    }
-    if (flush == 0) continue;
-    touch.keep = touch.flush;
-    if (flush >= 2) ambiguous.push_back(t);
   }
 
   // Rule 3: a flush normal is continued when its plane carries another
-  // contact of a or b with the same orientation. Every candidate counts
-  // (two ambiguous touches of different pairs under one load support each
-  // other), except the touch itself and the other ambiguous touches of the
-  // same pair.
-  std::vector<bool> is_ambiguous(touches.size(), false);
-  for (int t : ambiguous) is_ambiguous[t] = true;
-  const auto continues = [&](const Touch& touch, const Vector3& n) {
-    for (int k = 0; k < static_cast<int>(contacts.size()); ++k) {
-      const Contact& c = contacts[k];
-      // Not the touch itself, nor another ambiguous touch of the same pair
-      // (the two ends of one edge-to-edge touch in 3-D do not support each
-      // other).
-      const int t = touch_of[k];
-      if (t >= 0 && (&touches[t] == &touch ||
-                     (is_ambiguous[t] && touches[t].a == touch.a && touches[t].b == touch.b)))
+  // contact of a or b with the same orientation. Every candidate counts (two
+  // ambiguous touches of different pairs under one load support each other),
+  // except the touch itself and the other ambiguous touches of the same pair
+  // (the two ends of one edge-to-edge touch in 3-D do not support each other).
+  bool Continues(const Touch& touch, const Vector3& n) const {
+    for (int k = 0; k < static_cast<int>(contacts_.size()); ++k) {
+      const Contact& c = contacts_[k];
+      const int t = touch_of_[k];
+      if (t >= 0 && (&touches_[t] == &touch ||
+                     (is_ambiguous_[t] && touches_[t].a == touch.a && touches_[t].b == touch.b)))
         continue;
-      if (std::abs(n.dot(c.p_WC - touch.p_W)) > tol) continue;
+      if (std::abs(n.dot(c.p_WC - touch.p_W)) > tol_) continue;
       const bool into_a =
-          (c.part_a == touch.a && same(c.n_W, n)) || (c.part_b == touch.a && same(c.n_W, -n));
+          (c.part_a == touch.a && Same(c.n_W, n)) || (c.part_b == touch.a && Same(c.n_W, -n));
       const bool into_b =
-          (c.part_a == touch.b && same(c.n_W, -n)) || (c.part_b == touch.b && same(c.n_W, n));
+          (c.part_a == touch.b && Same(c.n_W, -n)) || (c.part_b == touch.b && Same(c.n_W, n));
       if (into_a || into_b) return true;
     }
     return false;
-  };
-  // Rule 4: the gravity direction (unit), if any.
-  const Vector3 g_hat = gravity.norm() > 0 ? Vector3(gravity.normalized()) : Vector3::Zero();
-  const double sin_tol = std::sin(angle_tol);
-  std::vector<std::vector<bool>> resolved(touches.size());
-  for (int t : ambiguous) {
-    const Touch& touch = touches[t];
-    const int m = static_cast<int>(touch.normals.size());
-    // The candidates: the continued flush normals, or all flush ones if none is.
-    std::vector<bool> cand(m, false);
-    int continued = 0;
-    for (int i = 0; i < m; ++i)
-      if (touch.flush[i] && continues(touch, touch.normals[i])) cand[i] = true, ++continued;
-    if (continued == 0) cand = touch.flush;
-    std::vector<bool> keep = cand;
-    if ((continued == 0 || continued >= 2) && g_hat.norm() > 0) {
-      // Rule 4: keep the one(s) most opposed to gravity if the weight pushes a
-      // into F (g·n < 0 for every candidate n), none otherwise.
-      bool into = true;
-      double lowest = 1;
-      for (int i = 0; i < m; ++i)
-        if (cand[i]) {
-          const double gn = g_hat.dot(touch.normals[i]);
-          into = into && gn < -sin_tol;
-          lowest = std::min(lowest, gn);
-        }
-      for (int i = 0; i < m; ++i)
-        keep[i] = into && cand[i] && g_hat.dot(touch.normals[i]) <= lowest + sin_tol;
-    }
-    resolved[t] = keep;
   }
-  for (int t : ambiguous) touches[t].keep = resolved[t];
 
-  // Drop the contacts whose normal is not kept.
-  size_t kept = 0;
-  for (size_t k = 0; k < contacts.size(); ++k) {
-    bool stay = true;
-    if (touch_of[k] >= 0) {
-      const Touch& touch = touches[touch_of[k]];
-      for (size_t i = 0; i < touch.normals.size(); ++i)
-        if (same(touch.normals[i], contacts[k].n_W)) {
-          stay = touch.keep[i];
-          break;
-        }
+  // Rules 3 and 4 for every ambiguous touch: the continued flush normals (or
+  // all flush ones if none is); among several, the one(s) most opposed to
+  // gravity if the weight pushes a into them, none otherwise.
+  void ResolveAmbiguous(const Vector3& gravity) {
+    is_ambiguous_.assign(touches_.size(), false);
+    for (int t : ambiguous_) is_ambiguous_[t] = true;
+    const Vector3 g_hat = gravity.norm() > 0 ? Vector3(gravity.normalized()) : Vector3::Zero();
+    const double sin_tol = std::sin(angle_tol_);
+    std::vector<std::vector<bool>> resolved(touches_.size());
+    for (int t : ambiguous_) {
+      const Touch& touch = touches_[t];
+      const int m = static_cast<int>(touch.normals.size());
+      std::vector<bool> cand(m, false);
+      int continued = 0;
+      for (int i = 0; i < m; ++i)
+        if (touch.flush[i] && Continues(touch, touch.normals[i])) cand[i] = true, ++continued;
+      if (continued == 0) cand = touch.flush;
+      std::vector<bool> keep = cand;
+      if ((continued == 0 || continued >= 2) && g_hat.norm() > 0) {
+        bool into = true;
+        double lowest = 1;
+        for (int i = 0; i < m; ++i)
+          if (cand[i]) {
+            const double gn = g_hat.dot(touch.normals[i]);
+            into = into && gn < -sin_tol;
+            lowest = std::min(lowest, gn);
+          }
+        for (int i = 0; i < m; ++i)
+          keep[i] = into && cand[i] && g_hat.dot(touch.normals[i]) <= lowest + sin_tol;
+      }
+      resolved[t] = keep;
     }
-    if (stay) contacts[kept++] = contacts[k];
+    for (int t : ambiguous_) touches_[t].keep = resolved[t];
   }
-  const int removed = static_cast<int>(contacts.size() - kept);
-  contacts.resize(kept);
-  return removed;
+
+  // Drop the contacts whose normal is not kept; how many were.
+  int DropUnkept() {
+    std::vector<Contact>& contacts = contacts_;
+    const auto same = [this](const Vector3& x, const Vector3& y) { return Same(x, y); };
+    const std::vector<Touch>& touches = touches_;
+    const std::vector<int>& touch_of = touch_of_;
+    size_t kept = 0;
+    for (size_t k = 0; k < contacts.size(); ++k) {
+      bool stay = true;
+      if (touch_of[k] >= 0) {
+        const Touch& touch = touches[touch_of[k]];
+        for (size_t i = 0; i < touch.normals.size(); ++i)
+          if (same(touch.normals[i], contacts[k].n_W)) {
+            stay = touch.keep[i];
+            break;
+          }
+      }
+      if (stay) contacts[kept++] = contacts[k];
+    }
+    const int removed = static_cast<int>(contacts.size() - kept);
+    contacts.resize(kept);
+    return removed;
+  }
+
+ private:
+  std::vector<Contact>& contacts_;
+  const CornerQueries& queries_;
+  const double tol_, angle_tol_, cos_tol_;
+  std::vector<Touch> touches_;
+  std::vector<int> touch_of_;  // by contact: its touch, or −1
+  std::vector<int> ambiguous_;
+  std::vector<bool> is_ambiguous_;
+};
+
+}  // namespace
+
+int ApplyCornerRule(std::vector<Contact>& contacts, const CornerQueries& queries,
+                    const Vector3& gravity, double tol, double angle_tol) {
+  CornerRule rule(contacts, queries, tol, angle_tol);
+  rule.GroupTouches();
+  rule.FlushNormals();
+  rule.ResolveAmbiguous(gravity);
+  return rule.DropUnkept();
 }
 
 }  // namespace cairn
