@@ -157,6 +157,17 @@ class Planner {
   SimulationResult Simulate(const Key& from_key, const std::vector<int>& s, const CandidatePath& c,
                             PlanMode mode) const;
   void FixtureSearch();
+  // A path of the fixture search: the fixels it needs (none when it is
+  // stable as is; at most `budget`), or empty when no fixels make it stable.
+  std::optional<std::vector<FixtureDef>> FixelsForPath(const AssemblyDef& def,
+                                                       const Assembly& fixed,
+                                                       const std::vector<int>& remove,
+                                                       const CandidatePath& c, const Key& key,
+                                                       int budget);
+  // Records the edge key → to of the fixture search, along `c` with the
+  // fixels `added`; its index.
+  int RecordFixtureEdge(const Key& key, const Key& to, const std::vector<int>& remove,
+                        const CandidatePath& c, const std::vector<FixtureDef>& added);
   // Search.
   void Enumerate();
   void BestFirst();
@@ -746,6 +757,52 @@ void Planner::ListSequences() {
 // fewest fixels, within what is left of the allowance, that make it stable.
 // Fixels stay until their part leaves. A sequence's cost is the number of
 // fixels it places.
+std::optional<std::vector<FixtureDef>> Planner::FixelsForPath(const AssemblyDef& def,
+                                                              const Assembly& fixed,
+                                                              const std::vector<int>& remove,
+                                                              const CandidatePath& c,
+                                                              const Key& key, int budget) {
+  const Plan plan = OneStepPlan(remove, c, PlanMode::kDisassemble);
+  const SimulationOptions so = NodeSimulation(key);
+  const SimulationResult sim = SimulatePlan(fixed, plan, so);
+  ++result_.stats.path_simulations;
+  std::vector<FixtureDef> added;
+  if (sim.stable()) return added;
+  if (budget <= 0 || sim.verdict != MotionVerdict::kUnstable) return std::nullopt;
+  FixtureSearchOptions fo;
+  fo.max_fixels = budget;
+  fo.max_candidates = kPathFixelCandidates;
+  fo.max_simulations = kPathFixelSimulations;
+  fo.simulation = so;
+  const FixtureSuggestion sug = SuggestFixtures(def, fixed, plan, sim, fo);
+  result_.stats.path_simulations += sug.simulations;
+  if (!sug.found) return std::nullopt;
+  for (const SuggestedFixel& f : sug.fixels) added.push_back(f.fixture);
+  return added;
+}
+
+int Planner::RecordFixtureEdge(const Key& key, const Key& to, const std::vector<int>& remove,
+                               const CandidatePath& c, const std::vector<FixtureDef>& added) {
+  PlanEdge edge;
+  edge.from = NodeIndex(key);
+  edge.to = NodeIndex(to);
+  edge.remove = remove;
+  PathTrial t;
+  t.candidate = c;
+  t.disassembly = MotionVerdict::kStable;
+  t.assembly = MotionVerdict::kUnstable;
+  // The assembly direction is not checked with fixels.
+  t.decided_by =
+      added.empty() ? "fixture search: simulation" : "fixture search: simulation with fixels";
+  t.fixels = added;
+  edge.trials.push_back(t);
+  edge.chosen = 0;
+  const int e = static_cast<int>(result_.edges.size());
+  result_.edges.push_back(std::move(edge));
+  evaluated_.push_back(true);
+  return e;
+}
+
 void Planner::FixtureSearch() {
   struct State {
     Key key;
@@ -800,46 +857,15 @@ void Planner::FixtureSearch() {
       const Assembly fixed = Assembly::Create(def);
       const int budget = opt_.allow_fixtures - static_cast<int>(st.placed.size());
       for (const CandidatePath& c : cand.paths) {
-        const Plan plan = OneStepPlan(cand.remove, c, PlanMode::kDisassemble);
-        const SimulationOptions so = NodeSimulation(st.key);
-        const SimulationResult sim = SimulatePlan(fixed, plan, so);
-        ++result_.stats.path_simulations;
-        std::vector<FixtureDef> added;
-        if (!sim.stable()) {
-          if (budget <= 0 || sim.verdict != MotionVerdict::kUnstable) continue;
-          FixtureSearchOptions fo;
-          fo.max_fixels = budget;
-          fo.max_candidates = kPathFixelCandidates;
-          fo.max_simulations = kPathFixelSimulations;
-          fo.simulation = so;
-          const FixtureSuggestion sug = SuggestFixtures(def, fixed, plan, sim, fo);
-          result_.stats.path_simulations += sug.simulations;
-          if (!sug.found) continue;
-          for (const SuggestedFixel& f : sug.fixels) added.push_back(f.fixture);
-        }
-        // Record the edge, with the path and the fixels it needed.
+        const std::optional<std::vector<FixtureDef>> added =
+            FixelsForPath(def, fixed, cand.remove, c, st.key, budget);
+        if (!added) continue;
         Key to = st.key;
         for (int p : cand.remove) Clear(to, slot_of_[p]);
-        PlanEdge edge;
-        edge.from = NodeIndex(st.key);
-        edge.to = NodeIndex(to);
-        edge.remove = cand.remove;
-        PathTrial t;
-        t.candidate = c;
-        t.disassembly = MotionVerdict::kStable;
-        t.assembly = MotionVerdict::kUnstable;
-        // The assembly direction is not checked with fixels.
-        t.decided_by =
-            added.empty() ? "fixture search: simulation" : "fixture search: simulation with fixels";
-        t.fixels = added;
-        edge.trials.push_back(t);
-        edge.chosen = 0;
-        const int e = static_cast<int>(result_.edges.size());
-        result_.edges.push_back(std::move(edge));
-        evaluated_.push_back(true);
+        const int e = RecordFixtureEdge(st.key, to, cand.remove, c, *added);
         State next{to, kept, st.placed, st.edges};
-        next.fixels.insert(next.fixels.end(), added.begin(), added.end());
-        next.placed.insert(next.placed.end(), added.begin(), added.end());
+        next.fixels.insert(next.fixels.end(), added->begin(), added->end());
+        next.placed.insert(next.placed.end(), added->begin(), added->end());
         next.edges.push_back(e);
         push(std::move(next));
         break;  // one working path per subassembly
