@@ -808,40 +808,17 @@ struct ArrangementCell {
   std::vector<int> signs;
 };
 
-// The cells of the arrangement of the great circles d · n_k = 0.
-std::vector<ArrangementCell> Arrangement(const std::vector<Vector3>& normals,
-                                         const std::vector<Vector3>& axes, double tol) {
+using ArrangementVertices = std::map<std::pair<std::vector<int>, int>, Vector3>;
+using ArrangementArcs = std::map<std::vector<int>, Vector3>;
+using ArrangementFaces = std::map<std::vector<int>, std::pair<Vector3, Vector3>>;
+
+// Vertices: ±(n_k × n_l), identified by their sign vectors. When all the
+// normals lie in one plane (every circle through the same two antipodal
+// points) both vertices have the sign vector 0…0: then the sign of the
+// vertex's largest component tells them apart.
+ArrangementVertices VerticesOf(const std::vector<Vector3>& normals, double tol) {
   const int nn = static_cast<int>(normals.size());
-  std::vector<ArrangementCell> cells;
-  // A representative: a world axis direction with the cell's signs, if any.
-  const auto prefer_axis = [&](ArrangementCell& c) {
-    for (const Vector3& ax : axes)
-      if (SignsOf(ax, normals, tol) == c.signs) {
-        c.direction = ax;
-        return;
-      }
-  };
-  if (nn == 0) {
-    ArrangementCell whole{2, axes[0], {}};
-    cells.push_back(whole);
-    return cells;
-  }
-  if (nn == 1) {
-    ArrangementCell circle{1, TangentBasis(normals[0]).first, {0}};
-    prefer_axis(circle);
-    cells.push_back(circle);
-    for (const int s : {-1, 1}) {
-      ArrangementCell half{2, Vector3(s * normals[0]), {s}};
-      prefer_axis(half);
-      cells.push_back(half);
-    }
-    return cells;
-  }
-  // Vertices: ±(n_k × n_l), identified by their sign vectors. When all the
-  // normals lie in one plane (every circle through the same two antipodal
-  // points) both vertices have the sign vector 0…0: then the sign of the
-  // vertex's largest component tells them apart.
-  std::map<std::pair<std::vector<int>, int>, Vector3> vertices;
+  ArrangementVertices vertices;
   for (int k = 0; k < nn; ++k)
     for (int l = k + 1; l < nn; ++l) {
       const Vector3 v = normals[k].cross(normals[l]).normalized();
@@ -857,11 +834,16 @@ std::vector<ArrangementCell> Arrangement(const std::vector<Vector3>& normals,
         vertices.emplace(std::make_pair(s, tie), w);
       }
     }
-  // Arcs: between consecutive vertices on each circle. Faces: each arc's
-  // middle pushed off its circle to both sides; their representative the
-  // normalised sum of the middles of the arcs around them.
-  std::map<std::vector<int>, Vector3> arcs;
-  std::map<std::vector<int>, std::pair<Vector3, Vector3>> faces;  // (sum of middles, pushed point)
+  return vertices;
+}
+
+// Arcs: between consecutive vertices on each circle. Faces: each arc's
+// middle pushed off its circle to both sides; their representative the
+// normalised sum of the middles of the arcs around them (faces: sum of
+// middles, pushed point).
+void ArcsAndFaces(const std::vector<Vector3>& normals, const ArrangementVertices& vertices,
+                  double tol, ArrangementArcs& arcs, ArrangementFaces& faces) {
+  const int nn = static_cast<int>(normals.size());
   for (int k = 0; k < nn; ++k) {
     const auto [u, w] = TangentBasis(normals[k]);
     std::vector<double> phi;
@@ -891,6 +873,41 @@ std::vector<ArrangementCell> Arrangement(const std::vector<Vector3>& normals,
       }
     }
   }
+}
+
+// The cells of the arrangement of the great circles d · n_k = 0.
+std::vector<ArrangementCell> Arrangement(const std::vector<Vector3>& normals,
+                                         const std::vector<Vector3>& axes, double tol) {
+  const int nn = static_cast<int>(normals.size());
+  std::vector<ArrangementCell> cells;
+  // A representative: a world axis direction with the cell's signs, if any.
+  const auto prefer_axis = [&](ArrangementCell& c) {
+    for (const Vector3& ax : axes)
+      if (SignsOf(ax, normals, tol) == c.signs) {
+        c.direction = ax;
+        return;
+      }
+  };
+  if (nn == 0) {
+    ArrangementCell whole{2, axes[0], {}};
+    cells.push_back(whole);
+    return cells;
+  }
+  if (nn == 1) {
+    ArrangementCell circle{1, TangentBasis(normals[0]).first, {0}};
+    prefer_axis(circle);
+    cells.push_back(circle);
+    for (const int s : {-1, 1}) {
+      ArrangementCell half{2, Vector3(s * normals[0]), {s}};
+      prefer_axis(half);
+      cells.push_back(half);
+    }
+    return cells;
+  }
+  const ArrangementVertices vertices = VerticesOf(normals, tol);
+  ArrangementArcs arcs;
+  ArrangementFaces faces;
+  ArcsAndFaces(normals, vertices, tol, arcs, faces);
   for (const auto& [key, v] : vertices) {
     ArrangementCell c{0, v, key.first};
     for (const Vector3& ax : axes)  // a vertex on a world axis is that axis, exactly
