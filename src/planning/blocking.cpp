@@ -697,6 +697,74 @@ PairFunction EvaluatePair2(const Scene& sc, const PartPair& pair, const Clusters
   return f;
 }
 
+// The cells of the circle of directions: each critical direction (a
+// cluster), then the arc after it; one whole circle when there is none.
+void MakeCells2(const Scene& sc, const Clusters& cl, const std::vector<int>& critical, Ndbg& out) {
+  const int r_count = static_cast<int>(critical.size());
+  const auto arc_direction = [&](double from, double to) {
+    double span = to - from;
+    if (span <= 0) span += kTwoPi;
+    for (const Vector3& ax : sc.axes) {
+      double off = AngleOf(ax) - from;
+      if (off < 0) off += kTwoPi;
+      if (off > sc.tol_angle && off < span - sc.tol_angle) return ax;
+    }
+    return DirectionAt(ArcMiddle(from, to));
+  };
+  const auto new_cell = [&](int dimension, double from, double to, const Vector3& d) {
+    NdbgCell cell;
+    cell.cell_dimension = dimension;
+    cell.direction = d;
+    cell.angle_from = from;
+    cell.angle_to = to;
+    cell.infinitesimal = EmptyGraph(sc, d, BlockingKind::kInfinitesimal);
+    cell.infinity = EmptyGraph(sc, d, BlockingKind::kInfinity);
+    out.cells.push_back(std::move(cell));
+  };
+  if (r_count == 0) {
+    new_cell(1, 0, kTwoPi, arc_direction(0, 0));
+  } else {
+    for (int r = 0; r < r_count; ++r) {
+      const Cluster& c = cl.list[critical[r]];
+      const double next = cl.list[critical[(r + 1) % r_count]].angle;
+      new_cell(0, c.angle, c.angle, c.dir);
+      new_cell(1, c.angle, next, arc_direction(c.angle, next));
+    }
+  }
+}
+
+// Each pair's arcs in each cell: its critical list walked beside the cells'.
+void FillCells2(const Scene& sc, const std::vector<PairFunction>& fns,
+                const std::vector<int>& critical, Ndbg& out) {
+  const int r_count = static_cast<int>(critical.size());
+  for (size_t p = 0; p < sc.pairs.size(); ++p) {
+    const PartPair& pair = sc.pairs[p];
+    const PairFunction& f = fns[p];
+    const int m = static_cast<int>(f.critical.size());
+    const auto add = [&](NdbgCell& cell, std::uint8_t bits) {
+      AddArcs(pair, bits, kInfIJ, kInfJI, cell.infinitesimal);
+      AddArcs(pair, bits, kFarIJ, kFarJI, cell.infinity);
+    };
+    if (r_count == 0 || m == 0) {
+      for (NdbgCell& cell : out.cells) add(cell, f.constant);
+      continue;
+    }
+    int q = 0;  // f.critical[0, q) are before the current critical direction
+    for (int r = 0; r < r_count; ++r) {
+      while (q < m && f.critical[q] < critical[r]) ++q;
+      std::uint8_t at, after;
+      if (q < m && f.critical[q] == critical[r]) {
+        at = f.at[q];
+        after = f.after[q];
+      } else {
+        at = after = f.after[(q + m - 1) % m];
+      }
+      add(out.cells[2 * r], at);
+      add(out.cells[2 * r + 1], after);
+    }
+  }
+}
+
 Ndbg ComputeNdbg2(const Scene& sc) {
   Ndbg out;
   out.dimension = 2;
@@ -728,67 +796,9 @@ Ndbg ComputeNdbg2(const Scene& sc) {
   }
   std::sort(critical.begin(), critical.end());
   critical.erase(std::unique(critical.begin(), critical.end()), critical.end());
-  const int r_count = static_cast<int>(critical.size());
 
-  // The cells: each critical direction, then the arc after it.
-  const auto arc_direction = [&](double from, double to) {
-    double span = to - from;
-    if (span <= 0) span += kTwoPi;
-    for (const Vector3& ax : sc.axes) {
-      double off = AngleOf(ax) - from;
-      if (off < 0) off += kTwoPi;
-      if (off > sc.tol_angle && off < span - sc.tol_angle) return ax;
-    }
-    return DirectionAt(ArcMiddle(from, to));
-  };
-  const auto new_cell = [&](int dimension, double from, double to, const Vector3& d) {
-    NdbgCell cell;
-    cell.cell_dimension = dimension;
-    cell.direction = d;
-    cell.angle_from = from;
-    cell.angle_to = to;
-    cell.infinitesimal = EmptyGraph(sc, d, BlockingKind::kInfinitesimal);
-    cell.infinity = EmptyGraph(sc, d, BlockingKind::kInfinity);
-    out.cells.push_back(std::move(cell));
-  };
-  if (r_count == 0) {
-    new_cell(1, 0, kTwoPi, arc_direction(0, 0));
-  } else {
-    for (int r = 0; r < r_count; ++r) {
-      const Cluster& c = cl.list[critical[r]];
-      const double next = cl.list[critical[(r + 1) % r_count]].angle;
-      new_cell(0, c.angle, c.angle, c.dir);
-      new_cell(1, c.angle, next, arc_direction(c.angle, next));
-    }
-  }
-
-  // Walk the cells and each pair's critical list side by side.
-  for (size_t p = 0; p < sc.pairs.size(); ++p) {
-    const PartPair& pair = sc.pairs[p];
-    const PairFunction& f = fns[p];
-    const int m = static_cast<int>(f.critical.size());
-    const auto add = [&](NdbgCell& cell, std::uint8_t bits) {
-      AddArcs(pair, bits, kInfIJ, kInfJI, cell.infinitesimal);
-      AddArcs(pair, bits, kFarIJ, kFarJI, cell.infinity);
-    };
-    if (r_count == 0 || m == 0) {
-      for (NdbgCell& cell : out.cells) add(cell, f.constant);
-      continue;
-    }
-    int q = 0;  // f.critical[0, q) are before the current critical direction
-    for (int r = 0; r < r_count; ++r) {
-      while (q < m && f.critical[q] < critical[r]) ++q;
-      std::uint8_t at, after;
-      if (q < m && f.critical[q] == critical[r]) {
-        at = f.at[q];
-        after = f.after[q];
-      } else {
-        at = after = f.after[(q + m - 1) % m];
-      }
-      add(out.cells[2 * r], at);
-      add(out.cells[2 * r + 1], after);
-    }
-  }
+  MakeCells2(sc, cl, critical, out);
+  FillCells2(sc, fns, critical, out);
   for (NdbgCell& cell : out.cells) FinishCell(sc, cell);
   return out;
 }
