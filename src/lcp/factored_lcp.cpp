@@ -39,6 +39,8 @@
 // Scale. The data are divided by s = max(|q|∞, M's magnitude bound): z is
 // unchanged, w and z₀ scale by 1/s, so the tolerances are relative.
 
+#include "cairn/lcp/factored_lcp.h"
+
 #include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
@@ -48,7 +50,6 @@
 #include <sstream>
 
 #include "cairn/core/check.h"
-#include "cairn/lcp/factored_lcp.h"
 #include "perturbation.h"
 
 namespace cairn {
@@ -519,6 +520,15 @@ class Path {
                           : Shrink(enter_w, leave_col, theta);
   }
 
+  // z_var (−1: z₀) is now basic at position p of Z with value theta.
+  void PlaceColumn(int var, int p, double theta) {
+    if (var >= 0)
+      col_pos_[var] = p;
+    else
+      z0_pos_ = p;
+    x_[p] = theta;
+  }
+
   // w_i has left the basis (its row joined R): it becomes the nonbasic pair
   // whose complement z_i enters next.
   void LeaveRow(int i) {
@@ -558,11 +568,7 @@ class Path {
     rows_.push_back(i);
     row_pos_[i] = kk;
     cols_.push_back(var);
-    if (var >= 0)
-      col_pos_[var] = kk;
-    else
-      z0_pos_ = kk;
-    x_[kk] = theta;
+    PlaceColumn(var, kk, theta);
     LeaveRow(i);
     return true;
   }
@@ -580,11 +586,7 @@ class Path {
     H_.topLeftCorner(kk, kk).noalias() -= u * Hp;
     const int leaving = cols_[p];
     cols_[p] = var;
-    if (var >= 0)
-      col_pos_[var] = p;
-    else
-      z0_pos_ = p;
-    x_[p] = theta;
+    PlaceColumn(var, p, theta);
     LeaveColumn(leaving);
     return true;
   }
