@@ -101,4 +101,17 @@ inline AssemblyDef RunningBondWall(int courses, int bricks, double mu = 0.6) {
   return def;
 }
 
+// A block that just fits between two fixed walls, with nothing under it.
+// Friction on the walls could hold it if they squeezed it (2 μ N ≥ m g for a
+// large enough N), so an equilibrium exists; but nothing produces N from rest,
+// so the contact LCP lets it fall: weakly stable. Without friction no
+// equilibrium exists at all.
+inline AssemblyDef JammedBlock(double mu) {
+  AssemblyDef def;
+  def.friction = mu;
+  def.parts = {Box("left", -1, -2, 0, 2, true), Box("right", 1, -2, 2, 2, true),
+               Box("block", 0, 0, 1, 1)};
+  return def;
+}
+
 }  // namespace cairn::testing
