@@ -2,13 +2,13 @@
 // dense solver and with the LCP's own conditions on seeded random contact-like
 // problems with far more rows than rank (the degenerate case it exists for),
 // rays, warm starts from right and wrong bases, determinism.
+#include "cairn/lcp/factored_lcp.h"
+
 #include <gtest/gtest.h>
 
 #include <random>
 #include <stdexcept>
 #include <vector>
-
-#include "cairn/lcp/factored_lcp.h"
 
 namespace cairn {
 namespace {
