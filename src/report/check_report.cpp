@@ -190,15 +190,11 @@ std::string Fmt(const char* format, double x) {
 std::string TextPartName(const Assembly& a, int i) {
   return report_internal::PartName(a, i, "fixture");
 }
-}  // namespace
 
-std::string StabilityToText(const Assembly& assembly, const Configuration& config,
-                            const StabilityResult& result, const ReportOptions& options) {
+// The headline: the scene, the verdict, the formulation; the parts taken away.
+void TextHeadline(const Assembly& assembly, const StabilityResult& result,
+                  const ReportOptions& options, std::ostringstream& os) {
   const bool st = result.formulation == Formulation::kStewartTrinkle;
-  const auto [force_scale, force_unit] = ForceScale(assembly, options);
-  const int dim = assembly.dimension();
-  std::ostringstream os;
-
   // Headline.
   os << (assembly.name().empty() ? options.scene_file : assembly.name()) << ": ";
   switch (result.verdict) {
@@ -218,6 +214,10 @@ std::string StabilityToText(const Assembly& assembly, const Configuration& confi
     for (int i : options.without) os << ' ' << assembly.part(i).name;
     os << '\n';
   }
+}
+
+// The sizes, what decided the components, and what is proved about rest.
+void TextSummary(const Assembly& assembly, const StabilityResult& result, std::ostringstream& os) {
   int movable = 0, pivots = 0, lcp_vars = 0;
   for (const PartMotion& m : result.parts) (void)m, ++movable;
   for (const ComponentReport& c : result.components) pivots += c.pivots, lcp_vars += c.lcp_size;
@@ -249,7 +249,14 @@ std::string StabilityToText(const Assembly& assembly, const Configuration& confi
   else if (result.stability == StabilityProof::kNotCertified)
     os << "  stability not certified as strong: rest is possible and no motion was found, but\n"
           "  motion from rest is not ruled out\n";
+}
 
+// What moves, and how; then every contact force.
+void TextMotionsAndForces(const Assembly& assembly, const StabilityResult& result,
+                          const ReportOptions& options, std::ostringstream& os) {
+  const bool st = result.formulation == Formulation::kStewartTrinkle;
+  const auto [force_scale, force_unit] = ForceScale(assembly, options);
+  const int dim = assembly.dimension();
   // What moves, and how.
   for (const PartMotion& m : result.parts) {
     if (!m.moving) continue;
@@ -277,6 +284,16 @@ std::string StabilityToText(const Assembly& assembly, const Configuration& confi
     if (cr.sliding) os << "  SLIDES";
     os << '\n';
   }
+}
+
+}  // namespace
+
+std::string StabilityToText(const Assembly& assembly, const Configuration& config,
+                            const StabilityResult& result, const ReportOptions& options) {
+  std::ostringstream os;
+  TextHeadline(assembly, result, options, os);
+  TextSummary(assembly, result, os);
+  TextMotionsAndForces(assembly, result, options, os);
   if (!result.diagnostics.empty()) os << "  diagnostics: " << result.diagnostics << '\n';
   (void)config;
   return os.str();
