@@ -123,6 +123,83 @@ Vector3 PlanStep::At(double s) const {
   return path.back();
 }
 
+namespace {
+
+// Where each part was removed: its step and the JSON path of its entry.
+using RemovedAt = std::unordered_map<int, std::pair<size_t, std::string>>;
+
+// The parts leaving in step i: movable, no tools, each once in the whole plan.
+std::vector<int> RemovedParts(const PlanStepDef& sd, size_t i, const std::string& bare,
+                              const Assembly& assembly, const PlanValidator& check,
+                              RemovedAt& removed_at) {
+  std::vector<int> remove;
+  const std::string remove_path = bare + ".remove";
+  if (sd.remove.empty()) check.Fail(remove_path, "must name at least one part");
+  for (size_t k = 0; k < sd.remove.size(); ++k) {
+    const std::string entry = Indexed(remove_path, k);
+    const int part = check.MovablePart(sd.remove[k], entry);
+    if (assembly.part(part).tool) {
+      check.Fail(entry, "part '" + EscapedName(sd.remove[k]) +
+                            "' is a tool, not part of the assembly: grip it, do not remove it");
+    }
+    const auto [it, inserted] = removed_at.emplace(part, std::make_pair(i, entry));
+    if (!inserted) {
+      const auto& [step_index, earlier] = it->second;
+      check.Fail(entry,
+                 step_index == i
+                     ? "names part '" + EscapedName(sd.remove[k]) + "' twice (also " + earlier + ")"
+                     : "part '" + EscapedName(sd.remove[k]) + "' is already removed by " + earlier);
+    }
+    remove.push_back(part);
+  }
+  return remove;
+}
+
+// The gripped parts: by default all of remove; beyond remove, only tools.
+std::vector<int> GrippedParts(const PlanStepDef& sd, const std::vector<int>& remove,
+                              const std::string& bare, const std::string& path,
+                              const Assembly& assembly, const PlanValidator& check) {
+  if (sd.grip.empty()) return remove;
+  std::vector<int> grip;
+  const std::string grip_path = path + ".grip";
+  for (size_t k = 0; k < sd.grip.size(); ++k) {
+    const std::string entry = Indexed(grip_path, k);
+    const int part = check.MovablePart(sd.grip[k], entry);
+    const auto earlier = std::find(grip.begin(), grip.end(), part);
+    if (earlier != grip.end()) {
+      check.Fail(entry, "names part '" + EscapedName(sd.grip[k]) + "' twice (also " +
+                            Indexed(bare + ".grip", earlier - grip.begin()) + ")");
+    }
+    const bool removed = std::find(remove.begin(), remove.end(), part) != remove.end();
+    if (!removed && !assembly.part(part).tool) {
+      check.Fail(entry, "part '" + EscapedName(sd.grip[k]) +
+                            "' is neither in this step's remove nor a tool (\"tool\": true in "
+                            "the scene)");
+    }
+    grip.push_back(part);
+  }
+  return grip;
+}
+
+// The path: from the origin, without repeated points, of nonzero length.
+std::vector<Vector3> StepPath(const PlanStepDef& sd, const std::string& path,
+                              const Assembly& assembly, const PlanValidator& check) {
+  std::vector<Vector3> out;
+  const std::vector<Vector3> raw = RawPath(sd, path, check);
+  if (raw.front() != Vector3(0, 0, 0)) out.push_back(Vector3(0, 0, 0));
+  for (const Vector3& p : raw) {
+    if (out.empty() || p != out.back()) out.push_back(p);
+  }
+  if (out.size() < 2) {
+    check.Fail(path + ".path", assembly.is_3d()
+                                   ? "has zero length: every point is the start (0, 0, 0)"
+                                   : "has zero length: every point is the start (0, 0)");
+  }
+  return out;
+}
+
+}  // namespace
+
 Plan Plan::Create(const PlanDef& def, const Assembly& assembly, const std::string& file) {
   const PlanValidator check(file, assembly);
   Plan plan;
@@ -132,9 +209,7 @@ Plan Plan::Create(const PlanDef& def, const Assembly& assembly, const std::strin
   plan.dt = def.dt;
   plan.speed = def.speed;
   if (def.steps.empty()) check.Fail("steps", "must list at least one step");
-
-  // Where each part was removed: its step and the JSON path of its entry.
-  std::unordered_map<int, std::pair<size_t, std::string>> removed_at;
+  RemovedAt removed_at;
   for (size_t i = 0; i < def.steps.size(); ++i) {
     const PlanStepDef& sd = def.steps[i];
     // Faults of `remove` are reported at `steps[i].remove`; every other at
@@ -142,63 +217,9 @@ Plan Plan::Create(const PlanDef& def, const Assembly& assembly, const std::strin
     const std::string bare = Indexed("steps", i);
     const std::string path = NamedPath(bare, sd.remove);
     PlanStep step;
-
-    // The parts leaving: movable, no tools, each once in the whole plan.
-    const std::string remove_path = bare + ".remove";
-    if (sd.remove.empty()) check.Fail(remove_path, "must name at least one part");
-    for (size_t k = 0; k < sd.remove.size(); ++k) {
-      const std::string entry = Indexed(remove_path, k);
-      const int part = check.MovablePart(sd.remove[k], entry);
-      if (assembly.part(part).tool) {
-        check.Fail(entry, "part '" + EscapedName(sd.remove[k]) +
-                              "' is a tool, not part of the assembly: grip it, do not remove it");
-      }
-      const auto [it, inserted] = removed_at.emplace(part, std::make_pair(i, entry));
-      if (!inserted) {
-        const auto& [step_index, earlier] = it->second;
-        check.Fail(entry, step_index == i ? "names part '" + EscapedName(sd.remove[k]) +
-                                                "' twice (also " + earlier + ")"
-                                          : "part '" + EscapedName(sd.remove[k]) +
-                                                "' is already removed by " + earlier);
-      }
-      step.remove.push_back(part);
-    }
-
-    // The gripped parts: by default all of remove; beyond remove, only tools.
-    if (sd.grip.empty()) {
-      step.grip = step.remove;
-    } else {
-      const std::string grip_path = path + ".grip";
-      for (size_t k = 0; k < sd.grip.size(); ++k) {
-        const std::string entry = Indexed(grip_path, k);
-        const int part = check.MovablePart(sd.grip[k], entry);
-        const auto earlier = std::find(step.grip.begin(), step.grip.end(), part);
-        if (earlier != step.grip.end()) {
-          check.Fail(entry, "names part '" + EscapedName(sd.grip[k]) + "' twice (also " +
-                                Indexed(bare + ".grip", earlier - step.grip.begin()) + ")");
-        }
-        const bool removed =
-            std::find(step.remove.begin(), step.remove.end(), part) != step.remove.end();
-        if (!removed && !assembly.part(part).tool) {
-          check.Fail(entry, "part '" + EscapedName(sd.grip[k]) +
-                                "' is neither in this step's remove nor a tool (\"tool\": true in "
-                                "the scene)");
-        }
-        step.grip.push_back(part);
-      }
-    }
-
-    // The path: from the origin, without repeated points, of nonzero length.
-    const std::vector<Vector3> raw = RawPath(sd, path, check);
-    if (raw.front() != Vector3(0, 0, 0)) step.path.push_back(Vector3(0, 0, 0));
-    for (const Vector3& p : raw) {
-      if (step.path.empty() || p != step.path.back()) step.path.push_back(p);
-    }
-    if (step.path.size() < 2) {
-      check.Fail(path + ".path", assembly.is_3d()
-                                     ? "has zero length: every point is the start (0, 0, 0)"
-                                     : "has zero length: every point is the start (0, 0)");
-    }
+    step.remove = RemovedParts(sd, i, bare, assembly, check, removed_at);
+    step.grip = GrippedParts(sd, step.remove, bare, path, assembly, check);
+    step.path = StepPath(sd, path, assembly, check);
     step.support = sd.support;
     plan.steps.push_back(std::move(step));
   }
