@@ -14,7 +14,10 @@
 
 namespace cairn::cli {
 
-Model LoadModel(const std::string& file, const ModelArgs& args) {
+namespace {
+
+// The model options' own numbers: finite, and of their sign.
+void CheckModelFlags(const ModelArgs& args) {
   if (args.friction) {
     // CLI11 parses "nan" and "inf" as doubles; neither is a coefficient.
     if (!std::isfinite(*args.friction))
@@ -32,7 +35,35 @@ Model LoadModel(const std::string& file, const ModelArgs& args) {
       throw InputError("", "--gravity",
                        "must have finite components (got " + FormatNumber(g) + ")");
   }
+}
 
+// --supports and --gravity applied to the definition read from `file`.
+void ApplyModelFlags(const ModelArgs& args, const std::string& file, AssemblyDef& def) {
+  const bool is3 = !def.parts.empty() && def.parts[0].polyhedron.has_value();
+  for (const std::string& name : args.supports) {
+    const auto it = std::find_if(def.parts.begin(), def.parts.end(),
+                                 [&](const PartDef& p) { return p.name == name; });
+    if (it == def.parts.end())
+      throw InputError("", "--supports", "no part named '" + name + "' in " + file);
+    if (it->tool)
+      throw InputError("", "--supports",
+                       "part '" + name + "' is a tool (a gripper's pad): it cannot be fixed");
+    it->fixed = true;
+  }
+  if (!args.gravity.empty()) {
+    const size_t dim = is3 ? 3 : 2;
+    if (args.gravity.size() != dim)
+      throw InputError("", "--gravity",
+                       "must have " + std::to_string(dim) + " numbers in a " + std::to_string(dim) +
+                           "-D scene, not " + std::to_string(args.gravity.size()));
+    def.gravity = Vector3(args.gravity[0], args.gravity[1], is3 ? args.gravity[2] : 0.0);
+  }
+}
+
+}  // namespace
+
+Model LoadModel(const std::string& file, const ModelArgs& args) {
+  CheckModelFlags(args);
   Model m;
   std::optional<CompasModel> compas;
   if (args.format == "compas") {
@@ -67,25 +98,7 @@ Model LoadModel(const std::string& file, const ModelArgs& args) {
     if (args.tolerance) m.def.tolerance = *args.tolerance;
   }
 
-  const bool is3 = !m.def.parts.empty() && m.def.parts[0].polyhedron.has_value();
-  for (const std::string& name : args.supports) {
-    const auto it = std::find_if(m.def.parts.begin(), m.def.parts.end(),
-                                 [&](const PartDef& p) { return p.name == name; });
-    if (it == m.def.parts.end())
-      throw InputError("", "--supports", "no part named '" + name + "' in " + file);
-    if (it->tool)
-      throw InputError("", "--supports",
-                       "part '" + name + "' is a tool (a gripper's pad): it cannot be fixed");
-    it->fixed = true;
-  }
-  if (!args.gravity.empty()) {
-    const size_t dim = is3 ? 3 : 2;
-    if (args.gravity.size() != dim)
-      throw InputError("", "--gravity",
-                       "must have " + std::to_string(dim) + " numbers in a " + std::to_string(dim) +
-                           "-D scene, not " + std::to_string(args.gravity.size()));
-    m.def.gravity = Vector3(args.gravity[0], args.gravity[1], is3 ? args.gravity[2] : 0.0);
-  }
+  ApplyModelFlags(args, file, m.def);
 
   if (compas) {
     compas->def = m.def;

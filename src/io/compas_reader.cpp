@@ -573,6 +573,52 @@ std::string RenameParts(const std::string& text, const std::vector<std::string>&
   return out + text.substr(pos);
 }
 
+// A block's shape as a polyhedron: the planarity policy, then validation
+// with the fault named by the block's path in the COMPAS file and the key of
+// its face. `split_faces` counts the faces split into triangles.
+PolyhedronDef BlockShape(const CompasBlock& block, double tol, const std::string& file,
+                         int& split_faces) {
+  // The planarity policy: faces within half the tolerance of their mean
+  // plane are kept (the margin keeps roundoff from deciding differently
+  // here and in Polyhedron::Check); the others are split into triangles.
+  PolyhedronDef shape;
+  shape.vertices = block.shape.vertices;
+  std::vector<size_t> origin;  // the file's face of each face of `shape`
+  for (size_t f = 0; f < block.shape.faces.size(); ++f) {
+    const std::vector<int>& face = block.shape.faces[f];
+    const FacePlane plane = MeanPlane(shape.vertices, face);
+    if (face.size() == 3 || plane.off <= tol / 2 || plane.normal.isZero()) {
+      shape.faces.push_back(face);
+      origin.push_back(f);
+      continue;
+    }
+    const std::vector<std::array<int, 3>> triangles = SplitFace(shape.vertices, face, plane);
+    if (triangles.empty()) {
+      throw InputError(file, FacePath(block, f),
+                       "block '" + EscapedName(block.name) +
+                           "': the face is not planar (a vertex is " + Num(plane.off) +
+                           " off its mean plane) and cannot be split into triangles: seen "
+                           "along its normal it is not a simple polygon");
+    }
+    for (const auto& t : triangles) {
+      shape.faces.push_back({t[0], t[1], t[2]});
+      origin.push_back(f);
+    }
+    ++split_faces;
+  }
+  // Validate here, where a fault can still be named by the block's path in
+  // the COMPAS file and the key of its face.
+  if (const auto fault = Polyhedron::Check(shape, tol)) {
+    const std::string where = fault->face >= 0
+                                  ? FacePath(block, origin.at(static_cast<size_t>(fault->face)))
+                                  : BlockPath(block) + block.mesh_path.substr(block.path.size());
+    throw InputError(
+        file, where,
+        "block '" + EscapedName(block.name) + "' is not a valid solid: " + fault->message);
+  }
+  return shape;
+}
+
 }  // namespace
 
 CompasModel CompasToModel(const CompasAssembly& assembly, const CompasOptions& options,
@@ -614,44 +660,7 @@ CompasModel CompasToModel(const CompasAssembly& assembly, const CompasOptions& o
   }
   const double tol = model.def.tolerance;
   for (const CompasBlock& block : assembly.blocks) {
-    // The planarity policy: faces within half the tolerance of their mean
-    // plane are kept (the margin keeps roundoff from deciding differently
-    // here and in Polyhedron::Check); the others are split into triangles.
-    PolyhedronDef shape;
-    shape.vertices = block.shape.vertices;
-    std::vector<size_t> origin;  // the file's face of each face of `shape`
-    for (size_t f = 0; f < block.shape.faces.size(); ++f) {
-      const std::vector<int>& face = block.shape.faces[f];
-      const FacePlane plane = MeanPlane(shape.vertices, face);
-      if (face.size() == 3 || plane.off <= tol / 2 || plane.normal.isZero()) {
-        shape.faces.push_back(face);
-        origin.push_back(f);
-        continue;
-      }
-      const std::vector<std::array<int, 3>> triangles = SplitFace(shape.vertices, face, plane);
-      if (triangles.empty()) {
-        throw InputError(file, FacePath(block, f),
-                         "block '" + EscapedName(block.name) +
-                             "': the face is not planar (a vertex is " + Num(plane.off) +
-                             " off its mean plane) and cannot be split into triangles: seen "
-                             "along its normal it is not a simple polygon");
-      }
-      for (const auto& t : triangles) {
-        shape.faces.push_back({t[0], t[1], t[2]});
-        origin.push_back(f);
-      }
-      ++model.split_faces;
-    }
-    // Validate here, where a fault can still be named by the block's path in
-    // the COMPAS file and the key of its face.
-    if (const auto fault = Polyhedron::Check(shape, tol)) {
-      const std::string where = fault->face >= 0
-                                    ? FacePath(block, origin.at(static_cast<size_t>(fault->face)))
-                                    : BlockPath(block) + block.mesh_path.substr(block.path.size());
-      throw InputError(
-          file, where,
-          "block '" + EscapedName(block.name) + "' is not a valid solid: " + fault->message);
-    }
+    PolyhedronDef shape = BlockShape(block, tol, file, model.split_faces);
     PartDef part;
     part.name = block.name;
     part.fixed = block.is_support;

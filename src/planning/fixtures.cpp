@@ -292,11 +292,8 @@ void Conclude(const AssemblyDef& def, const SimulationResult& failed,
   out.message = msg.str();
 }
 
-}  // namespace
-
-FixtureSuggestion SuggestFixtures(const AssemblyDef& def, const Assembly& assembly,
-                                  const Plan& plan, const SimulationResult& failed,
-                                  const FixtureSearchOptions& options) {
+// The search's budgets: each at least 1.
+void CheckSearchOptions(const FixtureSearchOptions& options) {
   CAIRN_THROW_UNLESS(options.max_fixels >= 1,
                      "SuggestFixtures: max_fixels must be at least 1, not " << options.max_fixels);
   CAIRN_THROW_UNLESS(
@@ -305,6 +302,14 @@ FixtureSuggestion SuggestFixtures(const AssemblyDef& def, const Assembly& assemb
   CAIRN_THROW_UNLESS(
       options.max_simulations >= 1,
       "SuggestFixtures: max_simulations must be at least 1, not " << options.max_simulations);
+}
+
+}  // namespace
+
+FixtureSuggestion SuggestFixtures(const AssemblyDef& def, const Assembly& assembly,
+                                  const Plan& plan, const SimulationResult& failed,
+                                  const FixtureSearchOptions& options) {
+  CheckSearchOptions(options);
   FixtureSuggestion out;
   if (failed.stable()) {
     out.found = true;
