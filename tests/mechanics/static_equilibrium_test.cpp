@@ -9,23 +9,18 @@
 #include <numbers>
 
 #include "cairn/stability/analyze.h"
+#include "equilibrium_check.h"
 #include "scene_builders.h"
 
 namespace cairn {
 namespace {
 
 using testing::BlockOnIncline;
+constexpr auto Check = testing::CheckWithEquilibrium;
 using testing::Box;
 using testing::JammedBlock;
 
 constexpr double kDeg = std::numbers::pi / 180.0;
-
-StabilityResult Check(const AssemblyDef& def) {
-  const Assembly a = Assembly::Create(def, "test");
-  StabilityOptions options;
-  options.check_equilibrium = true;
-  return AnalyzeConfiguration(a, Configuration::Assembled(a), options);
-}
 
 // On an incline an equilibrium exists iff tan θ ≤ μ, on both sides of the
 // friction angle, and it agrees with the LCP.
