@@ -34,6 +34,7 @@
 #include "cairn/io/plan_reader.h"
 #include "cairn/io/scene_reader.h"
 #include "cairn/motion/simulate.h"
+#include "cairn/report/words.h"
 #include "cairn/stability/analyze.h"
 #include "run_benchmarks.h"
 
@@ -132,7 +133,9 @@ void PrintSimulation(const Scene& s, bool cont, int reps, bool ticks) {
   std::printf("%s simulate%s: %.3f s (best of %d), verdict %s, %d ticks, %d pivots\n",
               s.name.c_str(), cont ? " --continue" : "", best, reps, cairn::to_string(r.verdict),
               st.ticks, st.pivots);
-  if (r.failure) std::printf("  first failure: %.300s\n", r.failure->description.c_str());
+  if (r.failure)
+    std::printf("  first failure: %.300s\n",
+                cairn::DescribeFailure(*s.assembly, *r.failure).c_str());
 
   // The same analyses replayed one by one (one workspace, as SimulatePlan).
   const std::vector<Analysis> path = Record(s, cont);

@@ -66,6 +66,7 @@
 #include "cairn/io/plan_reader.h"
 #include "cairn/io/scene_reader.h"
 #include "cairn/motion/simulate.h"
+#include "cairn/report/words.h"
 #include "cairn/stability/analyze.h"
 #include "run_benchmarks.h"
 #include "scene_builders.h"  // tests/: the scene builders the tests use
@@ -385,7 +386,8 @@ std::pair<cairn::SimulationResult, cairn::SimulationResult> PrintSimulation(cons
         s.name.c_str(), cont ? " (continue_after_failure)" : "", best, reps, 1e6 * best / st.ticks,
         cairn::to_string(r.verdict), st.ticks, st.pivots, double(st.pivots) / st.ticks,
         st.warm_starts);
-    if (r.failure) std::printf("  first failure: %s\n", r.failure->description.c_str());
+    if (r.failure)
+      std::printf("  first failure: %s\n", cairn::DescribeFailure(*s.assembly, *r.failure).c_str());
     if (!r.diagnostics.empty()) std::printf("  diagnostics: %.200s\n", r.diagnostics.c_str());
   }
   return out;

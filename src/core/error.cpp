@@ -79,10 +79,4 @@ void AbortWithMessage(const char* kind, const char* condition, const char* file,
   std::abort();
 }
 }  // namespace internal
-std::string FormatNumber(double x) {
-  std::ostringstream os;
-  os << x;
-  return os.str();
-}
-
 }  // namespace cairn

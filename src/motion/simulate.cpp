@@ -154,47 +154,6 @@ std::vector<int> PushedParts(const Assembly& assembly, const Configuration& conf
   return pushed;
 }
 
-// Describes a failure for people.
-std::string Describe(const Assembly& a, const MotionFailure& f, const PlanStep& step) {
-  const int dim = a.dimension();
-  std::ostringstream os;
-  os << "t = " << f.time << " s (step " << f.step << ", tick " << f.tick << "): ";
-  switch (f.verdict) {
-    case MotionVerdict::kUnstable:
-      if (!f.pushed.empty())
-        os << a.NameList(step.remove) << " pushes " << a.NameList(f.pushed) << ": ";
-      for (size_t i = 0; i < f.motions.size(); ++i) {
-        const PartMotion& m = f.motions[i];
-        os << (i ? "; " : "") << a.part(m.part).name << ' ' << DescribeMotion(m, dim);
-      }
-      break;
-    case MotionVerdict::kUnsupported:
-      os << a.NameList(f.parts)
-         << " can no longer rest on the assembly: the gripper must carry it here";
-      break;
-    case MotionVerdict::kInfeasible:
-      if (f.parts.size() >= 2)
-        os << a.part(f.parts[0]).name << " runs into " << a.part(f.parts[1]).name;
-      else
-        os << "the motion of " << a.NameList(f.parts) << " is blocked";
-      break;
-    case MotionVerdict::kStable:
-      os << "stable";
-      break;
-  }
-  for (const ContactReport& c : f.contacts) {
-    if (!(c.breaking || c.sliding)) continue;
-    os << "; contact " << a.part(c.contact.part_a).name << "-"
-       << (c.contact.part_b >= 0 ? a.part(c.contact.part_b).name : std::string("fixture")) << " at "
-       << FormatPoint(c.contact.p_WC, dim) << (c.breaking ? " breaks" : " slides");
-  }
-  return os.str();
-}
-
-}  // namespace
-
-namespace {
-
 // The parts of one step and what they do (roles fixed for the step).
 struct StepState {
   int k = -1;  // index into Plan::steps
@@ -442,7 +401,7 @@ class PlanSimulation {
     if (f.verdict == MotionVerdict::kStable && r.verdict == Verdict::kSolverFailure) {
       // Numerical trouble is never taken for stability.
       f.verdict = MotionVerdict::kUnstable;
-      f.description = "the contact LCP could not be solved: " + r.diagnostics;
+      f.solver_note = r.diagnostics;
     }
     // Pushes at the first instant: judged parts that the driven motion
     // pushes (PushedParts) are unstable from t = the step's start. Judged
@@ -525,8 +484,7 @@ class PlanSimulation {
     for (const ContactReport& c : judged.contacts)
       if ((c.breaking || c.sliding) && (involved(c.contact.part_a) || involved(c.contact.part_b)))
         f.contacts.push_back(c);
-    const std::string why = f.description;
-    f.description = Describe(a_, f, *st.step) + (why.empty() ? "" : "; " + why);
+    if (!f.pushed.empty()) f.pushers = st.step->remove;
     st.report.verdict = f.verdict;
     st.report.failure = f;
     if (!result_.failure) result_.failure = f;

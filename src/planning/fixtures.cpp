@@ -8,6 +8,7 @@
 
 #include "cairn/core/check.h"
 #include "cairn/core/error.h"
+#include "cairn/core/format.h"
 #include "cairn/geometry/polygon.h"
 #include "cairn/geometry/polyhedron.h"
 
@@ -186,20 +187,16 @@ std::vector<bool> EligibleParts(const Assembly& assembly, const Plan& plan) {
 
 // Why fixels cannot help with the failure `f` (at: where it happened), or
 // empty; `room` is how many more fixels are allowed.
-std::optional<std::string> Hopeless(const MotionFailure& f, const std::string& at, int room,
+std::optional<std::string> Hopeless(const MotionFailure& f, int room,
                                     const FixtureSearchOptions& options) {
   if (f.verdict == MotionVerdict::kInfeasible)
-    return at + " is infeasible: fixels cannot free a blocked motion";
+    return " is infeasible: fixels cannot free a blocked motion";
   if (f.verdict == MotionVerdict::kUnsupported)
-    return at +
-           " is unsupported: the gripper must carry the part; fixels do "
-           "not help";
+    return " is unsupported: the gripper must carry the part; fixels do not help";
   if (f.parts.empty())
-    return at +
-           " failed without a moving part (a solver failure): no fixels "
-           "suggested";
+    return " failed without a moving part (a solver failure): no fixels suggested";
   if (room <= 0)
-    return at + " needs more than the " + std::to_string(options.max_fixels) + " fixels allowed";
+    return " needs more than the " + std::to_string(options.max_fixels) + " fixels allowed";
   return std::nullopt;
 }
 
@@ -269,7 +266,7 @@ std::optional<std::pair<std::vector<int>, SimulationResult>> FirstPassingSubset(
 }
 
 // The verification (the last run, with every fixel chosen), each fixel's
-// largest force in it, and the message.
+// largest force in it, and where the search stopped.
 void Conclude(const AssemblyDef& def, const SimulationResult& failed,
               const SimulationResult& current, const std::vector<SuggestedFixel>& chosen,
               const std::string& why, FixtureSuggestion& out) {
@@ -283,13 +280,10 @@ void Conclude(const AssemblyDef& def, const SimulationResult& failed,
     SuggestedFixel& s = out.fixels[c.index_a - base];
     s.max_force = std::max(s.max_force, row.contact.normal_force);
   }
-  const int k = static_cast<int>(out.fixels.size());
-  std::ostringstream msg;
-  if (out.found)
-    msg << k << (k == 1 ? " fixel makes" : " fixels make") << " the plan stable";
-  else
-    msg << "no fixels found: " << why;
-  out.message = msg.str();
+  if (!out.found) {
+    out.stopped_at = current.failure;
+    out.stop_reason = why;
+  }
 }
 
 // The search's budgets: each at least 1.
@@ -314,7 +308,6 @@ FixtureSuggestion SuggestFixtures(const AssemblyDef& def, const Assembly& assemb
   if (failed.stable()) {
     out.found = true;
     out.verification = failed;
-    out.message = "the plan is stable without fixels";
     return out;
   }
   // Runs stop at their first failure and keep their contacts.
@@ -338,9 +331,8 @@ FixtureSuggestion SuggestFixtures(const AssemblyDef& def, const Assembly& assemb
   std::string why;  // why the search stopped short, when it did
   while (!current.stable()) {
     const MotionFailure& f = *current.failure;
-    const std::string at = "step " + std::to_string(f.step) + " (" + f.description + ")";
     const int room = options.max_fixels - static_cast<int>(chosen.size());
-    if (const auto hopeless = Hopeless(f, at, room, options)) {
+    if (const auto hopeless = Hopeless(f, room, options)) {
       why = *hopeless;
       break;
     }
@@ -348,7 +340,7 @@ FixtureSuggestion SuggestFixtures(const AssemblyDef& def, const Assembly& assemb
     for (int p : f.parts)
       if (eligible[p]) movers.push_back(p);
     if (movers.empty()) {
-      why = at + ": the parts that move (" + assembly.NameList(f.parts) +
+      why = ": the parts that move (" + assembly.NameList(f.parts) +
             ") are removed later in the plan, and a fixel would have to leave "
             "with them";
       break;
@@ -356,7 +348,7 @@ FixtureSuggestion SuggestFixtures(const AssemblyDef& def, const Assembly& assemb
     const std::vector<Candidate> pool = CandidatePool(assembly, current, f, movers, options);
     out.candidates += static_cast<int>(pool.size());
     if (pool.empty()) {
-      why = at + ": no free face of " + assembly.NameList(movers) + " opposes its motion";
+      why = ": no free face of " + assembly.NameList(movers) + " opposes its motion";
       break;
     }
     bool budget = false;
@@ -364,12 +356,11 @@ FixtureSuggestion SuggestFixtures(const AssemblyDef& def, const Assembly& assemb
                                       options, out, &budget);
     if (!passing) {
       const int n = static_cast<int>(pool.size());
-      why = at + ": " +
-            (budget ? "the budget of " + std::to_string(options.max_simulations) +
-                          " simulations ran out"
-                    : "no set of at most " + std::to_string(std::min(room, n)) + " of the " +
-                          std::to_string(n) + " candidate fixels on " + assembly.NameList(movers) +
-                          " keeps it stable");
+      why = ": " + (budget ? "the budget of " + std::to_string(options.max_simulations) +
+                                 " simulations ran out"
+                           : "no set of at most " + std::to_string(std::min(room, n)) + " of the " +
+                                 std::to_string(n) + " candidate fixels on " +
+                                 assembly.NameList(movers) + " keeps it stable");
       break;
     }
     for (int i : passing->first) {

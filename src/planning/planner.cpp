@@ -19,6 +19,7 @@
 #include "cairn/contact/detect_contacts.h"
 #include "cairn/core/check.h"
 #include "cairn/core/error.h"
+#include "cairn/core/format.h"
 #include "cairn/core/tolerances.h"
 #include "cairn/mechanics/rest_solution.h"
 #include "cairn/planning/blocking.h"
@@ -513,10 +514,13 @@ PathTrial Planner::Trial(const Key& from_key, const std::vector<int>& s, const C
   t.disassembly = dis.verdict;
   t.assembly = as.verdict;
   t.decided_by = "simulation";
-  if (dis.failure)
-    t.failure = "disassembly: " + dis.failure->description;
-  else if (as.failure)
-    t.failure = "assembly: " + as.failure->description;
+  if (dis.failure) {
+    t.failure = dis.failure;
+    t.failure_mode = PlanMode::kDisassemble;
+  } else if (as.failure) {
+    t.failure = as.failure;
+    t.failure_mode = PlanMode::kAssemble;
+  }
   return t;
 }
 
@@ -532,7 +536,6 @@ EdgeWork Planner::EvaluateEdge(PlanEdge& edge, const std::vector<Contact>& conta
     PathTrial& t = edge.trials.front();
     t.disassembly = t.assembly = MotionVerdict::kUnstable;
     t.decided_by = "proposition 1";
-    t.failure = "the rest does not stand without the removed parts";
     edge.trials.resize(1);
     ++work.pruned;
     return work;

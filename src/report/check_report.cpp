@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <sstream>
 
+#include "cairn/core/format.h"
+#include "cairn/report/words.h"
 #include "report/report_common.h"
 
 namespace cairn {

@@ -2,6 +2,8 @@
 
 #include <sstream>
 
+#include "cairn/core/format.h"
+#include "cairn/report/words.h"
 #include "report/report_common.h"
 
 namespace cairn {
@@ -20,7 +22,7 @@ nlohmann::json FixtureSuggestionToJson(const Assembly& assembly,
   const int dim = assembly.dimension();
   json doc;
   doc["found"] = suggestion.found;
-  doc["message"] = suggestion.message;
+  doc["message"] = FixtureMessage(assembly, suggestion);
   doc["max_fixels"] = search.max_fixels;
   doc["candidates"] = suggestion.candidates;
   doc["simulations"] = suggestion.simulations;
@@ -37,9 +39,10 @@ nlohmann::json FixtureSuggestionToJson(const Assembly& assembly,
   doc["fixels"] = fixels;
   doc["scene_fixtures"] = entries;
   const SimulationResult& v = suggestion.verification;
-  doc["verification"] = {{"verdict", to_string(v.verdict)},
-                         {"stable", v.stable()},
-                         {"failure", v.failure ? json(v.failure->description) : json(nullptr)}};
+  doc["verification"] = {
+      {"verdict", to_string(v.verdict)},
+      {"stable", v.stable()},
+      {"failure", v.failure ? json(DescribeFailure(assembly, *v.failure)) : json(nullptr)}};
   return doc;
 }
 
@@ -50,7 +53,8 @@ std::string FixtureSuggestionToText(const Assembly& assembly, const FixtureSugge
   const int dim = assembly.dimension();
   std::ostringstream os;
   os << "Fixel suggestion (at most " << search.max_fixels
-     << "): " << (suggestion.found ? "FOUND" : "NONE") << " - " << suggestion.message << '\n';
+     << "): " << (suggestion.found ? "FOUND" : "NONE") << " - "
+     << FixtureMessage(assembly, suggestion) << '\n';
   for (size_t i = 0; i < suggestion.fixels.size(); ++i) {
     const SuggestedFixel& s = suggestion.fixels[i];
     os << "  fixel " << i + 1 << ": " << s.fixture.part << " at "
@@ -63,7 +67,7 @@ std::string FixtureSuggestionToText(const Assembly& assembly, const FixtureSugge
     os << "  verified: the plan with "
        << (suggestion.fixels.size() == 1 ? "this fixel" : "these fixels") << " is "
        << to_string(v.verdict);
-    if (v.failure) os << ": " << v.failure->description;
+    if (v.failure) os << ": " << DescribeFailure(assembly, *v.failure);
     os << '\n';
     nlohmann::json entries = nlohmann::json::array();
     for (const SuggestedFixel& s : suggestion.fixels)

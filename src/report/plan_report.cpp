@@ -3,6 +3,8 @@
 #include <cstdio>
 #include <sstream>
 
+#include "cairn/core/format.h"
+#include "cairn/report/words.h"
 #include "cairn/stability/analyze.h"
 #include "report/report_common.h"
 
@@ -68,7 +70,7 @@ json TrialToJson(const Assembly& a, const PathTrial& t, bool with_path = true) {
   j["assembly"] = AssemblyChecked(t) ? json(to_string(t.assembly)) : json(nullptr);
   j["decided_by"] = t.decided_by;
   if (!t.fixels.empty()) j["fixels"] = FixelsToJson(a, t.fixels);
-  if (!t.failure.empty()) j["failure"] = t.failure;
+  if (const std::string why = PathTrialFailure(a, t); !why.empty()) j["failure"] = why;
   return j;
 }
 
@@ -226,7 +228,8 @@ std::string PlannerToText(const Assembly& assembly, const PlannerResult& r,
       os << "  " << Joined(assembly, e.remove) << " " << t.candidate.label << " from {"
          << Joined(assembly, r.nodes[e.from].parts, ", ") << "}: disassembly "
          << to_string(t.disassembly) << ", assembly " << to_string(t.assembly);
-      if (!t.failure.empty()) os << " (" << t.failure << ")";
+      if (const std::string why = PathTrialFailure(assembly, t); !why.empty())
+        os << " (" << why << ")";
       os << '\n';
     }
   if (!r.message.empty()) os << r.message << '\n';

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <sstream>
 
+#include "cairn/report/words.h"
 #include "report/report_common.h"
 
 namespace cairn {
@@ -67,7 +68,7 @@ nlohmann::json SimulationToJson(const Assembly& assembly, const Plan& plan,
       contacts.push_back(jc);
     }
     jf["contacts"] = contacts;
-    jf["description"] = f.description;
+    jf["description"] = DescribeFailure(assembly, f);
     doc["failure"] = jf;
   }
   json steps = json::array();
@@ -117,7 +118,7 @@ std::string SimulationToText(const Assembly& assembly, const Plan& plan,
     os << "  step " << r.step << " (" << names << ", support " << to_string(step.support)
        << "): " << to_string(r.verdict) << "  [t = " << r.start_time << ".." << r.end_time << " s, "
        << r.ticks << " time steps, " << r.pivots << " pivots]\n";
-    if (r.failure) os << "    " << r.failure->description << '\n';
+    if (r.failure) os << "    " << DescribeFailure(assembly, *r.failure) << '\n';
   }
   if (!result.diagnostics.empty()) os << "  diagnostics: " << result.diagnostics << '\n';
   return os.str();

@@ -61,30 +61,6 @@ const char* to_string(MotionKind kind) {
   return "unknown";
 }
 
-std::string FormatPoint(const Vector3& p, int dimension) {
-  std::ostringstream os;
-  os.precision(4);
-  const double dust = numeric::kParameterSlack * std::max(1.0, p.cwiseAbs().maxCoeff());
-  const auto clean = [dust](double x) { return std::abs(x) < dust ? 0.0 : x; };
-  os << "(" << clean(p.x()) << ", " << clean(p.y());
-  if (dimension == 3) os << ", " << clean(p.z());
-  os << ")";
-  return os.str();
-}
-
-std::string DescribeMotion(const PartMotion& m, int dimension) {
-  std::string out = to_string(m.kind);
-  if (m.kind == MotionKind::kTips && m.pivot && dimension == 2)
-    out += " about " + FormatPoint(*m.pivot, dimension) +
-           (m.angular.z() > 0 ? " counter-clockwise" : " clockwise");
-  else if (m.kind == MotionKind::kTips && m.pivot)
-    out += " about the axis through " + FormatPoint(*m.pivot, dimension) + " along " +
-           FormatPoint(m.angular.normalized(), dimension);
-  else if (m.linear.norm() > 0)
-    out += " along " + FormatPoint(m.linear.normalized(), dimension);
-  return out;
-}
-
 const char* to_string(PartRole role) {
   switch (role) {
     case PartRole::kJudged:

@@ -31,6 +31,7 @@
 #include "cairn/io/plan_reader.h"
 #include "cairn/io/scene_reader.h"
 #include "cairn/motion/simulate.h"
+#include "failure_brief.h"
 #include "scene_builders.h"
 #include "test_paths.h"
 
@@ -82,7 +83,7 @@ Plan Slide(const Assembly& a, PlanMode mode) {
 }
 
 std::string Why(const SimulationResult& r) {
-  return r.failure ? r.failure->description : r.diagnostics;
+  return r.failure ? testing::Brief(*r.failure) : r.diagnostics;
 }
 
 TEST(FlushJoint, TheExampleSlideIsStableInBothModes) {

@@ -17,6 +17,7 @@
 #include "cairn/io/plan_reader.h"
 #include "cairn/io/scene_reader.h"
 #include "cairn/motion/simulate.h"
+#include "failure_brief.h"
 #include "test_paths.h"
 
 namespace cairn {
@@ -51,7 +52,8 @@ class PaperFig9 : public ::testing::Test {
     return m;
   }
   static std::string Why(const SimulationResult& r) {
-    return (r.failure ? r.failure->description : std::string("no failure")) + " " + r.diagnostics;
+    return (r.failure ? testing::Brief(*r.failure) : std::string("no failure")) + " " +
+           r.diagnostics;
   }
   static bool Contains(const std::vector<int>& v, int x) {
     return std::find(v.begin(), v.end(), x) != v.end();

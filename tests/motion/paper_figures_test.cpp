@@ -12,6 +12,7 @@
 #include "cairn/io/plan_reader.h"
 #include "cairn/io/scene_reader.h"
 #include "cairn/motion/simulate.h"
+#include "failure_brief.h"
 #include "test_paths.h"
 
 namespace cairn {
@@ -26,7 +27,7 @@ SimulationResult RunPlan(const Assembly& a, const std::string& plan_name,
 }
 
 std::string Why(const SimulationResult& r) {
-  return (r.failure ? r.failure->description : std::string("no failure")) + " " + r.diagnostics;
+  return (r.failure ? testing::Brief(*r.failure) : std::string("no failure")) + " " + r.diagnostics;
 }
 
 bool Contains(const std::vector<int>& v, int x) {

@@ -7,6 +7,7 @@
 
 #include "cairn/io/scene_reader.h"
 #include "cairn/motion/simulate.h"
+#include "failure_brief.h"
 #include "scene_builders.h"
 #include "test_paths.h"
 
@@ -103,7 +104,7 @@ TEST(Proposition4, StableAtBothEndsMeansStableAllAlong) {
     plan.steps = {s};
     const SimulationResult r = SimulatePlan(a, Plan::Create(plan, a));
     EXPECT_TRUE(r.stable()) << "trial " << trial << ": "
-                            << (r.failure ? r.failure->description : "");
+                            << (r.failure ? testing::Brief(*r.failure) : std::string());
     ++checked;
   }
   EXPECT_GE(checked, 10) << "too few random cases were stable at both ends to test anything";

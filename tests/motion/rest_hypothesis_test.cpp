@@ -15,6 +15,7 @@
 #include "cairn/io/scene_reader.h"
 #include "cairn/motion/simulate.h"
 #include "cairn/stability/analyze.h"
+#include "failure_brief.h"
 #include "scene_builders.h"
 #include "test_paths.h"
 
@@ -154,14 +155,14 @@ TEST(RestHypothesis, JengaExampleStandsUntilThePulledBlockIsNearlyOut) {
   const SimulationResult r = SimulatePlan(a, plan);
   ASSERT_TRUE(r.failure);
   const double pulled = r.failure->time * plan.speed;  // how far the block has come
-  EXPECT_GT(pulled, 0.07) << r.failure->description;
-  EXPECT_LT(pulled, kL + kGap + 1e-9) << r.failure->description;
+  EXPECT_GT(pulled, 0.07) << testing::Brief(*r.failure);
+  EXPECT_LT(pulled, kL + kGap + 1e-9) << testing::Brief(*r.failure);
   // The failure names what moves (issue 13): the pulled block itself, whose
   // overhanging weight the gripper (support "none") must now carry; nothing
   // else moves, and it is decided, not a solver failure.
-  EXPECT_EQ(r.failure->verdict, MotionVerdict::kUnsupported) << r.failure->description;
-  EXPECT_EQ(r.failure->parts, std::vector<int>{a.FindPart("L09_2")}) << r.failure->description;
-  EXPECT_EQ(r.failure->description.find("could not be solved"), std::string::npos);
+  EXPECT_EQ(r.failure->verdict, MotionVerdict::kUnsupported) << testing::Brief(*r.failure);
+  EXPECT_EQ(r.failure->parts, std::vector<int>{a.FindPart("L09_2")}) << testing::Brief(*r.failure);
+  EXPECT_EQ(testing::Brief(*r.failure).find("could not be solved"), std::string::npos);
 }
 
 }  // namespace

@@ -12,6 +12,7 @@
 #include "cairn/io/plan_reader.h"
 #include "cairn/io/scene_reader.h"
 #include "example_scene.h"
+#include "failure_brief.h"
 
 namespace cairn {
 namespace {
@@ -51,7 +52,7 @@ TEST(SuggestFixtures, PaperFig4_FixelsOnBsRightFaceMakeTheLiftStable) {
   const int b = s.assembly.FindPart("B");
 
   const FixtureSuggestion fx = SuggestFixtures(s.def, s.assembly, plan, failed);
-  ASSERT_TRUE(fx.found) << fx.message;
+  ASSERT_TRUE(fx.found) << fx.stop_reason;
   ASSERT_FALSE(fx.fixels.empty());
   EXPECT_LE(fx.fixels.size(), 2u);  // the paper uses two; fewer is better
   for (const SuggestedFixel& f : fx.fixels) {
@@ -65,7 +66,7 @@ TEST(SuggestFixtures, PaperFig4_FixelsOnBsRightFaceMakeTheLiftStable) {
     EXPECT_DOUBLE_EQ(f.fixture.normal.y(), 0.0);
     EXPECT_NE(f.face.find("(7, 0)-(7, 3)"), std::string::npos) << f.face;
   }
-  EXPECT_TRUE(fx.verification.stable()) << fx.verification.failure->description;
+  EXPECT_TRUE(fx.verification.stable()) << testing::Brief(*fx.verification.failure);
   EXPECT_GT(fx.candidates, 0);
   EXPECT_GE(fx.simulations, 2);  // the run with the timeline, then one per subset tried
 
@@ -98,7 +99,8 @@ TEST(SuggestFixtures, PaperFig4_PapersOwnFixelsNeedNoMore) {
   EXPECT_TRUE(fx.fixels.empty());
   EXPECT_EQ(fx.simulations, 0);
   EXPECT_TRUE(fx.verification.stable());
-  EXPECT_EQ(fx.message, "the plan is stable without fixels");
+  EXPECT_FALSE(fx.stopped_at);
+  EXPECT_EQ(fx.stop_reason, "");
 }
 
 TEST(SuggestFixtures, PaperFig4_Deterministic) {
@@ -116,7 +118,7 @@ TEST(SuggestFixtures, PaperFig4_Deterministic) {
   }
   EXPECT_EQ(x.candidates, y.candidates);
   EXPECT_EQ(x.simulations, y.simulations);
-  EXPECT_EQ(x.message, y.message);
+  EXPECT_EQ(x.stop_reason, y.stop_reason);
   // The timeline given with `failed` or not: the same answer.
   SimulationOptions timeline;
   timeline.record_timeline = true;
@@ -145,8 +147,10 @@ TEST(SuggestFixtures, FixelsNeverGoOnPartsThePlanRemovesLater) {
   ASSERT_FALSE(failed.stable());
   const FixtureSuggestion fx = SuggestFixtures(s.def, s.assembly, plan, failed);
   for (const SuggestedFixel& f : fx.fixels) EXPECT_NE(f.fixture.part, "B");
-  EXPECT_FALSE(fx.found) << fx.message;  // C alone cannot keep B from sliding
-  EXPECT_NE(fx.message.find("no fixels found"), std::string::npos) << fx.message;
+  EXPECT_FALSE(fx.found) << fx.stop_reason;  // C alone cannot keep B from sliding
+  ASSERT_TRUE(fx.stopped_at);                // where the search stopped
+  EXPECT_EQ(fx.stopped_at->verdict, MotionVerdict::kUnstable);
+  EXPECT_FALSE(fx.stop_reason.empty());
 }
 
 // ---------------------------------------------------------------------------
@@ -207,14 +211,14 @@ TEST(SuggestFixtures, FallingHexagon_OneFixelCannotHoldItTwoDo) {
   EXPECT_TRUE(none.fixels.empty());
   EXPECT_GT(none.candidates, 0);
   EXPECT_EQ(none.simulations, 1 + none.candidates);
-  EXPECT_NE(none.message.find("no set of at most 1"), std::string::npos) << none.message;
+  EXPECT_NE(none.stop_reason.find("no set of at most 1"), std::string::npos) << none.stop_reason;
 
   // At most two (or the default three): exactly two, on B's bottom, pushing up.
   for (int most : {2, 3}) {
     FixtureSearchOptions opt;
     opt.max_fixels = most;
     const FixtureSuggestion fx = SuggestFixtures(p.def, p.assembly, p.plan, failed, opt);
-    ASSERT_TRUE(fx.found) << fx.message;
+    ASSERT_TRUE(fx.found) << fx.stop_reason;
     ASSERT_EQ(fx.fixels.size(), 2u);
     EXPECT_TRUE(fx.verification.stable());
     std::vector<double> xs;
@@ -246,8 +250,9 @@ TEST(SuggestFixtures, InfeasibleStepGetsNoFixels) {
   EXPECT_FALSE(fx.found);
   EXPECT_TRUE(fx.fixels.empty());
   EXPECT_EQ(fx.candidates, 0);
-  EXPECT_NE(fx.message.find("infeasible: fixels cannot free a blocked motion"), std::string::npos)
-      << fx.message;
+  EXPECT_NE(fx.stop_reason.find("infeasible: fixels cannot free a blocked motion"),
+            std::string::npos)
+      << fx.stop_reason;
   EXPECT_EQ(fx.verification.verdict, MotionVerdict::kInfeasible);
 }
 
@@ -259,7 +264,7 @@ TEST(SuggestFixtures, BudgetAndBadOptions) {
   const FixtureSuggestion fx = SuggestFixtures(p.def, p.assembly, p.plan, failed, tight);
   EXPECT_FALSE(fx.found);
   EXPECT_LE(fx.simulations, 3);
-  EXPECT_NE(fx.message.find("budget of 3 simulations"), std::string::npos) << fx.message;
+  EXPECT_NE(fx.stop_reason.find("budget of 3 simulations"), std::string::npos) << fx.stop_reason;
 
   FixtureSearchOptions bad;
   bad.max_fixels = 0;

@@ -18,6 +18,7 @@
 #include "cairn/motion/simulate.h"
 #include "cairn/report/plan_report.h"
 #include "example_scene.h"
+#include "failure_brief.h"
 
 namespace cairn {
 namespace {
@@ -198,7 +199,7 @@ TEST_F(PlannerFig6, SequencesUseOnlyStablePathsAndReplayStably) {
   for (const PlannedSequence& s : r_.sequences) {
     const SimulationResult sim = Replay(scene_, s, r_, PlanMode::kDisassemble);
     EXPECT_TRUE(sim.stable()) << Order(s) << ": "
-                              << (sim.failure ? sim.failure->description : std::string());
+                              << (sim.failure ? testing::Brief(*sim.failure) : std::string());
   }
 }
 

@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "cairn/core/format.h"  // FormatNumber, FormatPoint: numbers in messages
+
 namespace cairn {
 
 /// Bad input from a user: a scene or plan file, or a command-line argument.
@@ -27,9 +29,6 @@ class InputError : public std::runtime_error {
   std::string json_path_;
   std::string message_;
 };
-
-/// A number in a message, as `operator<<` writes it (6 significant digits).
-std::string FormatNumber(double x);
 
 /// A name as a JSON string: in double quotes, with `"`, `\` and control
 /// characters escaped as JSON escapes them (`\"`, `\\`, `\n`, `\u0001`), so

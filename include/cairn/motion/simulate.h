@@ -74,9 +74,13 @@ struct MotionFailure {
   /// unstable: those of `parts` that move because the moving parts push them
   /// (not by themselves); `time` is when the push starts. Empty: none.
   std::vector<int> pushed;
+  std::vector<int> pushers;             ///< with `pushed`: the driven parts that push them
   std::vector<PartMotion> motions;      ///< how the parts in `parts` move
   std::vector<ContactReport> contacts;  ///< contacts that break or slide at the failure
-  std::string description;              ///< one line for people
+  /// Unstable because the contact LCP could not be solved (never taken for
+  /// stability): the solver's diagnostics. Empty otherwise. The failure in
+  /// words is the report's (DescribeFailure in cairn/report/words.h).
+  std::string solver_note;
 };
 
 /// One step of the plan, as simulated.

@@ -37,6 +37,7 @@
 /// (a subassembly S leaving T) never meet this: the parts that move stay.
 ///
 /// Deterministic: the same inputs give the same fixels, in the same order.
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -75,7 +76,7 @@ struct FixtureSuggestion {
   /// The plan is stable with `fixels` added to the scene (verified by
   /// re-running it; also true with no fixels when `failed` was stable);
   /// false: no set of at most max_fixels was found within the budget, or a
-  /// failure is not one fixels can prevent (the reason in `message`).
+  /// failure is not one fixels can prevent (`stopped_at`, `stop_reason`).
   bool found = false;
   /// Found: the fewest, in the order added (by step; within a step in rank
   /// order). Not found: those that got the plan past its earlier failing
@@ -87,8 +88,13 @@ struct FixtureSuggestion {
   SimulationResult verification;
   int candidates = 0;   ///< candidate points kept (ranked, accepted) over all failures
   int simulations = 0;  ///< plan simulations run (the verification included)
-  /// One line for people: what was found, or why nothing was.
-  std::string message;
+  /// Not found: the failure where the search stopped, and why, in the
+  /// search's own words as they read after "step N (<the failure>)": " is
+  /// infeasible: fixels cannot free a blocked motion", ": the budget of 1000
+  /// simulations ran out", ... The whole line for people is the report's
+  /// (FixtureMessage in cairn/report/words.h).
+  std::optional<MotionFailure> stopped_at;
+  std::string stop_reason;
 };
 
 /// Suggests fixels for `plan` on the scene `def` (which `assembly` was built

@@ -92,7 +92,11 @@ struct PathTrial {
   /// How it was decided: "nodes" (Corollary 2: node checks), "proposition 1"
   /// (T \ S unstable), "simulation" (along the path).
   std::string decided_by;
-  std::string failure;             ///< the first failure, in words (disassembly, else assembly)
+  /// The first failure along the path: the disassembly's, else the
+  /// assembly's (`failure_mode` says which); none when stable or decided
+  /// without simulating. In words: PathTrialFailure (cairn/report/words.h).
+  std::optional<MotionFailure> failure;
+  PlanMode failure_mode = PlanMode::kDisassemble;
   std::vector<FixtureDef> fixels;  ///< with allow_fixtures: the fixels that make it stable
 };
 

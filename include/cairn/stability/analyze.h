@@ -79,17 +79,6 @@ struct PartMotion {
   double point_motion = 0;  ///< largest |acceleration| or |velocity| over the part's vertices
 };
 
-/// "(x, y)" in 2-D, "(x, y, z)" in 3-D, 4 significant digits; round-off dust
-/// (below 1e-9 of the largest coordinate, or of 1) prints as 0, so that a
-/// unit axis reads (1, 0, 0) and not (1, 1e-17, 0). For text reports.
-std::string FormatPoint(const Vector3& p, int dimension);
-
-/// How a part moves, in words: its kind ("tips", ...) and, for a part that
-/// tips, its pivot and turning sense (2-D) or axis (3-D), else the unit
-/// direction of its centroid's motion: "tips about (1, 1.25) clockwise",
-/// "slides along (1, 0, 0)". For text reports.
-std::string DescribeMotion(const PartMotion& m, int dimension);
-
 /// One contact with its force and motion.
 struct ContactReport {
   Contact contact;
