@@ -1,0 +1,83 @@
+// rest_solution.h: the rest hypothesis as a linear program. A block pulled
+// across a fixed table (support "none") with nothing on it can keep every
+// other part at rest: the LP finds an LCP solution whose normal impulses carry
+// the block's weight over the step and whose friction is kinetic (μ p_n, all
+// of it against the slip). A block riding on the pulled one cannot stay at
+// rest: no solution. The LP's basis warm-starts the next one.
+#include "cairn/mechanics/rest_solution.h"
+
+#include <gtest/gtest.h>
+
+#include "cairn/stability/analyze.h"
+#include "scene_builders.h"
+
+namespace cairn {
+namespace {
+
+using testing::Box3;
+
+constexpr double kMu = 0.5, kG = 9.81, kDt = 0.1, kSpeed = 0.1;
+
+// A (0.4 × 0.2 × 0.1 m, density 1: 8 kg) on a fixed table; with `rider`, B
+// (0.2 m cube) on A.
+Assembly Blocks(bool rider) {
+  AssemblyDef def;
+  def.friction = kMu;
+  def.gravity = Vector3(0, 0, -kG);
+  def.parts.push_back(Box3("table", {-1, -1, -0.1}, {1, 1, 0}, true));
+  def.parts.push_back(Box3("A", {-0.2, -0.1, 0}, {0.2, 0.1, 0.1}));
+  if (rider) def.parts.push_back(Box3("B", {-0.1, -0.1, 0.1}, {0.1, 0.1, 0.2}));
+  return Assembly::Create(def);
+}
+
+// The Stewart–Trinkle LCP of A pulled along +x (guided), the rest judged.
+ContactLcp PulledLcp(const Assembly& a) {
+  DriveInputs d;
+  const int n = a.num_parts(), pulled = a.FindPart("A");
+  d.role.assign(n, PartRole::kJudged);
+  d.velocity.assign(n, Vector3::Zero());
+  d.guide.assign(n, Vector3::UnitX());
+  d.nu_prev.assign(n, Vector6::Zero());
+  d.role[pulled] = PartRole::kGuided;
+  d.velocity[pulled] = kSpeed * Vector3::UnitX();
+  StabilityOptions options;
+  options.dt = kDt;
+  const std::vector<ContactLcp> lcps =
+      BuildComponentLcps(a, Configuration::Assembled(a), options, &d);
+  EXPECT_EQ(lcps.size(), 1u);
+  return lcps.at(0);
+}
+
+TEST(FindRestSolution, APulledBlockAloneSlidesWithKineticFrictionAndItsWeightCarried) {
+  const Assembly a = Blocks(false);
+  const ContactLcp lcp = PulledLcp(a);
+  const RestSolution r = FindRestSolution(lcp);
+  ASSERT_EQ(r.outcome, RestSolution::Outcome::kFound) << r.message;
+  EXPECT_TRUE(IsContactLcpSolution(lcp, r.z, 1e-9));
+  const int nc = static_cast<int>(lcp.contacts.size());
+  const int nb = lcp.num_friction * lcp.num_directions;
+  const double normal = r.z.head(nc).sum(), friction = r.z.segment(nc, nb).sum();
+  const double weight_impulse = a.part(a.FindPart("A")).mass * kG * kDt;  // N·s
+  EXPECT_NEAR(normal, weight_impulse, 1e-9 * weight_impulse);
+  EXPECT_NEAR(friction, kMu * normal, 1e-9 * weight_impulse);
+}
+
+TEST(FindRestSolution, ABlockRidingOnThePulledOneCannotStayAtRest) {
+  const RestSolution r = FindRestSolution(PulledLcp(Blocks(true)));
+  EXPECT_EQ(r.outcome, RestSolution::Outcome::kNone) << r.message;
+}
+
+TEST(FindRestSolution, TheLastBasisWarmStartsTheSameLpWithTheSameAnswer) {
+  const ContactLcp lcp = PulledLcp(Blocks(false));
+  RestLpBasis basis;
+  const RestSolution cold = FindRestSolution(lcp, &basis);
+  ASSERT_EQ(cold.outcome, RestSolution::Outcome::kFound);
+  EXPECT_FALSE(basis.cols.empty());
+  const RestSolution warm = FindRestSolution(lcp, &basis);
+  ASSERT_EQ(warm.outcome, RestSolution::Outcome::kFound);
+  EXPECT_EQ(warm.iterations, 0);  // the optimal basis again
+  EXPECT_LE((warm.z - cold.z).cwiseAbs().maxCoeff(), 1e-12 * cold.z.cwiseAbs().maxCoeff());
+}
+
+}  // namespace
+}  // namespace cairn
