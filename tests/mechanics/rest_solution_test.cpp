@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include "cairn/stability/analyze.h"
+#include "pull_drive.h"
 #include "scene_builders.h"
 
 namespace cairn {
@@ -32,14 +33,7 @@ Assembly Blocks(bool rider) {
 
 // The Stewart–Trinkle LCP of A pulled along +x (guided), the rest judged.
 ContactLcp PulledLcp(const Assembly& a) {
-  DriveInputs d;
-  const int n = a.num_parts(), pulled = a.FindPart("A");
-  d.role.assign(n, PartRole::kJudged);
-  d.velocity.assign(n, Vector3::Zero());
-  d.guide.assign(n, Vector3::UnitX());
-  d.nu_prev.assign(n, Vector6::Zero());
-  d.role[pulled] = PartRole::kGuided;
-  d.velocity[pulled] = kSpeed * Vector3::UnitX();
+  const DriveInputs d = testing::PullAlongX(a, a.FindPart("A"), kSpeed);
   StabilityOptions options;
   options.dt = kDt;
   const std::vector<ContactLcp> lcps =

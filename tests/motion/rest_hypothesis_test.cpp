@@ -16,6 +16,7 @@
 #include "cairn/motion/simulate.h"
 #include "cairn/stability/analyze.h"
 #include "failure_brief.h"
+#include "pull_drive.h"
 #include "scene_builders.h"
 #include "test_paths.h"
 
@@ -47,25 +48,12 @@ AssemblyDef Tower(int layers) {
   return def;
 }
 
-// `part` pulled along +x at `speed` with support "none" (guided), the rest judged.
-DriveInputs Pull(const Assembly& a, int part, double speed) {
-  DriveInputs d;
-  const int n = a.num_parts();
-  d.role.assign(n, PartRole::kJudged);
-  d.velocity.assign(n, Vector3::Zero());
-  d.guide.assign(n, Vector3::UnitX());
-  d.nu_prev.assign(n, Vector6::Zero());
-  d.role[part] = PartRole::kGuided;
-  d.velocity[part] = speed * Vector3::UnitX();
-  return d;
-}
-
 TEST(RestHypothesis, TheLayerAboveRestsOnTheSideBlocksWhileTheMiddleOneIsPulled) {
   const Assembly a = Assembly::Create(Tower(2));
   const int pulled = a.FindPart("L1_2");
   StabilityOptions options;
   options.dt = 0.04;
-  const DriveInputs drive = Pull(a, pulled, 0.04);
+  const DriveInputs drive = testing::PullAlongX(a, pulled, 0.04);
   const StabilityResult r = AnalyzeConfiguration(a, Configuration::Assembled(a), options, &drive);
   ASSERT_EQ(r.verdict, Verdict::kStable) << r.diagnostics;
   EXPECT_TRUE(r.unsupported.empty());
@@ -108,7 +96,7 @@ TEST(RestHypothesis, ABlockRidingOnThePulledOneIsDraggedAlong) {
   const Assembly a = Assembly::Create(BlockOnAPulledBlock());
   StabilityOptions options;
   options.dt = 0.1;
-  const DriveInputs drive = Pull(a, a.FindPart("A"), 0.1);
+  const DriveInputs drive = testing::PullAlongX(a, a.FindPart("A"), 0.1);
   const StabilityResult r = AnalyzeConfiguration(a, Configuration::Assembled(a), options, &drive);
   // No forces hold B at rest on a sliding A: Lemke's method says how it moves.
   ASSERT_EQ(r.verdict, Verdict::kUnstable) << r.diagnostics;
@@ -134,7 +122,7 @@ TEST(RestHypothesis, OffItGivesLemkesAnswer) {
   StabilityOptions options;
   options.dt = 0.1;
   options.rest_first = false;
-  const DriveInputs drive = Pull(a, a.FindPart("A"), 0.1);
+  const DriveInputs drive = testing::PullAlongX(a, a.FindPart("A"), 0.1);
   const StabilityResult r = AnalyzeConfiguration(a, Configuration::Assembled(a), options, &drive);
   EXPECT_EQ(r.verdict, Verdict::kUnstable) << r.diagnostics;
   EXPECT_FALSE(r.components.at(0).rest_solution);

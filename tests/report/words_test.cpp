@@ -5,11 +5,24 @@
 
 #include <gtest/gtest.h>
 
+#include <utility>
+#include <vector>
+
 #include "cairn/io/plan_reader.h"
 #include "example_scene.h"
 
 namespace cairn {
 namespace {
+
+// A failure at `step`, tick 0, t = 0, of `verdict` with `parts`.
+MotionFailure Failure(MotionVerdict verdict, int step, std::vector<int> parts) {
+  MotionFailure f;
+  f.verdict = verdict;
+  f.step = step;
+  f.tick = 0;
+  f.parts = std::move(parts);
+  return f;
+}
 
 PartMotion Tipping(const Vector3& pivot, const Vector3& angular) {
   PartMotion m;
@@ -80,12 +93,7 @@ TEST(PathTrialFailure, SaysWhichDirectionFailedOrWhyNoPathCanHelp) {
   t.decided_by = "proposition 1";
   EXPECT_EQ(PathTrialFailure(a, t), "the rest does not stand without the removed parts");
   t.decided_by = "simulation";
-  MotionFailure f;
-  f.verdict = MotionVerdict::kInfeasible;
-  f.step = 0;
-  f.tick = 0;
-  f.parts = {a.FindPart("B")};
-  t.failure = f;
+  t.failure = Failure(MotionVerdict::kInfeasible, 0, {a.FindPart("B")});
   t.failure_mode = PlanMode::kAssemble;
   EXPECT_EQ(PathTrialFailure(a, t),
             "assembly: t = 0 s (step 0, tick 0): the motion of B is blocked");
@@ -102,12 +110,7 @@ TEST(FixtureMessage, FoundNoneNeededOrWhereAndWhyTheSearchStopped) {
   s.fixels.resize(2);
   EXPECT_EQ(FixtureMessage(a, s), "2 fixels make the plan stable");
   s = FixtureSuggestion{};
-  MotionFailure f;
-  f.verdict = MotionVerdict::kInfeasible;
-  f.step = 2;
-  f.tick = 0;
-  f.parts = {a.FindPart("C")};
-  s.stopped_at = f;
+  s.stopped_at = Failure(MotionVerdict::kInfeasible, 2, {a.FindPart("C")});
   s.stop_reason = " is infeasible: fixels cannot free a blocked motion";
   EXPECT_EQ(FixtureMessage(a, s),
             "no fixels found: step 2 (t = 0 s (step 2, tick 0): the motion of C is blocked) is "
