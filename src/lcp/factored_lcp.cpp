@@ -11,26 +11,29 @@
 //
 //     C x = −q_R,   C = [M(R, Z) | d_R]   (k × k),
 //
-// while every basic w is w_i = q_i + M(i, Z) x (+ d_i z₀). We keep H = C⁻¹
-// explicitly (rows of H ↔ positions of Z, columns ↔ positions of R) and the
-// values x and w.
+// while every basic w is w_i = q_i + M(i, Z) x (+ d_i z₀). C is kept as an
+// updated block-LU factorisation (block_lu.h: the LU of C₀, the basis at the
+// last refactor, and the Schur complement of the rows and columns exchanged
+// since), never as an inverse, with the values x and w.
 //
 // Entering variable at level t. For z_c or z₀ with column a of [M | d]:
-// x(t) = x − t H a_R, w(t) = w + t (a − M(:, Z) H a_R). For w_c, c at
-// position s of R: x(t) = x + t H(:, s), w(t) = w + t M(:, Z) H(:, s). In
+// x(t) = x − t C⁻¹ a_R, w(t) = w + t (a − M(:, Z) C⁻¹ a_R). For w_c, c at
+// position s of R: x(t) = x + t C⁻¹ e_s, w(t) = w + t M(:, Z) C⁻¹ e_s. In
 // both, Δ (the rate of x) and ω (the rate of w) give the ratio test; the
-// pivot changes C by one row, one column, or both, and H follows by a rank-one
-// formula in O(k²):
-//   z enters, w_i leaves   C grows by row i and column a   (bordering)
-//   z enters, z_l leaves   column of z_l replaced by a      (Sherman–Morrison)
-//   w_c enters, w_i leaves row c replaced by row i          (Sherman–Morrison)
-//   w_c enters, z_l leaves row c and column z_l removed     (Schur complement)
-// Every kRevalueEvery pivots the values are recomputed from H and q; the
-// tight rows' residual |q_R + C x| then measures the drift of H, and H is
-// refactored from C by LU when that exceeds a tenth of the tie-breaking
+// pivot changes C by one row, one column, or both, each a border row or
+// column of the block-LU (one solve with C₀ and O(k m) each, m the border):
+//   z enters, w_i leaves   C grows by row i and column a
+//   z enters, z_l leaves   column of z_l replaced by a
+//   w_c enters, w_i leaves row c replaced by row i
+//   w_c enters, z_l leaves row c and column z_l removed
+// Every kRevalueEvery pivots the values are recomputed by a solve with q;
+// the tight rows' residual |q_R + C x| then measures the drift, and C₀ is
+// refactored from the data when that exceeds a tenth of the tie-breaking
 // perturbation or k/4 pivots have passed since the last factorisation (k the
-// basis order), and after a zero pivot element, before that pivot is retried
-// once. (Before: blindly every 400 pivots, whatever k.)
+// basis order), when the border outgrows BlockLu::MaxBorder(k), and after a
+// zero pivot element, before that pivot is retried once. (Before issue 13:
+// an explicit inverse H = C⁻¹ with rank-one updates, refactored every 400
+// pivots, later every k/4.)
 //
 // Ratio test: Harris's two passes with the pivot tolerance as the value
 // slack: of the candidates tied within roundoff, the largest pivot element
@@ -49,6 +52,7 @@
 #include <optional>
 #include <sstream>
 
+#include "block_lu.h"
 #include "cairn/core/check.h"
 #include "perturbation.h"
 
@@ -156,18 +160,17 @@ constexpr double kEps = std::numeric_limits<double>::epsilon();
 // Pivots between recomputations of the values from H (O(k² + nnz)), at
 // which H is also checked for drift.
 constexpr int kRevalueEvery = 25;
-// H is refactored (O(k³)) when the tight rows' residual exceeds this fraction
-// of the perturbation δ: drift that large could reorder the ties the
+// C₀ is refactored (O(k³)) when the tight rows' residual exceeds this
+// fraction of the perturbation δ: drift that large could reorder the ties the
 // perturbation breaks.
 constexpr double kDriftFraction = 0.1;
-// ... and at the latest after kRefactorPerOrder · k pivots (k the basis
-// order): the updates' error in directions the tight-row residual does not
-// see still reorders near ties. Measured on the 9 COMPAS shelf, snake, bridge
-// and cube-curve components (docs/benchmarks.md, "Degenerate contact LCPs"):
-// on drift alone 4 solved, every k pivots 6, every k/4 pivots 7. An LU and
-// inverse cost ≈ 8k³/3 flops against ≈ 3k² per pivot's updates, so the
-// refactor takes about three quarters of the path's time: still O(k²) per
-// pivot, amortised.
+// ... when the block-LU border outgrows BlockLu::MaxBorder(k), and at the
+// latest after kRefactorPerOrder · k pivots (k the basis order). The last
+// rule was measured with the explicit inverse this solver used before the
+// block-LU update (on the 9 COMPAS shelf, snake, bridge and cube-curve
+// components, docs/benchmarks.md, "Degenerate contact LCPs": refactoring on
+// drift alone solved 4, every k pivots 6, every k/4 pivots 7); it is kept as
+// a bound on the work between fresh factorisations.
 constexpr double kRefactorPerOrder = 0.25;
 
 enum class Role : unsigned char { kW, kZ, kNone };
@@ -175,6 +178,40 @@ enum class Role : unsigned char { kW, kZ, kNone };
 // How one attempt along Lemke's path ended.
 enum class PathEnd { kSolution, kRay, kPivotLimit, kSingular };
 
+// [M/s | d] as block_lu.h's matrix A: rows 0 … n−1, column key 0 the
+// covering vector d (z₀'s column), key j + 1 the column j of M/s.
+class ScaledColumns final : public lcp_internal::Entries {
+ public:
+  ScaledColumns(const FactoredLcpMatrix& M, const VectorX& d, double inv_s)
+      : M_(M), d_(d), inv_s_(inv_s) {}
+  int num_rows() const override { return M_.size(); }
+  int num_cols() const override { return M_.size() + 1; }
+  void Column(int key, VectorX* out) const override {
+    if (key == 0) {
+      *out = d_;
+      return;
+    }
+    M_.Column(key - 1, out);
+    *out *= inv_s_;
+  }
+  void Row(int row, VectorX* out) const override {
+    M_.Row(row, &row_);
+    out->resize(M_.size() + 1);
+    (*out)[0] = d_[row];
+    out->tail(M_.size()) = row_ * inv_s_;
+  }
+
+ private:
+  const FactoredLcpMatrix& M_;
+  const VectorX& d_;
+  double inv_s_;
+  mutable VectorX row_;
+};
+
+// Lemke's path on the factored LCP. The reduced basis C = [M/s | d](R, Z)
+// (R the rows whose w is nonbasic, Z the basic z and z₀) is kept as an
+// updated block-LU factorisation (block_lu.h); every rate and value is a
+// solve with it.
 class Path {
  public:
   Path(const FactoredLcpMatrix& M, const VectorX& q_scaled, double inv_scale, double tol,
@@ -192,15 +229,16 @@ class Path {
         d_(VectorX::Ones(n_)),
         a_(n_),
         omega_(n_),
-        scratch_(n_) {}
+        scratch_(n_),
+        entries_(M, d_, inv_scale),
+        lu_(entries_) {}
 
   int pivots() const { return pivots_; }
 
-  // Sets the complementary basis {z_i basic : basic_z[i]} and its values.
-  // Returns false when its reduced matrix is singular.
-  // Without `with_inverse` only the LU of C is made (enough for SolveWith):
-  // the O(k³) inverse is then left to EnsureInverse, needed only to pivot.
-  bool SetBasis(const std::vector<bool>& basic_z, bool with_inverse = true) {
+  // Sets the complementary basis {z_i basic : basic_z[i]} and factors it;
+  // with `values`, also its values for the current q. Returns false when its
+  // reduced matrix is singular.
+  bool SetBasis(const std::vector<bool>& basic_z, bool values = true) {
     rows_.clear();
     cols_.clear();
     for (int i = 0; i < n_; ++i) {
@@ -213,17 +251,9 @@ class Path {
       }
     }
     z0_pos_ = -1;
-    if (!Refactor(with_inverse)) return false;
-    if (with_inverse) RecomputeValues();
+    if (!Refactor()) return false;
+    if (values) RecomputeValues();
     return true;
-  }
-
-  // Makes H = C⁻¹ from the LU of the last Refactor, if not made yet.
-  bool EnsureInverse() {
-    if (h_valid_ || k() == 0) return true;
-    H_.topLeftCorner(k(), k()) = lu_.inverse();
-    h_valid_ = true;
-    return H_.topLeftCorner(k(), k()).allFinite();
   }
 
   // Replaces q (scaled) and recomputes the values.
@@ -233,29 +263,20 @@ class Path {
   }
 
   // z of the current complementary basis (z₀ not basic) for the scaled
-  // right-hand side `q_scaled`, from H with one step of iterative refinement
-  // through the data: O(k² + nnz), no factorisation.
+  // right-hand side `q_scaled`: a solve with C and one step of iterative
+  // refinement through the data (the residual q_R + M(R, Z) x).
   void SolveWith(const VectorX& q_scaled, VectorX* z) {
     CAIRN_CHECK(z0_pos_ < 0);
     const int kk = k();
     Restrict(q_scaled, &aR_);
-    if (!h_valid_) {  // straight after Refactor: C and its LU are current
-      VectorX x = lu_.solve(-aR_);
-      x += lu_.solve(-aR_ - C_ * x);
-      z->setZero(n_);
-      for (int p = 0; p < kk; ++p) (*z)[cols_[p]] = x[p];
-      return;
-    }
-    VectorX x = -(H_.topLeftCorner(kk, kk) * aR_);
-    for (int pass = 0; pass < 2; ++pass) {
-      // Residual of the tight rows: q_R + M(R, Z) x, which should be 0.
-      scratch_.setZero(n_);
-      M_.AddColumns(cols_, x.data(), &scratch_, &u_);
-      VectorX r(kk);
-      for (int s = 0; s < kk; ++s) r[s] = q_scaled[rows_[s]] + scratch_[rows_[s]] * inv_s_;
-      if (pass == 1) break;
-      x -= H_.topLeftCorner(kk, kk) * r;
-    }
+    VectorX x, dx;
+    SolveC(-aR_, &x);
+    scratch_.setZero(n_);
+    M_.AddColumns(cols_, x.data(), &scratch_, &u_);
+    VectorX r(kk);
+    for (int s = 0; s < kk; ++s) r[s] = q_scaled[rows_[s]] + scratch_[rows_[s]] * inv_s_;
+    SolveC(r, &dx);
+    x -= dx;
     z->setZero(n_);
     for (int p = 0; p < kk; ++p) (*z)[cols_[p]] = x[p];
   }
@@ -285,7 +306,7 @@ class Path {
       const std::optional<Leaving> leave = RatioTest();
       if (!leave) return PathEnd::kRay;
       if (!Exchange(enter_w ? -1 : c, enter_w ? c : -1, leave->row, leave->col, leave->theta)) {
-        // A zero pivot element from a drifted H: refactor and redo the
+        // A zero pivot element from drifted rates: refactor and redo the
         // ratio test once (the basis is unchanged); twice is a real failure.
         if (retried) return PathEnd::kSingular;
         retried = true;
@@ -295,6 +316,7 @@ class Path {
       }
       retried = false;
       ++pivots_;
+      if (broken_) return PathEnd::kSingular;
       if (z0_pos_ < 0) return PathEnd::kSolution;
     }
   }
@@ -324,13 +346,18 @@ class Path {
     for (int i = 0; i < n_; ++i)
       if (role_[i] == Role::kW) omega_[i] = 1.0;
     a_ = d_;
-    return Exchange(/*enter_z=*/-1, /*enter_w=*/-1, first_row, first_col, -v_min);
+    return Exchange(/*enter_z=*/-1, /*enter_w=*/-1, first_row, first_col, -v_min) && !broken_;
   }
 
-  // Every kRevalueEvery pivots: the values afresh from H, and H afresh from C
-  // when it has drifted (the tight rows' residual) or k/4 pivots have passed.
-  // False when C is singular.
+  // C₀ afresh when the border has outgrown MaxBorder; every kRevalueEvery
+  // pivots, the values afresh, and C₀ afresh when they have drifted (the
+  // tight rows' residual) or k/4 pivots have passed. False when C is
+  // singular.
   bool KeepAccurate() {
+    if (lu_.border() > lcp_internal::BlockLu::MaxBorder(k())) {
+      if (!Refactor()) return false;
+      RecomputeValues();
+    }
     if (pivots_ % kRevalueEvery != 0 || pivots_ == last_revalue_) return true;
     last_revalue_ = pivots_;
     RecomputeValues();
@@ -343,12 +370,13 @@ class Path {
   }
 
   // The rates Δ of x and ω of w as the entering variable grows: for w_c
-  // (position s of R), x(t) = x + t H(:, s); for z_c, with column a = M(:, c)/s,
-  // x(t) = x − t H a_R and w(t) = w + t (a − M(:, Z) H a_R).
+  // (position s of R), x(t) = x + t C⁻¹ e_s; for z_c, with column
+  // a = M(:, c)/s, x(t) = x − t C⁻¹ a_R and w(t) = w + t (a − M(:, Z) C⁻¹ a_R).
   void EnteringRates(int c, bool enter_w) {
     if (enter_w) {
-      const int s = row_pos_[c];
-      delta_ = H_.col(s).head(k());
+      unit_.setZero(k());
+      unit_[row_pos_[c]] = 1.0;
+      SolveC(unit_, &delta_);
       omega_.setZero(n_);
       M_.AddColumns(cols_z_view(), delta_view().data(), &omega_, &u_);
       omega_ *= inv_s_;
@@ -358,7 +386,8 @@ class Path {
     M_.Column(c, &a_);
     a_ *= inv_s_;
     Restrict(a_, &aR_);
-    delta_ = -(H_.topLeftCorner(k(), k()) * aR_);
+    SolveC(aR_, &delta_);
+    delta_ = -delta_;
     omega_ = a_;
     scratch_.setZero(n_);
     M_.AddColumns(cols_z_view(), delta_view().data(), &scratch_, &u_);
@@ -410,7 +439,7 @@ class Path {
   }
 
   // max |q_R + M(R, Z) x| over the tight rows (scaled; their w, 0 exactly),
-  // after RecomputeValues: how far H = C⁻¹ has drifted.
+  // after RecomputeValues: how far the solves with C have drifted.
   double TightResidual() const {
     double r = 0;
     for (int s = 0; s < k(); ++s) r = std::max(r, std::abs(w_[rows_[s]]));
@@ -458,40 +487,41 @@ class Path {
   }
 
   void EnsureCapacity(int size) {
-    if (H_.rows() >= size) return;
-    const int cap = std::max(size, 2 * static_cast<int>(H_.rows()) + 8);
-    H_.conservativeResize(cap, cap);
-    x_.conservativeResize(cap);
+    if (x_.size() >= size) return;
+    x_.conservativeResize(std::max(size, 2 * static_cast<int>(x_.size()) + 8));
   }
 
-  // Rebuilds C from the data and H = C⁻¹ by LU. False when C is singular.
-  bool Refactor(bool with_inverse = true) {
-    const int kk = k();
-    EnsureCapacity(kk + 1);
-    h_valid_ = kk == 0;
-    if (kk == 0) return true;
-    C_.resize(kk, kk);
-    for (int p = 0; p < kk; ++p) {
-      if (cols_[p] < 0) {
-        for (int s = 0; s < kk; ++s) C_(s, p) = d_[rows_[s]];
-      } else {
-        M_.Column(cols_[p], &scratch_);
-        for (int s = 0; s < kk; ++s) C_(s, p) = scratch_[rows_[s]] * inv_s_;
-      }
-    }
-    lu_.compute(C_);
+  // The keys of Z for BlockLu (z₀: 0, z_j: j + 1).
+  const std::vector<int>& ColKeys() {
+    col_keys_.resize(cols_.size());
+    for (size_t p = 0; p < cols_.size(); ++p) col_keys_[p] = cols_[p] + 1;
+    return col_keys_;
+  }
+
+  // x = C⁻¹ b for the current basis.
+  void SolveC(const VectorX& b, VectorX* x) { lu_.Solve(rows_, ColKeys(), b, x); }
+
+  // The block-LU exchanges of one pivot are done: S factored, or C₀
+  // refactored when S is singular to working precision (the pivot element
+  // passed its test, so that is roundoff); `broken_` when C itself is.
+  void FinishExchange() {
+    if (!lu_.Finish() && !Refactor()) broken_ = true;
+  }
+
+  // Factors C afresh from the data (BlockLu::Factor). False when C is
+  // singular.
+  bool Refactor() {
+    EnsureCapacity(k() + 1);
     last_refactor_ = pivots_;
-    const double u_min = lu_.matrixLU().diagonal().cwiseAbs().minCoeff();
-    const double c_max = C_.cwiseAbs().maxCoeff();
-    if (!(u_min > kk * kEps * c_max)) return false;
-    return !with_inverse || EnsureInverse();
+    return lu_.Factor(rows_, ColKeys());
   }
 
-  // x = −H q_R and w = q + [M/s | d](:, Z) x on the basic w.
+  // x = −C⁻¹ q_R and w = q + [M/s | d](:, Z) x on the basic w.
   void RecomputeValues() {
     Restrict(q_, &aR_);
-    x_.head(k()) = -(H_.topLeftCorner(k(), k()) * aR_);
-    delta_ = x_.head(k());
+    SolveC(aR_, &delta_);
+    delta_ = -delta_;
+    x_.head(k()) = delta_;
     scratch_.setZero(n_);
     M_.AddColumns(cols_z_view(), delta_view().data(), &scratch_, &u_);
     w_ = q_ + scratch_ * inv_s_;
@@ -552,60 +582,52 @@ class Path {
   }
 
   // z_var enters, w_i leaves: C grows by row i and the entering column
-  // (bordering). h = H a_R = −Δ; s = a_i − r·h = ω_i, the Schur complement.
+  // (bordering). Its pivot element is the Schur complement a_i − r C⁻¹ a_R
+  // = ω_i.
   bool Border(int var, int i, double theta) {
     const int kk = k();
-    const VectorX h = -delta_.head(kk);
-    RowOverZ(i, &r_);
     const double s = omega_[i];
     if (!(std::abs(s) > 0) || !std::isfinite(s)) return false;
     EnsureCapacity(kk + 1);
-    const VectorX rH = (r_.transpose() * H_.topLeftCorner(kk, kk)).transpose();
-    H_.topLeftCorner(kk, kk).noalias() += (h / s) * rH.transpose();
-    H_.block(0, kk, kk, 1) = -h / s;
-    H_.block(kk, 0, 1, kk) = -rH.transpose() / s;
-    H_(kk, kk) = 1.0 / s;
     rows_.push_back(i);
     row_pos_[i] = kk;
     cols_.push_back(var);
+    lu_.AddColumn(var + 1);
+    lu_.AddRow(i);
+    FinishExchange();
     PlaceColumn(var, kk, theta);
     LeaveRow(i);
     return true;
   }
 
   // z_var enters, the variable at position p of Z leaves: column p of C
-  // replaced by a (Sherman–Morrison).
+  // replaced by a. Pivot element (C⁻¹ a)_p = −Δ_p.
   bool ReplaceColumn(int var, int p, double theta) {
-    const int kk = k();
-    const VectorX h = -delta_.head(kk);
-    const double hp = h[p];
+    const double hp = -delta_[p];
     if (!(std::abs(hp) > 0) || !std::isfinite(hp)) return false;
-    const Eigen::RowVectorXd Hp = H_.row(p).head(kk) / hp;
-    VectorX u = h;
-    u[p] -= 1.0;
-    H_.topLeftCorner(kk, kk).noalias() -= u * Hp;
     const int leaving = cols_[p];
+    lu_.RemoveColumn(leaving + 1);
+    lu_.AddColumn(var + 1);
     cols_[p] = var;
+    FinishExchange();
     PlaceColumn(var, p, theta);
     LeaveColumn(leaving);
     return true;
   }
 
-  // w_c enters, w_i leaves: row c of C (position s) replaced by row i
-  // (Sherman–Morrison).
+  // w_c enters, w_i leaves: row c of C (position s) replaced by row i.
+  // Pivot element r C⁻¹ e_s = r · Δ, r = row i over Z.
   bool ReplaceRow(int c, int i, double theta) {
-    const int kk = k();
     const int s = row_pos_[c];
     RowOverZ(i, &r_);
-    const VectorX Hs = H_.col(s).head(kk);
-    Eigen::RowVectorXd rH = r_.transpose() * H_.topLeftCorner(kk, kk);
-    const double den = rH[s];
+    const double den = r_.dot(delta_.head(k()));
     if (!(std::abs(den) > 0) || !std::isfinite(den)) return false;
-    rH[s] -= 1.0;
-    H_.topLeftCorner(kk, kk).noalias() -= (Hs / den) * rH;
+    lu_.RemoveRow(c);
+    lu_.AddRow(i);
     rows_[s] = i;
     row_pos_[i] = s;
     row_pos_[c] = -1;
+    FinishExchange();
     role_[c] = Role::kW;
     w_[c] = theta;
     LeaveRow(i);
@@ -613,20 +635,18 @@ class Path {
   }
 
   // w_c enters, the variable at position p of Z leaves: row c (position s)
-  // and column p removed (Schur complement), the last position moved into
-  // the holes.
+  // and column p removed, the last position moved into the holes. Pivot
+  // element (C⁻¹ e_s)_p = Δ_p.
   bool Shrink(int c, int p, double theta) {
     const int kk = k();
     const int s = row_pos_[c];
-    const double hps = H_(p, s);
+    const double hps = delta_[p];
     if (!(std::abs(hps) > 0) || !std::isfinite(hps)) return false;
-    const VectorX Hcol = H_.col(s).head(kk);
-    const Eigen::RowVectorXd Hrow = H_.row(p).head(kk) / hps;
-    H_.topLeftCorner(kk, kk).noalias() -= Hcol * Hrow;
     const int last = kk - 1;
     const int leaving = cols_[p];
+    lu_.RemoveRow(c);
+    lu_.RemoveColumn(leaving + 1);
     if (p != last) {
-      H_.row(p).head(kk) = H_.row(last).head(kk);
       x_[p] = x_[last];
       cols_[p] = cols_[last];
       if (cols_[p] >= 0)
@@ -635,13 +655,13 @@ class Path {
         z0_pos_ = p;
     }
     if (s != last) {
-      H_.col(s).head(kk) = H_.col(last).head(kk);
       rows_[s] = rows_[last];
       row_pos_[rows_[s]] = s;
     }
     cols_.pop_back();
     rows_.pop_back();
     row_pos_[c] = -1;
+    FinishExchange();
     role_[c] = Role::kW;
     w_[c] = theta;
     LeaveColumn(leaving);
@@ -663,12 +683,12 @@ class Path {
   int none_ = -1;             // the index with w and z nonbasic
   bool last_left_z_ = false;  // the last variable to leave was a z
   int pivots_ = 0;
-  MatrixX H_, C_;
-  Eigen::PartialPivLU<MatrixX> lu_;  // of C_, as of the last Refactor
-  bool h_valid_ = false;             // H_ holds C⁻¹ (else only lu_ is current)
+  bool broken_ = false;  // C became singular in an exchange: the path ends
   VectorX x_, w_, d_;
-  VectorX a_, aR_, r_, delta_, omega_, scratch_, u_, delta_z_;
-  std::vector<int> cols_z_;
+  VectorX a_, aR_, r_, delta_, omega_, scratch_, u_, delta_z_, unit_;
+  std::vector<int> cols_z_, col_keys_;
+  ScaledColumns entries_;  // [M/s | d], read by lu_
+  lcp_internal::BlockLu lu_;
   // A basic variable that decreases along the entering direction.
   struct Candidate {
     double value;     // its value (scaled)
@@ -748,7 +768,7 @@ Attempt RunAttempt(const Problem& pb, const std::vector<bool>& start, uint64_t s
   Attempt a;
   const VectorX q_true = pb.q * pb.inv_s;
   Path path(pb.M, q_true, pb.inv_s, pb.tol, kDriftFraction * std::max(perturbation, pb.tol));
-  if (!path.SetBasis(start, /*with_inverse=*/false)) return a;
+  if (!path.SetBasis(start, /*values=*/false)) return a;
   if (std::find(start.begin(), start.end(), true) != start.end()) {
     VectorX z;
     path.SolveWith(q_true, &z);
@@ -760,7 +780,6 @@ Attempt RunAttempt(const Problem& pb, const std::vector<bool>& start, uint64_t s
   }
   VectorX qs = q_true;
   for (int i = 0; i < pb.n; ++i) qs[i] += perturbation * internal::PerturbationWeight(seed, i);
-  if (!path.EnsureInverse()) return a;
   path.SetQ(qs);
   a.end = path.Feasible(0.0) ? PathEnd::kSolution : path.Follow(limit);
   a.pivots = path.pivots();

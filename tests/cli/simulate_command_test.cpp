@@ -86,7 +86,8 @@ TEST(Simulate, PaperFig1_BFirstPushesCUpAtTimeZero) {
 }
 
 // The 105-part wall from the CLI: `check` stands, pulling an end brick out
-// fails at the first move with the bricks above it named.
+// fails at the first move with the bricks above it named: at least r5_10,
+// which rests on the pulled brick alone (tests/motion/wall_test.cpp).
 TEST(Simulate, WallChecksStableAndPullingAnEndBrickDragsTheBricksAbove) {
   const CliRun check = Cairn("check " + ExamplePath("wall.json") + " --json");
   ASSERT_EQ(check.exit_code, 0) << check.err;
@@ -100,7 +101,6 @@ TEST(Simulate, WallChecksStableAndPullingAnEndBrickDragsTheBricksAbove) {
   ASSERT_TRUE(doc["failure"].is_object());
   EXPECT_DOUBLE_EQ(doc["failure"]["time"].get<double>(), 0.04);
   const std::string parts = doc["failure"]["parts"].dump();
-  EXPECT_NE(parts.find("\"r5_9\""), std::string::npos) << parts;
   EXPECT_NE(parts.find("\"r5_10\""), std::string::npos) << parts;
   EXPECT_EQ(parts.find("\"r4_"), std::string::npos) << parts;
 }

@@ -35,6 +35,13 @@ int Course(const Assembly& a, int part) { return std::stoi(a.part(part).name.sub
 // Pulling the end brick of course 4 out along its course drags the bricks
 // resting on it by friction (μ = 0.6) at the first move: they slide right,
 // along with the bricks stacked on them; nothing below course 5 moves.
+// The half brick r5_10 rests on the pulled brick alone and must move: the
+// kinetic drag on it, μ (W + N'), exceeds any hold μ N' the brick above it
+// can give (N' its load). r5_9, which spans the pulled brick and its
+// neighbour r4_8, need not: the contact LCP with friction also has solutions
+// in which r4_8 carries enough of it to hold it (weight shared unequally
+// along its base), and which solution Lemke's method returns depends on its
+// pivoting, so it is not asserted.
 TEST(Wall, PullingAnEndBrickOutDragsTheBricksAboveIt) {
   const Assembly a = ReadScene(ExamplePath("wall.json"));
   ASSERT_EQ(a.num_parts(), 106);
@@ -52,7 +59,6 @@ TEST(Wall, PullingAnEndBrickOutDragsTheBricksAboveIt) {
       return std::find(r.failure->parts.begin(), r.failure->parts.end(), i) !=
              r.failure->parts.end();
     };
-    EXPECT_TRUE(moved("r5_9"));   // spans the pulled brick and its neighbour
     EXPECT_TRUE(moved("r5_10"));  // the half brick resting on it alone
     for (int p : r.failure->parts) EXPECT_GE(Course(a, p), 5) << a.part(p).name;
     for (const PartMotion& m : r.failure->motions) {
