@@ -5,8 +5,10 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <optional>
 #include <string>
+#include <unordered_map>
 
 namespace cairn {
 
@@ -229,29 +231,94 @@ void LoadRestLp(const ContactLcp& lcp, const RestLpMatrix& m, const ForceFreedom
   glp_scale_prob(lp, GLP_SF_EQ);
 }
 
-// A warm start from the last basis of this shape, else the slack basis (dual
-// feasible: every cost is ≥ 0 and every column at its bound 0).
-void StartBasis(const RestLpBasis* warm, int nrows, int ncols, glp_prob* lp) {
-  bool warmed = false;
-  if (warm && static_cast<int>(warm->rows.size()) == nrows &&
-      static_cast<int>(warm->cols.size()) == ncols) {
-    for (int r = 1; r <= nrows; ++r) glp_set_row_stat(lp, r, warm->rows[r - 1]);
-    for (int j = 1; j <= ncols; ++j) glp_set_col_stat(lp, j, warm->cols[j - 1]);
-    // Only a dual feasible basis is worth keeping: the dual simplex goes on
-    // from it, while from one that is not it needs a first phase that costs
-    // more (~900 iterations on the Jenga tower) than starting afresh (~400).
-    warmed = glp_warm_up(lp) == 0 && glp_get_dual_stat(lp) == GLP_FEAS;
-  }
-  if (!warmed) glp_std_basis(lp);
+// The keys of the LP's rows and columns (RestLpBasis): a balance row is its
+// body and free direction, a cone row its frictional contact (after every
+// body's), a column its LCP unknown.
+void LpKeys(const RestLpMatrix& m, std::vector<std::int64_t>* rows,
+            std::vector<std::int64_t>* cols) {
+  constexpr std::int64_t kConeRows = std::int64_t{1} << 40;
+  const int nb = static_cast<int>(m.B.size());
+  rows->assign(m.nrows, 0);
+  for (int b = 0; b < nb; ++b)
+    for (int k = m.first_row[b]; k < m.first_row[b + 1]; ++k)
+      (*rows)[k] = 8 * std::int64_t{b} + (k - m.first_row[b]);
+  for (int r = m.first_row[nb]; r < m.nrows; ++r) (*rows)[r] = kConeRows + (r - m.first_row[nb]);
+  cols->assign(m.ncols, 0);
+  for (size_t v = 0; v < m.col_of.size(); ++v)
+    if (m.col_of[v]) (*cols)[m.col_of[v] - 1] = static_cast<std::int64_t>(v);
 }
 
-// The dual simplex; on trouble on the way (a near-singular basis), once more
+// The statuses `warm` gives the rows and columns keyed `keys` (a row or
+// column it does not know: basic for a row, at its bound 0 for a column).
+std::vector<int> KeyedStatuses(const std::vector<int>& stat, const std::vector<std::int64_t>& from,
+                               const std::vector<std::int64_t>& keys, int unknown) {
+  if (from == keys) return stat;
+  std::unordered_map<std::int64_t, int> by_key;
+  by_key.reserve(from.size());
+  for (size_t i = 0; i < from.size(); ++i) by_key.emplace(from[i], stat[i]);
+  std::vector<int> out(keys.size(), unknown);
+  for (size_t i = 0; i < keys.size(); ++i)
+    if (const auto it = by_key.find(keys[i]); it != by_key.end()) out[i] = it->second;
+  return out;
+}
+
+// A warm start from the last basis, mapped by key onto this LP's rows and
+// columns (exactly nrows basic: rows made basic, or columns made nonbasic,
+// from the last, as needed), else the slack basis (dual feasible: every cost
+// is ≥ 0 and every column at its bound 0). Returns the simplex to run from
+// it: the dual one from a dual feasible basis, the primal one from a basis
+// that is only primal feasible (the forces of the last tick still balance
+// the parts, but the cheapest set has changed: a few primal iterations on
+// the Jenga pull, where the dual simplex afresh takes 350–430).
+int StartBasis(const RestLpBasis* warm, const RestLpMatrix& m, glp_prob* lp) {
+  if (warm && !warm->rows.empty() && warm->row_keys.size() == warm->rows.size() &&
+      warm->col_keys.size() == warm->cols.size()) {
+    std::vector<std::int64_t> row_keys, col_keys;
+    LpKeys(m, &row_keys, &col_keys);
+    std::vector<int> rows = KeyedStatuses(warm->rows, warm->row_keys, row_keys, GLP_BS);
+    std::vector<int> cols = KeyedStatuses(warm->cols, warm->col_keys, col_keys, GLP_NL);
+    // A row left without columns (a cone row whose forces are now held) can
+    // only be covered by its own slack.
+    std::vector<char> empty(m.nrows, 1);
+    for (size_t e = 1; e < m.ia.size(); ++e) empty[m.ia[e] - 1] = 0;
+    for (int r = 0; r < m.nrows; ++r)
+      if (empty[r]) rows[r] = GLP_BS;
+    int basic = static_cast<int>(std::count(rows.begin(), rows.end(), GLP_BS) +
+                                 std::count(cols.begin(), cols.end(), GLP_BS));
+    for (int r = m.nrows - 1; r >= 0 && basic < m.nrows; --r)
+      if (rows[r] != GLP_BS) rows[r] = GLP_BS, ++basic;
+    for (int j = m.ncols - 1; j >= 0 && basic > m.nrows; --j)
+      if (cols[j] == GLP_BS) cols[j] = GLP_NL, --basic;
+    for (int r = 1; r <= m.nrows; ++r) glp_set_row_stat(lp, r, rows[r - 1]);
+    for (int j = 1; j <= m.ncols; ++j) glp_set_col_stat(lp, j, cols[j - 1]);
+    // A basis neither primal nor dual feasible is not worth keeping: from it
+    // either simplex needs a first phase that costs more (~900 iterations on
+    // the Jenga tower) than the dual simplex afresh (~400).
+    if (glp_warm_up(lp) == 0) {
+      if (glp_get_dual_stat(lp) == GLP_FEAS) return GLP_DUALP;
+      if (glp_get_prim_stat(lp) == GLP_FEAS) return GLP_PRIMAL;
+    }
+  }
+  glp_std_basis(lp);
+  return GLP_DUALP;
+}
+
+// The LP's final basis, with its keys, for the next StartBasis.
+void KeepBasis(const RestLpMatrix& m, glp_prob* lp, RestLpBasis* warm) {
+  warm->rows.resize(m.nrows);
+  warm->cols.resize(m.ncols);
+  for (int r = 1; r <= m.nrows; ++r) warm->rows[r - 1] = glp_get_row_stat(lp, r);
+  for (int j = 1; j <= m.ncols; ++j) warm->cols[j - 1] = glp_get_col_stat(lp, j);
+  LpKeys(m, &warm->row_keys, &warm->col_keys);
+}
+
+// The simplex StartBasis chose; on trouble on the way (a near-singular basis), once more
 // from the slack basis with the primal simplex. GLPK's error code.
-int RunSimplex(glp_prob* lp, int* iterations) {
+int RunSimplex(glp_prob* lp, int method, int* iterations) {
   glp_smcp params;
   glp_init_smcp(&params);
   params.msg_lev = GLP_MSG_OFF;
-  params.meth = GLP_DUALP;
+  params.meth = method;
   params.tol_bnd = kBoundTolerance;
   int err = glp_simplex(lp, &params);
   *iterations = glp_get_it_cnt(lp);
@@ -284,10 +351,13 @@ RestSolution SolveRestLp(const ContactLcp& lcp, const std::vector<Vector6>& nu,
   const int terminal = glp_term_out(GLP_OFF);
   GlpProblem lp;
   LoadRestLp(lcp, m, *ff, fixed, lp.p);
-  StartBasis(warm, m.nrows, m.ncols, lp.p);
-  const int err = RunSimplex(lp.p, &out.iterations);
+  const int method = StartBasis(warm, m, lp.p);
+  const int err = RunSimplex(lp.p, method, &out.iterations);
   glp_term_out(terminal);
   const int status = glp_get_status(lp.p);
+  // The final basis is dual feasible when the dual simplex ends, whether it
+  // found the optimum or proved that no forces exist: either warm-starts.
+  if (warm && err == 0 && (status == GLP_OPT || status == GLP_NOFEAS)) KeepBasis(m, lp.p, warm);
   if (err == GLP_ENOPFS || status == GLP_NOFEAS) {
     out.outcome = RestSolution::Outcome::kNone;
     out.message = "no forces hold the parts at rest";
@@ -298,12 +368,6 @@ RestSolution SolveRestLp(const ContactLcp& lcp, const std::vector<Vector6>& nu,
     out.message =
         "GLPK simplex: error " + std::to_string(err) + ", status " + std::to_string(status);
     return out;
-  }
-  if (warm) {
-    warm->rows.resize(m.nrows);
-    warm->cols.resize(m.ncols);
-    for (int r = 1; r <= m.nrows; ++r) warm->rows[r - 1] = glp_get_row_stat(lp.p, r);
-    for (int j = 1; j <= m.ncols; ++j) warm->cols[j - 1] = glp_get_col_stat(lp.p, j);
   }
   // z = (p_n, β) from the LP (held values as given), λ from the hypothesis.
   const int nr = static_cast<int>(m.col_of.size());

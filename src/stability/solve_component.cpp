@@ -283,7 +283,12 @@ void SolveDriven(const ContactLcp& lcp, const SolveContext& ctx, ComponentSoluti
     if (r.outcome == RestSolution::Outcome::kNone) {
       out.rest_none = true;
       if (ctx.has_guided) {
-        r = FindRestSolution(lcp, nullptr, RestHypothesis::kGuidedFree);
+        // From the basis that proved the first LP infeasible: the same LP
+        // but for the guided parts' rows and forces (a copy, so that the
+        // next tick starts from this tick's first LP).
+        RestLpBasis guided;
+        if (ctx.rest_warm) guided = *ctx.rest_warm;
+        r = FindRestSolution(lcp, &guided, RestHypothesis::kGuidedFree);
         out.lp_iterations += r.iterations;
       }
     }

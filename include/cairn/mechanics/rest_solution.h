@@ -53,6 +53,7 @@
 /// stay put if some solution of the contact problem keeps them put (the
 /// question `cairn check` answers at rest with FindStaticEquilibrium).
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -61,10 +62,15 @@
 namespace cairn {
 
 /// The simplex basis (GLPK row and column statuses) of the last rest LP, to
-/// warm-start the next one of the same shape (a hint only: any basis, even a
-/// wrong one, gives the same verdict, only the iterations differ).
+/// warm-start the next one (a hint only: any basis, even a wrong one, gives
+/// the same verdict, only the iterations differ). Rows and columns are keyed
+/// by what they are in the LCP (a body's free direction, a contact's cone, an
+/// LCP unknown), so that an LP of another shape (contacts that opened or
+/// started to slide, a guided part's rows taken out) starts from the statuses
+/// of the rows and columns the two share.
 struct RestLpBasis {
   std::vector<int> rows, cols;
+  std::vector<std::int64_t> row_keys, col_keys;
 };
 
 /// The outcome of FindRestSolution.
