@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <unordered_map>
 
 #include "cairn/contact/polyhedron_contact.h"
 #include "cairn/core/tolerances.h"
@@ -260,6 +262,24 @@ bool BoxesTouch3(const Box3& x, const Box3& y, double tol) {
 
 }  // namespace
 
+// One pair's contacts at its placements (patches numbered from 0 within the
+// pair), keyed by (a, b).
+struct PairContactCache::Impl {
+  struct Entry {
+    Eigen::Isometry3d X_a, X_b;
+    std::vector<PolyhedronContactPoint> points;
+  };
+  double tol = 0, angle_tol = 0;
+  std::unordered_map<std::uint64_t, Entry> pairs;
+  int hits = 0;
+};
+
+PairContactCache::PairContactCache() : impl_(std::make_unique<Impl>()) {}
+PairContactCache::~PairContactCache() = default;
+PairContactCache::PairContactCache(PairContactCache&&) noexcept = default;
+PairContactCache& PairContactCache::operator=(PairContactCache&&) noexcept = default;
+int PairContactCache::hits() const { return impl_->hits; }
+
 namespace {
 
 // The configuration's shapes placed in the world: 2-D polygons or 3-D
@@ -354,8 +374,32 @@ std::vector<std::pair<int, int>> CandidatePairs(const Assembly& assembly,
 // The contacts of one pair (i, j). The movable part of a movable–fixed pair
 // is made part a, so that "the force on a" is the force on the part that
 // might move.
+// The polyhedron contacts of parts a and b, from the cache when neither has
+// moved since it last computed them.
+const std::vector<PolyhedronContactPoint>& PolyhedronPair(const Assembly& assembly,
+                                                          const PlacedParts& placed, int a, int b,
+                                                          double tol, double angle_tol,
+                                                          PairContactCache::Impl& cache) {
+  const std::uint64_t key = (static_cast<std::uint64_t>(a) << 32) | static_cast<std::uint32_t>(b);
+  auto [it, added] = cache.pairs.try_emplace(key);
+  PairContactCache::Impl::Entry& e = it->second;
+  const auto same = [](const Eigen::Isometry3d& x, const Eigen::Isometry3d& y) {
+    return std::equal(x.data(), x.data() + 16, y.data());
+  };
+  if (!added && same(e.X_a, placed.X[a]) && same(e.X_b, placed.X[b])) {
+    ++cache.hits;
+    return e.points;
+  }
+  e.X_a = placed.X[a];
+  e.X_b = placed.X[b];
+  e.points = FindPolyhedronContacts(*assembly.part(a).polyhedron, placed.X[a],
+                                    *assembly.part(b).polyhedron, placed.X[b], tol, angle_tol);
+  return e.points;
+}
+
 void PairContacts(const Assembly& assembly, const PlacedParts& placed, int i, int j, double tol,
-                  double angle_tol, std::vector<Contact>& contacts, int& patches) {
+                  double angle_tol, std::vector<Contact>& contacts, int& patches,
+                  PairContactCache::Impl* cache) {
   const double mu = assembly.Friction(i, j);
   const bool swap = assembly.part(i).fixed;
   const int a = swap ? j : i, b = swap ? i : j;
@@ -364,9 +408,12 @@ void PairContacts(const Assembly& assembly, const PlacedParts& placed, int i, in
     return;
   }
   const size_t before = contacts.size();
+  std::vector<PolyhedronContactPoint> computed;
+  if (!cache)
+    computed = FindPolyhedronContacts(*assembly.part(a).polyhedron, placed.X[a],
+                                      *assembly.part(b).polyhedron, placed.X[b], tol, angle_tol);
   for (const PolyhedronContactPoint& p :
-       FindPolyhedronContacts(*assembly.part(a).polyhedron, placed.X[a],
-                              *assembly.part(b).polyhedron, placed.X[b], tol, angle_tol)) {
+       cache ? PolyhedronPair(assembly, placed, a, b, tol, angle_tol, *cache) : computed) {
     Contact c;
     c.part_a = a;
     c.part_b = b;
@@ -431,8 +478,15 @@ void FixtureContacts(const Assembly& assembly, const Configuration& config,
 }  // namespace
 
 std::vector<Contact> DetectContacts(const Assembly& assembly, const Configuration& config,
-                                    double tol, double angle_tol, ContactStats* stats) {
+                                    double tol, double angle_tol, ContactStats* stats,
+                                    PairContactCache* cache) {
   const PlacedParts placed = PlaceParts(assembly, config);
+  PairContactCache::Impl* pair_cache = cache ? &cache->impl() : nullptr;
+  if (pair_cache && (pair_cache->tol != tol || pair_cache->angle_tol != angle_tol)) {
+    pair_cache->pairs.clear();
+    pair_cache->tol = tol;
+    pair_cache->angle_tol = angle_tol;
+  }
   ContactStats local;
   std::vector<Contact> contacts;
   int patches = 0;
@@ -442,7 +496,7 @@ std::vector<Contact> DetectContacts(const Assembly& assembly, const Configuratio
     for (const auto& [i, j] : CandidatePairs(assembly, config, placed.boxes, tol)) {
       ++local.pairs_tested;
       const size_t before = contacts.size();
-      PairContacts(assembly, placed, i, j, tol, angle_tol, contacts, patches);
+      PairContacts(assembly, placed, i, j, tol, angle_tol, contacts, patches, pair_cache);
       if (contacts.size() > before) ++local.pairs_touching;
     }
   }

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <unordered_map>
@@ -111,12 +112,15 @@ struct RestLpMatrix {
   int nrows = 0;
   std::vector<int> ia{0}, ja{0};
   std::vector<double> ar{0.0};
+  std::vector<std::int64_t> row_keys, col_keys;  // RestLpBasis's keys (LpKeys)
   void Add(int row, int col, double value) {
     ia.push_back(row), ja.push_back(col), ar.push_back(value);
   }
 };
 
 void DropRoundoff(RestLpMatrix& m);
+void LpKeys(const ContactLcp& lcp, const RestLpMatrix& m, std::vector<std::int64_t>* rows,
+            std::vector<std::int64_t>* cols);
 
 const JacobianRow& RowOf(const ContactLcp& lcp, int v) {
   const int nc = static_cast<int>(lcp.contacts.size());
@@ -165,6 +169,7 @@ RestLpMatrix BuildRestLpMatrix(const ContactLcp& lcp, const ForceFreedom& ff,
       if (m.col_of[nc + D * f + k]) m.Add(row, m.col_of[nc + D * f + k], -1.0);
   }
   DropRoundoff(m);
+  LpKeys(lcp, m, &m.row_keys, &m.col_keys);
   return m;
 }
 
@@ -180,16 +185,24 @@ void DropRoundoff(RestLpMatrix& m) {
   m.ia.resize(kept), m.ja.resize(kept), m.ar.resize(kept);
 }
 
-// The bounds and costs: each balance row equals minus the momentum and the
-// external and held impulses in the body's free directions; a cone row is
-// free (its contact held), tight (sliding) or ≥ 0 (sticking); every column ≥ 0
-// with cost 1.
-void LoadRestLp(const ContactLcp& lcp, const RestLpMatrix& m, const ForceFreedom& ff,
-                const std::vector<double>& fixed, glp_prob* lp) {
+// The bounds of the rows: each balance row equals minus the momentum and
+// the external and held impulses in the body's free directions; a cone row is
+// free (its contact held), tight (sliding) or ≥ 0 (sticking). GLPK's type and
+// value per row.
+struct RowBounds {
+  std::vector<int> type;
+  std::vector<double> value;
+};
+
+RowBounds RestLpRowBounds(const ContactLcp& lcp, const RestLpMatrix& m, const ForceFreedom& ff,
+                          const std::vector<double>& fixed) {
   const int nb = static_cast<int>(lcp.bodies.size());
   const int nc = static_cast<int>(lcp.contacts.size());
   const int nf = lcp.num_friction;
   const int nr = nc + lcp.num_directions * nf;
+  RowBounds rb;
+  rb.type.assign(m.nrows, GLP_FX);
+  rb.value.assign(m.nrows, 0.0);
   // The impulses of the held unknowns on each body: moved to the right-hand side.
   std::vector<Vector6> held(nb, Vector6::Zero());
   for (int v = 0; v < nr; ++v) {
@@ -198,9 +211,6 @@ void LoadRestLp(const ContactLcp& lcp, const RestLpMatrix& m, const ForceFreedom
     for (int s = 0; s < 2; ++s)
       if (r.body[s] >= 0) held[r.body[s]] += r.g[s] * fixed[v];
   }
-  glp_set_obj_dir(lp, GLP_MIN);
-  if (m.nrows > 0) glp_add_rows(lp, m.nrows);
-  if (m.ncols > 0) glp_add_cols(lp, m.ncols);
   for (int b = 0; b < nb; ++b) {
     const BodyDynamics& body = lcp.bodies[b];
     Matrix6 M = Matrix6::Zero();
@@ -208,18 +218,65 @@ void LoadRestLp(const ContactLcp& lcp, const RestLpMatrix& m, const ForceFreedom
     M.bottomRightCorner<3, 3>() = body.inertia;
     const VectorX rhs = -(m.B[b].transpose() * (M * body.FreeProjector() * body.nu_prev +
                                                 body.F_ext * lcp.dt + held[b]));
-    for (int k = 0; k < rhs.size(); ++k)
-      glp_set_row_bnds(lp, m.first_row[b] + k + 1, GLP_FX, rhs[k], rhs[k]);
+    for (int k = 0; k < rhs.size(); ++k) rb.value[m.first_row[b] + k] = rhs[k];
   }
   std::vector<char> held_contact(nf, 0);
   for (int c = 0; c < nc; ++c)
     if (lcp.friction_of[c] >= 0 && std::isfinite(fixed[c])) held_contact[lcp.friction_of[c]] = 1;
   for (int f = 0; f < nf; ++f)
-    glp_set_row_bnds(lp, m.first_row[nb] + f + 1,
-                     held_contact[f] ? GLP_FR
-                     : ff.sliding[f] ? GLP_FX
-                                     : GLP_LO,
-                     0.0, 0.0);
+    rb.type[m.first_row[nb] + f] = held_contact[f] ? GLP_FR : ff.sliding[f] ? GLP_FX : GLP_LO;
+  return rb;
+}
+
+// The LP's matrix by columns (GLPK's 1-based row indices), to load a column
+// or compare it with the last tick's.
+struct ColumnMatrix {
+  std::vector<int> start;  // (ncols + 1) into rows/values, 0-based
+  std::vector<int> rows;
+  std::vector<double> values;
+};
+
+ColumnMatrix ByColumns(const RestLpMatrix& m) {
+  ColumnMatrix cm;
+  cm.start.assign(m.ncols + 2, 0);
+  for (size_t e = 1; e < m.ia.size(); ++e) ++cm.start[m.ja[e] + 1];
+  for (int j = 1; j <= m.ncols + 1; ++j) cm.start[j] += cm.start[j - 1];
+  cm.rows.resize(m.ia.size() - 1);
+  cm.values.resize(m.ia.size() - 1);
+  std::vector<int> next(cm.start.begin(), cm.start.end() - 1);
+  for (size_t e = 1; e < m.ia.size(); ++e) {
+    const int at = next[m.ja[e]]++;
+    cm.rows[at] = m.ia[e];
+    cm.values[at] = m.ar[e];
+  }
+  cm.start.erase(cm.start.begin());  // start[j - 1] .. start[j]: column j (1-based)
+  return cm;
+}
+
+}  // namespace
+
+// The GLPK problem of the last rest LP, kept (RestLpBasis::problem) so that
+// the next tick's LP, when it has the same rows and columns (the same keys),
+// is updated in place: only the columns whose coefficients changed (the
+// moving part's contacts) and the right-hand sides are loaded again, instead
+// of building, loading and scaling the whole LP (0.9 ms of a Jenga tick's
+// 4 ms). The scale factors of the first load are kept.
+struct RestLpProblem {
+  GlpProblem lp;
+  std::vector<std::int64_t> row_keys, col_keys;
+  ColumnMatrix columns;
+  RowBounds bounds;
+};
+
+namespace {
+
+// A fresh problem: rows, columns (≥ 0, cost 1), matrix, equilibration scaling.
+void LoadRestLp(const RestLpMatrix& m, const RowBounds& rb, glp_prob* lp) {
+  glp_set_obj_dir(lp, GLP_MIN);
+  if (m.nrows > 0) glp_add_rows(lp, m.nrows);
+  if (m.ncols > 0) glp_add_cols(lp, m.ncols);
+  for (int r = 1; r <= m.nrows; ++r)
+    glp_set_row_bnds(lp, r, rb.type[r - 1], rb.value[r - 1], rb.value[r - 1]);
   for (int j = 1; j <= m.ncols; ++j) {
     glp_set_col_bnds(lp, j, GLP_LO, 0.0, 0.0);
     glp_set_obj_coef(lp, j, 1.0);
@@ -231,21 +288,114 @@ void LoadRestLp(const ContactLcp& lcp, const RestLpMatrix& m, const ForceFreedom
   glp_scale_prob(lp, GLP_SF_EQ);
 }
 
+// The kept problem brought to this LP (same keys): the columns and row
+// bounds that differ, loaded again.
+void UpdateRestLp(const ColumnMatrix& columns, const RowBounds& rb, RestLpProblem& kept) {
+  glp_prob* lp = kept.lp.p;
+  const int ncols = static_cast<int>(columns.start.size()) - 1;
+  std::vector<int> ind{0};
+  std::vector<double> val{0.0};
+  for (int j = 1; j <= ncols; ++j) {
+    const int b = columns.start[j - 1], e = columns.start[j];
+    const int kb = kept.columns.start[j - 1], ke = kept.columns.start[j];
+    if (e - b == ke - kb &&
+        std::equal(columns.rows.begin() + b, columns.rows.begin() + e,
+                   kept.columns.rows.begin() + kb) &&
+        std::equal(columns.values.begin() + b, columns.values.begin() + e,
+                   kept.columns.values.begin() + kb))
+      continue;
+    ind.assign(columns.rows.begin() + b, columns.rows.begin() + e);
+    val.assign(columns.values.begin() + b, columns.values.begin() + e);
+    ind.insert(ind.begin(), 0);
+    val.insert(val.begin(), 0.0);
+    glp_set_mat_col(lp, j, e - b, ind.data(), val.data());
+  }
+  for (size_t r = 0; r < rb.type.size(); ++r)
+    if (rb.type[r] != kept.bounds.type[r] || rb.value[r] != kept.bounds.value[r])
+      glp_set_row_bnds(lp, static_cast<int>(r) + 1, rb.type[r], rb.value[r], rb.value[r]);
+}
+
+// The problem this LP is solved in: the kept one, updated, when it has the
+// same rows and columns and nothing else holds it (the guided LP works on a
+// copy of the basis); else a fresh one, kept in `warm` for the next tick.
+std::shared_ptr<RestLpProblem> LoadOrUpdate(const RestLpMatrix& m, RowBounds rb,
+                                            RestLpBasis* warm) {
+  ColumnMatrix columns = ByColumns(m);
+  if (warm && warm->problem && warm->problem.use_count() == 1 &&
+      warm->problem->row_keys == m.row_keys && warm->problem->col_keys == m.col_keys) {
+    UpdateRestLp(columns, rb, *warm->problem);
+    warm->problem->columns = std::move(columns);
+    warm->problem->bounds = std::move(rb);
+    return warm->problem;
+  }
+  auto kept = std::make_shared<RestLpProblem>();
+  LoadRestLp(m, rb, kept->lp.p);
+  kept->row_keys = m.row_keys;
+  kept->col_keys = m.col_keys;
+  kept->columns = std::move(columns);
+  kept->bounds = std::move(rb);
+  if (warm) warm->problem = kept;
+  return kept;
+}
+
+// A contact's identity from one tick to the next: its parts and features,
+// and its rank among the contacts of the component with the same ones (the
+// corners of one face-face patch). Its index in the LCP is no identity: when
+// a contact opens, every later one shifts, and a basis keyed by index would
+// start the next LP from statuses of other contacts (the Jenga pull's ticks
+// 16 and 32: 343 and 365 dual simplex iterations).
+std::vector<std::uint64_t> ContactKeys(const ContactLcp& lcp) {
+  const auto mix = [](std::uint64_t h, std::uint64_t v) {  // splitmix64 of h ^ v
+    std::uint64_t z = (h ^ v) + 0x9e3779b97f4a7c15ULL;
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+    return z ^ (z >> 31);
+  };
+  std::vector<std::uint64_t> keys(lcp.contacts.size());
+  std::unordered_map<std::uint64_t, std::uint64_t> seen;
+  for (size_t c = 0; c < keys.size(); ++c) {
+    const Contact& k = lcp.contacts[c];
+    std::uint64_t h = mix(0, static_cast<std::uint64_t>(k.part_a + 2));
+    h = mix(h, static_cast<std::uint64_t>(k.part_b + 2));
+    h = mix(h, static_cast<std::uint64_t>(k.feature));
+    h = mix(h, static_cast<std::uint64_t>(k.index_a + 2));
+    h = mix(h, static_cast<std::uint64_t>(k.index_b + 2));
+    keys[c] = mix(h, seen[h]++);
+  }
+  return keys;
+}
+
 // The keys of the LP's rows and columns (RestLpBasis): a balance row is its
 // body and free direction, a cone row its frictional contact (after every
-// body's), a column its LCP unknown.
-void LpKeys(const RestLpMatrix& m, std::vector<std::int64_t>* rows,
+// body's), a column its contact and which of its unknowns (p_n, β_k) it is.
+void LpKeys(const ContactLcp& lcp, const RestLpMatrix& m, std::vector<std::int64_t>* rows,
             std::vector<std::int64_t>* cols) {
-  constexpr std::int64_t kConeRows = std::int64_t{1} << 40;
   const int nb = static_cast<int>(m.B.size());
+  const int nc = static_cast<int>(lcp.contacts.size());
+  const int D = lcp.num_directions;
+  const std::vector<std::uint64_t> contact = ContactKeys(lcp);
+  std::vector<int> contact_of_friction(lcp.num_friction, -1);
+  for (int c = 0; c < nc; ++c)
+    if (lcp.friction_of[c] >= 0) contact_of_friction[lcp.friction_of[c]] = c;
+  // Balance rows: small nonnegative numbers; cone rows and columns: hashes
+  // with the top bit set (a collision only costs iterations: a hint).
+  const auto hashed = [](std::uint64_t h) {
+    return static_cast<std::int64_t>(h | (std::uint64_t{1} << 63));
+  };
   rows->assign(m.nrows, 0);
   for (int b = 0; b < nb; ++b)
     for (int k = m.first_row[b]; k < m.first_row[b + 1]; ++k)
       (*rows)[k] = 8 * std::int64_t{b} + (k - m.first_row[b]);
-  for (int r = m.first_row[nb]; r < m.nrows; ++r) (*rows)[r] = kConeRows + (r - m.first_row[nb]);
+  for (int r = m.first_row[nb]; r < m.nrows; ++r)
+    (*rows)[r] = hashed(contact[contact_of_friction[r - m.first_row[nb]]]);
   cols->assign(m.ncols, 0);
-  for (size_t v = 0; v < m.col_of.size(); ++v)
-    if (m.col_of[v]) (*cols)[m.col_of[v] - 1] = static_cast<std::int64_t>(v);
+  for (size_t v = 0; v < m.col_of.size(); ++v) {
+    if (!m.col_of[v]) continue;
+    const int vi = static_cast<int>(v);
+    const int c = vi < nc ? vi : contact_of_friction[(vi - nc) / D];
+    const std::uint64_t which = vi < nc ? 0 : 1 + (vi - nc) % D;
+    (*cols)[m.col_of[v] - 1] = hashed(contact[c] * 131 + which);
+  }
 }
 
 // The statuses `warm` gives the rows and columns keyed `keys` (a row or
@@ -262,27 +412,68 @@ std::vector<int> KeyedStatuses(const std::vector<int>& stat, const std::vector<s
   return out;
 }
 
+// How the simplex starts from the basis StartBasis set: the dual simplex
+// from a dual feasible basis, the primal one from a primal feasible one; a
+// basis feasible neither way (the contacts changed under it) is made dual
+// feasible by shifting the costs of the columns whose reduced costs are
+// negative, and the dual simplex then runs on the shifted costs; once it has
+// a primal feasible basis, the costs are restored and the primal simplex
+// finishes (cost shifting, as the dual simplex codes of CPLEX and HiGHS
+// do). Feasibility does not depend on the costs, so an infeasibility proof
+// on the shifted costs is one for the LP.
+struct SimplexStart {
+  int method = GLP_DUALP;
+  std::vector<int> shifted;  // columns whose cost was raised (restored to 1 after)
+};
+
+// Reduced costs above this (relative to the unit costs) count as nonnegative.
+constexpr double kDualFeasibility = 1e-9;
+
+// Raises the cost of each column at its bound 0 whose reduced cost d_j is
+// negative by 2|d_j| (so d_j becomes |d_j| > 0). False when a row's dual is
+// of the wrong sign: rows have no cost to shift (the caller restarts).
+bool ShiftCosts(glp_prob* lp, const RestLpMatrix& m, SimplexStart* start) {
+  for (int r = 1; r <= m.nrows; ++r) {
+    const int stat = glp_get_row_stat(lp, r);
+    const double d = glp_get_row_dual(lp, r);
+    if ((stat == GLP_NL && d < -kDualFeasibility) || (stat == GLP_NU && d > kDualFeasibility) ||
+        (stat == GLP_NF && std::abs(d) > kDualFeasibility))
+      return false;
+  }
+  for (int j = 1; j <= m.ncols; ++j) {
+    if (glp_get_col_stat(lp, j) != GLP_NL) continue;
+    const double d = glp_get_col_dual(lp, j);
+    if (d >= -kDualFeasibility) continue;
+    glp_set_obj_coef(lp, j, 1.0 - 2.0 * d);
+    start->shifted.push_back(j);
+  }
+  return true;
+}
+
 // A warm start from the last basis, mapped by key onto this LP's rows and
 // columns (exactly nrows basic: rows made basic, or columns made nonbasic,
 // from the last, as needed), else the slack basis (dual feasible: every cost
 // is ≥ 0 and every column at its bound 0). Returns the simplex to run from
-// it: the dual one from a dual feasible basis, the primal one from a basis
-// that is only primal feasible (the forces of the last tick still balance
-// the parts, but the cheapest set has changed: a few primal iterations on
-// the Jenga pull, where the dual simplex afresh takes 350–430).
-int StartBasis(const RestLpBasis* warm, const RestLpMatrix& m, glp_prob* lp) {
+// it (SimplexStart). On the Jenga pull a kept basis is dual feasible while
+// the contacts do not change (0 iterations), primal feasible where the
+// forces of the last tick still balance the parts but the cheapest set has
+// changed (a few primal iterations, where the dual simplex afresh takes
+// 350–430), and feasible neither way where contacts open or close.
+SimplexStart StartBasis(const RestLpBasis* warm, const RestLpMatrix& m, glp_prob* lp) {
+  SimplexStart start;
   if (warm && !warm->rows.empty() && warm->row_keys.size() == warm->rows.size() &&
       warm->col_keys.size() == warm->cols.size()) {
-    std::vector<std::int64_t> row_keys, col_keys;
-    LpKeys(m, &row_keys, &col_keys);
-    std::vector<int> rows = KeyedStatuses(warm->rows, warm->row_keys, row_keys, GLP_BS);
-    std::vector<int> cols = KeyedStatuses(warm->cols, warm->col_keys, col_keys, GLP_NL);
-    // A row left without columns (a cone row whose forces are now held) can
-    // only be covered by its own slack.
-    std::vector<char> empty(m.nrows, 1);
-    for (size_t e = 1; e < m.ia.size(); ++e) empty[m.ia[e] - 1] = 0;
+    std::vector<int> rows = KeyedStatuses(warm->rows, warm->row_keys, m.row_keys, GLP_BS);
+    std::vector<int> cols = KeyedStatuses(warm->cols, warm->col_keys, m.col_keys, GLP_NL);
+    // A row that no basic column touches (its columns opened, or its
+    // forces are now held) makes the basis singular unless its own slack is
+    // basic: those first, then other rows from the last, until nrows are
+    // basic.
+    std::vector<char> covered(m.nrows, 0);
+    for (size_t e = 1; e < m.ia.size(); ++e)
+      if (cols[m.ja[e] - 1] == GLP_BS) covered[m.ia[e] - 1] = 1;
     for (int r = 0; r < m.nrows; ++r)
-      if (empty[r]) rows[r] = GLP_BS;
+      if (!covered[r]) rows[r] = GLP_BS;
     int basic = static_cast<int>(std::count(rows.begin(), rows.end(), GLP_BS) +
                                  std::count(cols.begin(), cols.end(), GLP_BS));
     for (int r = m.nrows - 1; r >= 0 && basic < m.nrows; --r)
@@ -291,16 +482,18 @@ int StartBasis(const RestLpBasis* warm, const RestLpMatrix& m, glp_prob* lp) {
       if (cols[j] == GLP_BS) cols[j] = GLP_NL, --basic;
     for (int r = 1; r <= m.nrows; ++r) glp_set_row_stat(lp, r, rows[r - 1]);
     for (int j = 1; j <= m.ncols; ++j) glp_set_col_stat(lp, j, cols[j - 1]);
-    // A basis neither primal nor dual feasible is not worth keeping: from it
-    // either simplex needs a first phase that costs more (~900 iterations on
-    // the Jenga tower) than the dual simplex afresh (~400).
     if (glp_warm_up(lp) == 0) {
-      if (glp_get_dual_stat(lp) == GLP_FEAS) return GLP_DUALP;
-      if (glp_get_prim_stat(lp) == GLP_FEAS) return GLP_PRIMAL;
+      if (glp_get_dual_stat(lp) == GLP_FEAS) return start;
+      start.method = GLP_PRIMAL;
+      if (glp_get_prim_stat(lp) == GLP_FEAS) return start;
+      start.method = GLP_DUALP;
+      if (ShiftCosts(lp, m, &start)) return start;
+      for (int j : start.shifted) glp_set_obj_coef(lp, j, 1.0);
+      start.shifted.clear();
     }
   }
   glp_std_basis(lp);
-  return GLP_DUALP;
+  return start;
 }
 
 // The LP's final basis, with its keys, for the next StartBasis.
@@ -309,25 +502,36 @@ void KeepBasis(const RestLpMatrix& m, glp_prob* lp, RestLpBasis* warm) {
   warm->cols.resize(m.ncols);
   for (int r = 1; r <= m.nrows; ++r) warm->rows[r - 1] = glp_get_row_stat(lp, r);
   for (int j = 1; j <= m.ncols; ++j) warm->cols[j - 1] = glp_get_col_stat(lp, j);
-  LpKeys(m, &warm->row_keys, &warm->col_keys);
+  warm->row_keys = m.row_keys;
+  warm->col_keys = m.col_keys;
 }
 
-// The simplex StartBasis chose; on trouble on the way (a near-singular basis), once more
-// from the slack basis with the primal simplex. GLPK's error code.
-int RunSimplex(glp_prob* lp, int method, int* iterations) {
+// The simplex StartBasis chose (on shifted costs: then, from the optimum of
+// the shifted LP, the primal simplex on the true costs); on trouble on the
+// way (a near-singular basis), once more from the slack basis with the primal
+// simplex. GLPK's error code.
+int RunSimplex(glp_prob* lp, const SimplexStart& start, int* iterations) {
+  // GLPK counts iterations over the problem's life (it is kept between LPs).
+  const int before = glp_get_it_cnt(lp);
   glp_smcp params;
   glp_init_smcp(&params);
   params.msg_lev = GLP_MSG_OFF;
-  params.meth = method;
+  params.meth = start.method;
   params.tol_bnd = kBoundTolerance;
   int err = glp_simplex(lp, &params);
-  *iterations = glp_get_it_cnt(lp);
+  if (!start.shifted.empty()) {
+    for (int j : start.shifted) glp_set_obj_coef(lp, j, 1.0);
+    if (err == 0 && glp_get_status(lp) == GLP_OPT) {
+      params.meth = GLP_PRIMAL;
+      err = glp_simplex(lp, &params);
+    }
+  }
   if (err != 0 && err != GLP_ENOPFS && err != GLP_ENODFS) {
     glp_std_basis(lp);
     params.meth = GLP_PRIMAL;
     err = glp_simplex(lp, &params);
-    *iterations += glp_get_it_cnt(lp);
   }
+  *iterations = glp_get_it_cnt(lp) - before;
   return err;
 }
 
@@ -349,15 +553,16 @@ RestSolution SolveRestLp(const ContactLcp& lcp, const std::vector<Vector6>& nu,
   // GLPK reports to the terminal whatever msg_lev says; the CLI's stdout may
   // be a JSON document.
   const int terminal = glp_term_out(GLP_OFF);
-  GlpProblem lp;
-  LoadRestLp(lcp, m, *ff, fixed, lp.p);
-  const int method = StartBasis(warm, m, lp.p);
-  const int err = RunSimplex(lp.p, method, &out.iterations);
+  const std::shared_ptr<RestLpProblem> problem =
+      LoadOrUpdate(m, RestLpRowBounds(lcp, m, *ff, fixed), warm);
+  glp_prob* lp = problem->lp.p;
+  const SimplexStart method = StartBasis(warm, m, lp);
+  const int err = RunSimplex(lp, method, &out.iterations);
   glp_term_out(terminal);
-  const int status = glp_get_status(lp.p);
+  const int status = glp_get_status(lp);
   // The final basis is dual feasible when the dual simplex ends, whether it
   // found the optimum or proved that no forces exist: either warm-starts.
-  if (warm && err == 0 && (status == GLP_OPT || status == GLP_NOFEAS)) KeepBasis(m, lp.p, warm);
+  if (warm && err == 0 && (status == GLP_OPT || status == GLP_NOFEAS)) KeepBasis(m, lp, warm);
   if (err == GLP_ENOPFS || status == GLP_NOFEAS) {
     out.outcome = RestSolution::Outcome::kNone;
     out.message = "no forces hold the parts at rest";
@@ -373,7 +578,7 @@ RestSolution SolveRestLp(const ContactLcp& lcp, const std::vector<Vector6>& nu,
   const int nr = static_cast<int>(m.col_of.size());
   out.z = VectorX::Zero(lcp.size());
   for (int v = 0; v < nr; ++v) {
-    if (m.col_of[v]) out.z[v] = std::max(0.0, glp_get_col_prim(lp.p, m.col_of[v]));
+    if (m.col_of[v]) out.z[v] = std::max(0.0, glp_get_col_prim(lp, m.col_of[v]));
     if (std::isfinite(fixed[v])) out.z[v] = fixed[v];
   }
   for (int f = 0; f < lcp.num_friction; ++f) out.z[nr + f] = ff->lambda[f];

@@ -6,6 +6,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "scene_builders.h"
+
 namespace cairn {
 namespace {
 
@@ -122,6 +124,49 @@ TEST(CornerCorner, DiagonalCornersKeepBothNormals) {
 
 TEST(Separated, FarApartPolygonsDoNotTouch) {
   EXPECT_TRUE(Touch(Rect(0, 0, 1, 1), Rect(3, 3, 4, 4)).empty());
+}
+
+// PairContactCache: along a path one part moves; the pairs of the others are
+// answered from the cache, and the contacts are exactly (bitwise, in order)
+// those DetectContacts finds without it, at every step, including the steps
+// where the moved block's contacts change (it slides off its support's
+// edge onto the table).
+TEST(PairContactCache, GivesExactlyTheContactsOfComputingThemAgain) {
+  AssemblyDef def;
+  def.friction = 0.5;
+  def.gravity = Vector3(0, 0, -9.81);
+  def.parts.push_back(testing::Box3("table", {-2, -1, -0.1}, {2, 1, 0}, true));
+  def.parts.push_back(testing::Box3("base", {-0.5, -0.5, 0}, {0.5, 0.5, 0.2}));
+  def.parts.push_back(testing::Box3("top", {-0.2, -0.2, 0.2}, {0.2, 0.2, 0.4}));
+  def.parts.push_back(testing::Box3("side", {0.5, -0.2, 0}, {0.7, 0.2, 0.2}));
+  const Assembly a = Assembly::Create(def);
+  Configuration config = Configuration::Assembled(a);
+  PairContactCache cache;
+  const int top = a.FindPart("top");
+  int compared = 0;
+  for (int step = 0; step <= 12; ++step) {
+    config.poses[top].translation = Vector3(0.05 * step, 0, 0);  // over base, then past its edge
+    const std::vector<Contact> cold = DetectContacts(a, config, kTol, kAngle);
+    const int hits_before = cache.hits();
+    const std::vector<Contact> warm = DetectContacts(a, config, kTol, kAngle, nullptr, &cache);
+    ASSERT_EQ(cold.size(), warm.size()) << "step " << step;
+    for (size_t k = 0; k < cold.size(); ++k) {
+      EXPECT_EQ(cold[k].part_a, warm[k].part_a);
+      EXPECT_EQ(cold[k].part_b, warm[k].part_b);
+      EXPECT_EQ(cold[k].p_WC, warm[k].p_WC);
+      EXPECT_EQ(cold[k].n_W, warm[k].n_W);
+      EXPECT_EQ(cold[k].gap, warm[k].gap);
+      EXPECT_EQ(cold[k].feature, warm[k].feature);
+      EXPECT_EQ(cold[k].index_a, warm[k].index_a);
+      EXPECT_EQ(cold[k].index_b, warm[k].index_b);
+      EXPECT_EQ(cold[k].patch, warm[k].patch);
+      ++compared;
+    }
+    // From the second step on, every pair without the moved block is a hit:
+    // base-table, side-table, base-side.
+    if (step > 0) EXPECT_EQ(cache.hits() - hits_before, 3) << "step " << step;
+  }
+  EXPECT_GT(compared, 0);
 }
 
 }  // namespace

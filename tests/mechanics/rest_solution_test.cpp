@@ -31,13 +31,15 @@ Assembly Blocks(bool rider) {
   return Assembly::Create(def);
 }
 
-// The Stewart–Trinkle LCP of A pulled along +x (guided), the rest judged.
-ContactLcp PulledLcp(const Assembly& a) {
+// The Stewart–Trinkle LCP of A pulled along +x (guided), the rest judged;
+// A moved `dx` along its path first.
+ContactLcp PulledLcp(const Assembly& a, double dx = 0) {
   const DriveInputs d = testing::PullAlongX(a, a.FindPart("A"), kSpeed);
   StabilityOptions options;
   options.dt = kDt;
-  const std::vector<ContactLcp> lcps =
-      BuildComponentLcps(a, Configuration::Assembled(a), options, &d);
+  Configuration config = Configuration::Assembled(a);
+  config.poses[a.FindPart("A")].translation.x() += dx;
+  const std::vector<ContactLcp> lcps = BuildComponentLcps(a, config, options, &d);
   EXPECT_EQ(lcps.size(), 1u);
   return lcps.at(0);
 }
@@ -92,6 +94,34 @@ TEST(FindRestSolution, ABasisOfAnotherShapeWarmStartsByKey) {
     EXPECT_NEAR(warm.z.sum(), cold.z.sum(), 1e-9 * cold.z.cwiseAbs().sum());  // least total force
   }
   EXPECT_NE(from_full.rows.size(), basis.rows.size());  // another shape indeed
+}
+
+// Along a path the LP of the next tick has the same rows and columns, with
+// the moved part's coefficients changed: the kept problem is updated in place
+// (the same object), and its answer is the one a fresh LP gives: an LCP
+// solution with the least total force, in no more iterations.
+TEST(FindRestSolution, TheNextTicksLpIsTheKeptProblemUpdatedInPlace) {
+  const Assembly a = Blocks(false);
+  RestLpBasis basis;
+  ASSERT_EQ(FindRestSolution(PulledLcp(a), &basis).outcome, RestSolution::Outcome::kFound);
+  ASSERT_NE(basis.problem, nullptr);
+  const RestLpProblem* kept = basis.problem.get();
+  for (double dx : {0.01, 0.02, 0.05}) {
+    const ContactLcp lcp = PulledLcp(a, dx);
+    const RestSolution fresh = FindRestSolution(lcp);
+    const RestSolution updated = FindRestSolution(lcp, &basis);
+    ASSERT_EQ(updated.outcome, RestSolution::Outcome::kFound) << updated.message;
+    EXPECT_EQ(basis.problem.get(), kept) << "dx " << dx;
+    EXPECT_TRUE(IsContactLcpSolution(lcp, updated.z, 1e-9));
+    EXPECT_NEAR(updated.z.sum(), fresh.z.sum(), 1e-9 * fresh.z.cwiseAbs().sum());
+    EXPECT_LE(updated.iterations, fresh.iterations);
+  }
+  // A copy that solves an LP of another shape (the guided-free one) takes a
+  // problem of its own and leaves the kept one to the original.
+  RestLpBasis copy = basis;
+  FindRestSolution(PulledLcp(Blocks(true)), &copy, RestHypothesis::kGuidedFree);
+  EXPECT_NE(copy.problem.get(), kept);
+  EXPECT_EQ(basis.problem.get(), kept);
 }
 
 }  // namespace

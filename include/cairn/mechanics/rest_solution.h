@@ -54,6 +54,7 @@
 /// question `cairn check` answers at rest with FindStaticEquilibrium).
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -68,9 +69,15 @@ namespace cairn {
 /// LCP unknown), so that an LP of another shape (contacts that opened or
 /// started to slide, a guided part's rows taken out) starts from the statuses
 /// of the rows and columns the two share.
+struct RestLpProblem;  // rest_solution.cpp: the solver's problem, kept between LPs
 struct RestLpBasis {
   std::vector<int> rows, cols;
   std::vector<std::int64_t> row_keys, col_keys;
+  /// The last LP itself, updated in place when the next has the same rows
+  /// and columns (only the moving part's columns and the right-hand sides
+  /// change along a path). Shared by copies; a copy that solves another LP
+  /// replaces its own pointer, never the problem behind it.
+  std::shared_ptr<RestLpProblem> problem;
 };
 
 /// The outcome of FindRestSolution.
