@@ -57,7 +57,9 @@ void ApplyModelFlags(const ModelArgs& args, const std::string& file, AssemblyDef
                        "must have " + std::to_string(dim) + " numbers in a " + std::to_string(dim) +
                            "-D scene, not " + std::to_string(args.gravity.size()));
     def.gravity = Vector3(args.gravity[0], args.gravity[1], is3 ? args.gravity[2] : 0.0);
+    def.gravity_option = "--gravity";
   }
+  if (args.tolerance) def.tolerance_option = "--tolerance";
 }
 
 }  // namespace

@@ -80,6 +80,10 @@ struct AssemblyDef {
   int friction_directions = 0;
   std::vector<FrictionPairDef> friction_pairs;
   double tolerance = 0;  ///< contact distance tolerance (length); ≤ 0: scaled to the scene
+  /// The command-line options that set `tolerance` and `gravity` instead of
+  /// the file (e.g. "--tolerance"), if any: a fault of either is then
+  /// reported against the option, not the file.
+  std::string tolerance_option, gravity_option;
   std::vector<PartDef> parts;
   std::vector<FixtureDef> fixtures;
   std::vector<InterfaceDef> interfaces;  ///< given contacts (3-D); empty: found from the shapes
