@@ -11,6 +11,7 @@
 #include "cairn/core/error.h"
 #include "cairn/io/compas_reader.h"
 #include "cairn/io/scene_reader.h"
+#include "cli/output_files.h"
 
 namespace cairn::cli {
 
@@ -112,26 +113,16 @@ Model LoadModel(const std::string& file, const ModelArgs& args) {
 }
 
 void WriteAtomically(const std::string& path, const std::string& text, const std::string& flag) {
-  const std::string tmp = path + ".tmp";
-  {
-    std::ofstream f(tmp, std::ios::binary);
-    if (!(f << text) || !f.flush()) {
-      std::remove(tmp.c_str());
-      throw InputError("", flag, "cannot write '" + path + "'");
-    }
-  }
-  std::error_code ec;
-  std::filesystem::rename(tmp, path, ec);
-  if (ec) {
-    std::remove(tmp.c_str());
-    throw InputError("", flag, "cannot write '" + path + "': " + ec.message());
-  }
+  OutputFiles files;
+  files.Add(path, text, flag);
+  files.Commit();
 }
 
 int ResolvePart(const Assembly& assembly, const std::string& name, const std::string& flag,
                 const std::string& file) {
+  if (name.empty()) throw InputError("", flag, "a part name is empty");
   const int i = assembly.FindPart(name);
-  if (i < 0) throw InputError("", flag, "no part named '" + name + "' in " + file);
+  if (i < 0) throw InputError("", flag, "no part named '" + EscapedName(name) + "' in " + file);
   return i;
 }
 
@@ -139,8 +130,11 @@ std::optional<int> ResolveNormalize(const Assembly& assembly, const std::string&
                                     const std::string& file) {
   if (name.empty()) return std::nullopt;
   const int i = ResolvePart(assembly, name, "--normalize", file);
-  if (assembly.part(i).mass <= 0)
-    throw InputError("", "--normalize", "part '" + name + "' has no weight");
+  if (!(assembly.part(i).mass * assembly.gravity().norm() > 0))
+    throw InputError("", "--normalize",
+                     "part '" + EscapedName(name) + "' has no weight (" +
+                         (assembly.gravity().norm() > 0 ? "no mass" : "the scene has no gravity") +
+                         "): forces cannot be given in units of it");
   return i;
 }
 
@@ -152,6 +146,15 @@ Configuration WithoutParts(const Assembly& assembly, const std::vector<std::stri
     config.present[i] = false;
     taken.push_back(i);
   }
+  // A scene of fixed parts alone is stable (nothing can move); taking away
+  // every movable one leaves nothing to ask about.
+  bool movable = false, had_movable = false;
+  for (int i = 0; i < assembly.num_parts(); ++i) {
+    had_movable = had_movable || !assembly.part(i).fixed;
+    movable = movable || (config.present[i] && !assembly.part(i).fixed);
+  }
+  if (had_movable && !movable)
+    throw InputError("", "--without", "takes away every movable part: nothing is left to check");
   return config;
 }
 

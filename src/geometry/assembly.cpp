@@ -152,16 +152,33 @@ std::string ShapePath(const PartDef& p, int i) {
 }
 
 // A 2-D part's validated polygon and mass properties.
-Part Make2dPart(const PartDef& p, const std::string& path, double tol, const Validator& check) {
-  const int nv = static_cast<int>(p.polygon.size());
-  for (int k = 1; k < nv; ++k) {
-    for (int l = 0; l < k; ++l) {
-      if ((p.polygon[k] - p.polygon[l]).norm() <= tol) {
-        check.Fail(path + Indexed("", k), "self-intersecting: vertex " + std::to_string(k) +
-                                              " repeats vertex " + std::to_string(l));
-      }
+// The first vertex k (in order) within tol of an earlier vertex l: (k, l).
+// A sweep over the vertices sorted by x, comparing each with those within
+// tol in x: O(n log n) for any polygon whose vertices do not crowd into one
+// tol-wide column.
+std::optional<std::pair<int, int>> RepeatedVertex(const Polygon& poly, double tol) {
+  const int n = static_cast<int>(poly.size());
+  std::vector<int> order(n);
+  std::iota(order.begin(), order.end(), 0);
+  std::sort(order.begin(), order.end(), [&](int a, int b) {
+    return poly[a].x() < poly[b].x() || (poly[a].x() == poly[b].x() && a < b);
+  });
+  std::optional<std::pair<int, int>> first;
+  for (int s = 0; s < n; ++s) {
+    for (int t = s + 1; t < n && poly[order[t]].x() - poly[order[s]].x() <= tol; ++t) {
+      if ((poly[order[t]] - poly[order[s]]).norm() > tol) continue;
+      const int k = std::max(order[s], order[t]), l = std::min(order[s], order[t]);
+      if (!first || std::make_pair(k, l) < *first) first = std::make_pair(k, l);
     }
   }
+  return first;
+}
+
+Part Make2dPart(const PartDef& p, const std::string& path, double tol, const Validator& check) {
+  if (const auto r = RepeatedVertex(p.polygon, tol))
+    check.Fail(path + Indexed("", r->first), "self-intersecting: vertex " +
+                                                 std::to_string(r->first) + " repeats vertex " +
+                                                 std::to_string(r->second));
   const auto box = BoundingBox(p.polygon);
   const double size = (box.second - box.first).norm();
   if (Collinear(p.polygon, tol)) check.Fail(path, "has zero area: its vertices are collinear");

@@ -27,8 +27,10 @@ using nlohmann::json;
 // `path.key`, or `key` at the top level. The key is escaped as in JSON
 // (EscapedName): a key of the file with a quote or a newline cannot break the
 // one-line message.
+// An empty key is written `""`, so that the message still names it.
 inline std::string Child(const std::string& path, const std::string& key) {
-  return path.empty() ? EscapedName(key) : path + "." + EscapedName(key);
+  const std::string name = key.empty() ? "\"\"" : EscapedName(key);
+  return path.empty() ? name : path + "." + name;
 }
 
 // `path[i]`.

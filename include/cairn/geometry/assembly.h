@@ -168,6 +168,9 @@ class Assembly {
   bool IsFrictionless() const;
   /// The diagonal of the bounding box of all parts (length).
   double scene_size() const { return scene_size_; }
+  /// The largest weight of a movable part, m |g| (force units; 0 without
+  /// gravity): the scale of the scene's forces.
+  double max_weight() const { return max_weight_; }
   /// The contact distance tolerance (length): the scene's, or 1e-6 · size.
   double length_tolerance() const { return tolerances_.length; }
   /// All tolerances, scaled to this scene for a time step `dt` (s).
