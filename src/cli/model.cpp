@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "cairn/core/error.h"
+#include "cairn/core/tolerances.h"
 #include "cairn/io/compas_reader.h"
 #include "cairn/io/scene_reader.h"
 #include "cli/output_files.h"
@@ -24,9 +25,10 @@ void CheckModelFlags(const ModelArgs& args) {
     if (!std::isfinite(*args.friction))
       throw InputError("", "--friction",
                        "must be a finite number (got " + FormatNumber(*args.friction) + ")");
-    if (*args.friction < 0)
+    if (*args.friction < 0 || *args.friction > limits::kMaxFriction)
       throw InputError("", "--friction",
-                       "must not be negative (got " + FormatNumber(*args.friction) + ")");
+                       "must be from 0 to " + FormatNumber(limits::kMaxFriction) + " (got " +
+                           FormatNumber(*args.friction) + ")");
   }
   if (args.tolerance && !(std::isfinite(*args.tolerance) && *args.tolerance > 0))
     throw InputError("", "--tolerance",

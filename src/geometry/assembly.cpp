@@ -56,6 +56,13 @@ class Validator {
     FiniteNumber(x, path);
     if (x < 0) Fail(path, "must not be negative (got " + FormatNumber(x) + ")");
   }
+  // A friction coefficient: 0 to limits::kMaxFriction.
+  void Friction(double mu, const std::string& path) const {
+    NonNegative(mu, path);
+    if (mu > limits::kMaxFriction)
+      Fail(path, "is out of range (got " + FormatNumber(mu) + "; at most " +
+                     FormatNumber(limits::kMaxFriction) + ")");
+  }
   // A point within the coordinate range (limits::kMaxCoordinate).
   template <typename V>
   void Coordinates(const V& v, const std::string& path) const {
@@ -266,7 +273,7 @@ SceneNumbers ReadSceneNumbers(const AssemblyDef& def, bool is3, const Validator&
                         FormatNumber(limits::kMinGravity) + " and " +
                         FormatNumber(limits::kMaxGravity) + " length/s²)");
   if (!is3 && out.gravity.z() != 0) check.Fail("gravity", "must have z = 0 in a 2-D scene");
-  check.NonNegative(def.friction, "friction");
+  check.Friction(def.friction, "friction");
   if (!std::isfinite(def.tolerance))
     check.FailValue(def.tolerance_option, "tolerance",
                     "must be a finite number (got " + FormatNumber(def.tolerance) + ")");
@@ -483,7 +490,7 @@ std::vector<std::pair<std::pair<int, int>, double>> MakeFrictionPairs(const Asse
     if (a < 0) check.Fail(path + ".parts[0]", "no part named '" + EscapedName(fp.part_a) + "'");
     if (b < 0) check.Fail(path + ".parts[1]", "no part named '" + EscapedName(fp.part_b) + "'");
     if (a == b) check.Fail(path + ".parts[1]", "names part '" + EscapedName(fp.part_a) + "' twice");
-    check.NonNegative(fp.mu, path + ".mu");
+    check.Friction(fp.mu, path + ".mu");
     const std::pair<int, int> key{std::min(a, b), std::max(a, b)};
     for (int l = 0; l < k; ++l) {
       if (pair_mu[l].first == key) {

@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "cairn/core/error.h"
+#include "cairn/core/tolerances.h"
 #include "cairn/core/types.h"
 
 namespace cairn::io_internal {
@@ -110,6 +111,15 @@ class JsonChecker {
     if (!j.is_number()) Fail(path, "must be a number, not " + Article(j));
     const double x = j.get<double>();
     if (!std::isfinite(x)) Fail(path, "must be a finite number (got " + Num(x) + ")");
+    return x;
+  }
+
+  // A coordinate (length units): finite and within limits::kMaxCoordinate.
+  double Coordinate(const json& j, const std::string& path) const {
+    const double x = Number(j, path);
+    if (std::abs(x) > limits::kMaxCoordinate)
+      Fail(path, "coordinate out of range (got " + Num(x) + "; |x| ≤ " +
+                     Num(limits::kMaxCoordinate) + " length units)");
     return x;
   }
 

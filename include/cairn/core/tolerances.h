@@ -49,6 +49,10 @@ inline constexpr double kMinMass = 1e-30, kMaxMass = 1e30;
 /// The heaviest movable part at most this many times the lightest: the
 /// contact problem's matrix W M⁻¹ Wᵀ has entries in the ratio of the masses.
 inline constexpr double kMaxMassRatio = 1e9;
+/// Coulomb friction coefficients (dimensionless): at most this. A contact
+/// that must never slide is modelled well by μ = 100 already; the friction
+/// pyramid's generators n + μ d lose the normal's digits beyond this.
+inline constexpr double kMaxFriction = 1e3;
 /// |g| (length/s²): zero (no gravity) or within these.
 inline constexpr double kMinGravity = 1e-9, kMaxGravity = 1e9;
 }  // namespace limits
