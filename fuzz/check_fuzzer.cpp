@@ -14,8 +14,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     // Small scenes only: the target is the numerics' robustness, not speed.
     if (a.num_parts() > 12) return;
     int vertices = 0;
-    for (int i = 0; i < a.num_parts(); ++i)
-      vertices += static_cast<int>(a.part(i).vertices.size());
+    for (int i = 0; i < a.num_parts(); ++i) vertices += static_cast<int>(a.part(i).vertices.size());
     if (vertices > 200) return;
     const cairn::StabilityResult r =
         cairn::AnalyzeConfiguration(a, cairn::Configuration::Assembled(a), {});

@@ -5,8 +5,10 @@
 #include "fuzz_input.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
-  static const cairn::Assembly fig1 = cairn::ReadScene(CAIRN_SOURCE_DIR "/examples/paper_fig1.json");
-  static const cairn::Assembly fig9 = cairn::ReadScene(CAIRN_SOURCE_DIR "/examples/paper_fig9.json");
+  static const cairn::Assembly fig1 =
+      cairn::ReadScene(CAIRN_SOURCE_DIR "/examples/paper_fig1.json");
+  static const cairn::Assembly fig9 =
+      cairn::ReadScene(CAIRN_SOURCE_DIR "/examples/paper_fig9.json");
   if (size == 0) return 0;
   const cairn::Assembly& scene = data[0] % 2 ? fig9 : fig1;
   return cairn::fuzz::Run("plan_fuzzer", [&] {

@@ -27,9 +27,9 @@ Bytes Slurp(const std::filesystem::path& p) {
 }
 
 // Numbers a mutation may write in place of one in the text.
-const char* const kExtremes[] = {"1e308", "-1e308", "1e-320", "5e-324", "0", "-0", "1e400",
-                                 "nan",   "1e12",   "-1",     "2147483648", "1e-9", "[]", "{}",
-                                 "null",  "\"\"",   "true"};
+const char* const kExtremes[] = {"1e308", "-1e308", "1e-320", "5e-324", "0",          "-0",
+                                 "1e400", "nan",    "1e12",   "-1",     "2147483648", "1e-9",
+                                 "[]",    "{}",     "null",   "\"\"",   "true"};
 
 Bytes Mutate(const std::vector<Bytes>& corpus, std::mt19937_64& rng) {
   Bytes b = corpus[rng() % corpus.size()];
@@ -44,13 +44,15 @@ Bytes Mutate(const std::vector<Bytes>& corpus, std::mt19937_64& rng) {
         b.insert(b.begin() + static_cast<long>(at), static_cast<uint8_t>(rng()));
         break;
       case 2:  // delete a run
-        if (!b.empty()) b.erase(b.begin() + static_cast<long>(at),
-                                b.begin() + static_cast<long>(std::min(b.size(), at + 1 + rng() % 8)));
+        if (!b.empty())
+          b.erase(b.begin() + static_cast<long>(at),
+                  b.begin() + static_cast<long>(std::min(b.size(), at + 1 + rng() % 8)));
         break;
       case 3: {  // splice in a piece of another input
         const Bytes& o = corpus[rng() % corpus.size()];
         if (o.empty()) break;
-        const size_t from = rng() % o.size(), len = 1 + rng() % std::min<size_t>(64, o.size() - from);
+        const size_t from = rng() % o.size(),
+                     len = 1 + rng() % std::min<size_t>(64, o.size() - from);
         b.insert(b.begin() + static_cast<long>(at), o.begin() + static_cast<long>(from),
                  o.begin() + static_cast<long>(from + len));
         break;

@@ -25,10 +25,13 @@ void CheckModelFlags(const ModelArgs& args) {
     if (!std::isfinite(*args.friction))
       throw InputError("", "--friction",
                        "must be a finite number (got " + FormatNumber(*args.friction) + ")");
-    if (*args.friction < 0 || *args.friction > limits::kMaxFriction)
+    if (*args.friction < 0)
       throw InputError("", "--friction",
-                       "must be from 0 to " + FormatNumber(limits::kMaxFriction) + " (got " +
-                           FormatNumber(*args.friction) + ")");
+                       "must not be negative (got " + FormatNumber(*args.friction) + ")");
+    if (*args.friction > limits::kMaxFriction)
+      throw InputError("", "--friction",
+                       "is out of range (got " + FormatNumber(*args.friction) + "; at most " +
+                           FormatNumber(limits::kMaxFriction) + ")");
   }
   if (args.tolerance && !(std::isfinite(*args.tolerance) && *args.tolerance > 0))
     throw InputError("", "--tolerance",
