@@ -16,6 +16,7 @@
 #include "cli/command.h"
 #include "cli/model.h"
 #include "cli/output_files.h"
+#include "cli/progress.h"
 #include "cli/scene_writer.h"
 
 namespace cairn::cli {
@@ -51,7 +52,14 @@ int RunPlan(const PlanArgs& args, std::ostream& out, std::ostream& err) {
       options.keep.push_back(ResolvePart(assembly, name, "--keep", args.scene));
     if (!args.paths.empty()) options.given_paths = ReadCandidatePaths(args.paths, assembly);
 
+    // A long search says where it is, on a terminal.
+    Progress progress("cairn plan");
+    options.on_progress = [&](const PlannerStats& s) {
+      progress.Show(std::to_string(s.node_checks) + " nodes checked, " +
+                    std::to_string(s.path_simulations) + " paths simulated");
+    };
     const PlannerResult result = PlanDisassembly(model.def, assembly, options);
+    progress.Done();
 
     // Everything is computed before anything is written.
     const std::string text = args.json ? PlannerToJson(assembly, result, args.scene).dump(2) + "\n"

@@ -326,6 +326,7 @@ void Planner::CheckNodes(std::vector<int> nodes) {
     node_contacts_[nodes[k]] = std::move(contacts[k]);
   }
   result_.stats.node_checks += static_cast<int>(nodes.size());
+  if (opt_.on_progress) opt_.on_progress(result_.stats);
 }
 
 // How far a straight removal goes: until the bounding box of S clears the
@@ -593,6 +594,7 @@ void Planner::EvaluateEdges(const std::vector<int>& edges) {
     result_.stats.decided_by_nodes += work[k].by_nodes;
     result_.stats.pruned_by_proposition_1 += work[k].pruned;
   }
+  if (opt_.on_progress) opt_.on_progress(result_.stats);
 }
 
 // Full enumeration, by the number of parts present, largest first: expand

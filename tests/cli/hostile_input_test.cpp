@@ -83,6 +83,18 @@ TEST(HostileScene, APartFarAwayNamesTheScaleNotAnInnocentPart) {
   }
 }
 
+// In 3-D: a box with faces of area 64, and another 1e9 away; the face used
+// to be "zero area" under the tolerance the far box made.
+TEST(HostileScene, AFarThreeDPartNamesTheScaleNotAZeroAreaFace) {
+  const json doc = json::parse(R"({"cairn": 1, "parts": [
+      {"name": "table", "fixed": true, "box": {"min": [-10, -10, -1], "max": [10, 10, 0]}},
+      {"name": "slab", "box": {"min": [0, 0, 0], "max": [8, 8, 1]}},
+      {"name": "far", "box": {"min": [1e9, 0, 0], "max": [1000000001, 1, 1]}}]})");
+  const CliRun r = Cairn("check " + Write("hostile_far3.json", doc));
+  ExpectBadInput(r, {"spans too many orders of magnitude"});
+  EXPECT_EQ(r.err.find("zero area"), std::string::npos) << r.err;
+}
+
 TEST(HostileScene, ACoarseToleranceIsTheOptionsFault) {
   const CliRun r = Cairn("check " + ExamplePath("stack3.json") + " --tolerance 10");
   ExpectBadInput(r, {"--tolerance: too coarse", "'A'"});

@@ -42,6 +42,7 @@
 /// sequences; dead nodes are memoised.
 
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <optional>
 #include <string>
@@ -56,6 +57,8 @@ namespace cairn {
 
 /// Which support modes straight removals are tried with.
 enum class SupportChoice { kFull, kNone, kBoth };
+
+struct PlannerStats;
 
 /// Options of PlanDisassembly.
 struct PlannerOptions {
@@ -82,6 +85,9 @@ struct PlannerOptions {
   /// Keep the whole graph (nodes and edges with their verdicts) in the result
   /// (for --dot and --json).
   bool keep_graph = true;
+  /// Called on the calling thread after each batch of node checks and of
+  /// edge evaluations, with the statistics so far (the CLI's progress line).
+  std::function<void(const PlannerStats&)> on_progress;
 };
 
 /// One candidate path of an edge, as checked.
