@@ -283,7 +283,7 @@ std::string WithoutTimes(const std::string& doc) {
 }
 
 TEST(Determinism, PlanGivesTheSameDocumentWithOneOrTwoThreads) {
-  for (const std::string args : {"plan " + ExamplePath("jenga.json") + " --max 2 --json",
+  for (const std::string& args : {"plan " + ExamplePath("jenga.json") + " --max 2 --json",
                                  "plan " + ExamplePath("paper_fig6.json") + " --json"}) {
     const CliRun one = Cairn(args + " --threads 1");
     const CliRun two = Cairn(args + " --threads 2");
@@ -306,7 +306,7 @@ TEST(Determinism, CheckSimulateAndBlockingRepeatToTheByte) {
     return j.dump();
   };
   EXPECT_EQ(strip(s1.out), strip(s2.out));
-  for (const std::string args : {"check " + ExamplePath("wall.json") + " --json",
+  for (const std::string& args : {"check " + ExamplePath("wall.json") + " --json",
                                  "blocking " + ExamplePath("paper_fig9.json") + " --json"})
     EXPECT_EQ(Cairn(args).out, Cairn(args).out) << args;
 }
