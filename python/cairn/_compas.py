@@ -71,7 +71,7 @@ def fill_forces(doc, r):
                 used[k] = True
                 f_v += -on_a[k] if a == u else on_a[k]
             along = float(f_v @ n)
-            forces.append({"c_np": max(along, 0.0), "c_nn": max(-along, 0.0),
+            forces.append({"c_np": max(0.0, along), "c_nn": max(0.0, -along),
                            "c_u": float(f_v @ x), "c_v": float(f_v @ y)})
         data["forces"] = forces
     if found == 0:
