@@ -37,7 +37,7 @@ def load_json(path):
 @pytest.fixture
 def cli():
     """Runs the `cairn` executable (CAIRN_CLI) in the repository's root and
-    returns (exit code, stdout)."""
+    returns (exit code, stdout, stderr)."""
     exe = os.environ.get("CAIRN_CLI")
     if not exe or not os.path.exists(exe):
         pytest.skip("the cairn executable is not known (CAIRN_CLI): run through ctest")
@@ -45,7 +45,7 @@ def cli():
     def run(*args):
         p = subprocess.run([exe, *args], cwd=SOURCE_DIR, capture_output=True, text=True,
                            check=False)
-        return p.returncode, p.stdout
+        return p.returncode, p.stdout, p.stderr
     return run
 
 
