@@ -34,10 +34,20 @@ __all__ = [
     "blocking",
     "compas_forces",
     "read_timeline",
+    "plot",
 ]
 
 _FORMATS = ("scene", "compas")
 _INTERFACES = ("detect", "stored")
+
+
+def __getattr__(name):
+    # cairn.plot on first use (it imports matplotlib only when it draws), so
+    # that `python3 -m cairn.plot` does not find it imported already.
+    if name == "plot":
+        import importlib
+        return importlib.import_module(".plot", __name__)
+    raise AttributeError(f"module 'cairn' has no attribute {name!r}")
 
 
 def _names(value, what):

@@ -225,8 +225,25 @@ PYBIND11_MODULE(_cairn, m) {
                                  if (a.part(i).fixed) names.push_back(a.part(i).name);
                                return names;
                              })
-      .def_property_readonly("has_interfaces", [](const PyModel& self) {
-        return self.model.assembly.has_interfaces();
+      .def_property_readonly("has_interfaces",
+                             [](const PyModel& self) {
+                               return self.model.assembly.has_interfaces();
+                             })
+      // Each part's vertices in the assembled pose, `dimension` numbers each
+      // (2-D: the polygon in order), for drawing (cairn.plot.scene).
+      .def_property_readonly("vertices", [](const PyModel& self) {
+        const cairn::Assembly& a = self.model.assembly;
+        const cairn::Configuration config = cairn::Configuration::Assembled(a);
+        std::vector<std::vector<std::vector<double>>> parts;
+        for (int i = 0; i < a.num_parts(); ++i) {
+          std::vector<std::vector<double>> points;
+          for (const cairn::Vector3& p : config.WorldVertices(a, i)) {
+            points.push_back({p.x(), p.y()});
+            if (a.is_3d()) points.back().push_back(p.z());
+          }
+          parts.push_back(std::move(points));
+        }
+        return parts;
       });
 
   m.def("load", &Load, py::arg("file"), py::arg("format"), py::arg("friction"),

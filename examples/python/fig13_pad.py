@@ -1,0 +1,31 @@
+"""Paper Fig. 13 (3-D, Figs. 9-12): C slid along +X over B's edge, held up by
+the gripper's pad G (0 to 25 s), then A lifted (25 to 65 s), per pair of
+parts (the forces at the corners of a 3-D face are not determined, their sums
+are). C rests on B and on the pad, which carries its share of C's weight all
+along the path; the table carries A, B and the rest of C until A is lifted at
+25 s; nothing breaks (stable). Units of C's weight.
+
+    PYTHONPATH=build/python python3 examples/python/fig13_pad.py -o fig13.png
+"""
+import argparse
+import os
+
+import cairn
+
+ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..")
+
+
+def figure():
+    m = cairn.load(os.path.join(ROOT, "examples", "paper_fig9.json"))
+    s = cairn.simulate(m, os.path.join(ROOT, "examples", "plans",
+                                       "paper_fig9_cab_plus_x_pad.plan.json"), normalize="C")
+    ax = cairn.plot.timeline(s, contacts="pair",
+                             title="Fig. 13: C along +X on the pad (weight of C)")
+    return s, ax
+
+
+if __name__ == "__main__":
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("-o", "--output", default="fig13.png")
+    s, ax = figure()
+    ax.figure.savefig(parser.parse_args().output, dpi=150)
