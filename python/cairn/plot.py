@@ -167,10 +167,10 @@ def main(argv=None):
     parser.add_argument("--force", default="normal_force")
     parser.add_argument("--title", default=None)
     args = parser.parse_args(argv)
-    from . import InputError, read_timeline
+    from . import read_timeline
     try:
         columns = read_timeline(args.csv)
-    except (OSError, InputError) as e:
+    except (OSError, ValueError) as e:  # InputError, or not text at all
         parser.exit(2, f"cairn.plot: error: {e}\n")
     parts = None if args.parts is None else args.parts.split(",")
     ax = timeline({"timeline": columns}, contacts=args.contacts, parts=parts,
