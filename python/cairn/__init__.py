@@ -280,11 +280,15 @@ def read_timeline(source):
     if isinstance(source, (str, os.PathLike)):
         with open(source, encoding="utf-8") as f:
             return read_timeline(f)
-    header = source.readline().strip().split(",")
-    if not header or header[0] != "time":
-        raise InputError(f"{getattr(source, 'name', 'timeline')}: not a Cairn timeline CSV "
-                         "(its header starts with 'time')")
-    rows = [line.rstrip("\n").split(",") for line in source if line.strip()]
+    name = getattr(source, "name", "timeline")
+    try:
+        header = source.readline().strip().split(",")
+        if header[0] != "time":
+            raise ValueError
+        rows = [line.rstrip("\n").split(",") for line in source if line.strip()]
+    except (UnicodeDecodeError, ValueError):
+        raise InputError(f"{name}: not a Cairn timeline CSV (`cairn simulate --timeline`: "
+                         "its header starts with 'time')") from None
     columns = {}
     for k, name in enumerate(header):
         values = [r[k] for r in rows]
