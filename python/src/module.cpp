@@ -119,11 +119,10 @@ std::pair<std::string, std::string> Simulate(const PyModel& m, const std::string
                              "parts cannot be moved along a plan (check it, with without= for "
                              "subassemblies, or let Cairn find the contacts from the shapes)");
   // A plan file, or a plan given as a dict (named "plan" in messages).
-  const Plan plan = plan_text.empty()
-                        ? ReadPlan(plan_file, assembly)
-                        : Plan::Create(ParsePlanJson(ParseText(plan_text, plan_file), plan_file,
-                                                     assembly.dimension()),
-                                       assembly, plan_file);
+  const Plan plan = plan_text.empty() ? ReadPlan(plan_file, assembly)
+                                      : Plan::Create(ParsePlanJson(ParseText(plan_text, plan_file),
+                                                                   plan_file, assembly.dimension()),
+                                                     assembly, plan_file);
   ReportOptions report;
   report.scene_file = m.file;
   report.normalize_part = cli::ResolveNormalize(assembly, normalize, m.file);
@@ -139,9 +138,9 @@ std::pair<std::string, std::string> Simulate(const PyModel& m, const std::string
     doc["fixtures"] =
         result.stable()
             ? nlohmann::json(nullptr)
-            : FixtureSuggestionToJson(
-                  assembly, SuggestFixtures(m.model.def, assembly, plan, result, search), search,
-                  report);
+            : FixtureSuggestionToJson(assembly,
+                                      SuggestFixtures(m.model.def, assembly, plan, result, search),
+                                      search, report);
   }
   return {doc.dump(2), TimelineToCsv(assembly, result, report)};
 }
@@ -160,7 +159,8 @@ std::string PlanSequences(const PyModel& m, int max, bool single_parts, const st
   options.subassemblies = !single_parts;
   options.allow_fixtures = allow_fixtures;
   if (support != "full" && support != "none" && support != "both")
-    throw InputError("", "support", "must be \"full\", \"none\" or \"both\", not \"" + support + "\"");
+    throw InputError("", "support",
+                     "must be \"full\", \"none\" or \"both\", not \"" + support + "\"");
   options.support = support == "none"   ? SupportChoice::kNone
                     : support == "both" ? SupportChoice::kBoth
                                         : SupportChoice::kFull;
@@ -225,10 +225,9 @@ PYBIND11_MODULE(_cairn, m) {
                                  if (a.part(i).fixed) names.push_back(a.part(i).name);
                                return names;
                              })
-      .def_property_readonly("has_interfaces",
-                             [](const PyModel& self) {
-                               return self.model.assembly.has_interfaces();
-                             })
+      .def_property_readonly(
+          "has_interfaces",
+          [](const PyModel& self) { return self.model.assembly.has_interfaces(); })
       // Each part's vertices in the assembled pose, `dimension` numbers each
       // (2-D: the polygon in order), for drawing (cairn.plot.scene).
       .def_property_readonly("vertices", [](const PyModel& self) {
@@ -246,8 +245,8 @@ PYBIND11_MODULE(_cairn, m) {
         return parts;
       });
 
-  m.def("load", &Load, py::arg("file"), py::arg("format"), py::arg("friction"),
-        py::arg("supports"), py::arg("gravity"), py::arg("tolerance"), py::arg("interfaces"));
+  m.def("load", &Load, py::arg("file"), py::arg("format"), py::arg("friction"), py::arg("supports"),
+        py::arg("gravity"), py::arg("tolerance"), py::arg("interfaces"));
   m.def("from_compas", &FromCompas, py::arg("text"), py::arg("name"), py::arg("friction"),
         py::arg("supports"), py::arg("gravity"), py::arg("tolerance"), py::arg("interfaces"));
   m.def("check", &Check, py::arg("model"), py::arg("without"), py::arg("normalize"));

@@ -51,8 +51,7 @@ Model LoadModel(const std::string& file, const ModelArgs& args);
 /// Python module's `cairn.from_compas` of a dict): the model options applied
 /// as for `--format compas`; `file` names the document in messages.
 /// @throws InputError as LoadModel.
-Model LoadCompasModel(const CompasAssembly& parsed, const std::string& file,
-                      const ModelArgs& args);
+Model LoadCompasModel(const CompasAssembly& parsed, const std::string& file, const ModelArgs& args);
 
 /// The index of the part `name` given to `flag` (`--without`, `--keep`, ...).
 /// @throws InputError naming the flag when `file`'s model has no such part.
