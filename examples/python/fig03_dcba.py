@@ -4,24 +4,21 @@ it is lifted; every other force stays positive.
 
     PYTHONPATH=build/python python3 examples/python/fig03_dcba.py -o fig03.png
 """
-import argparse
+
 import os
+import sys
 
-import cairn
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import paper_figure  # noqa: E402
 
-ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..")
+import cairn  # noqa: E402
 
 
 def figure():
-    m = cairn.load(os.path.join(ROOT, "examples", "paper_fig1.json"))
-    s = cairn.simulate(m, os.path.join(ROOT, "examples", "plans", "paper_fig1_dcba.plan.json"),
-                       normalize="B")
-    ax = cairn.plot.timeline(s, contacts="pair", title="Fig. 3: D-C-B-A (weight of B)")
-    return s, ax
+    s = paper_figure.simulate("paper_fig1.json", "paper_fig1_dcba.plan.json", normalize="B")
+    return s, cairn.plot.timeline(s, contacts="pair",
+                                  title="Fig. 3: D-C-B-A (weight of B)")
 
 
 if __name__ == "__main__":
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("-o", "--output", default="fig03.png")
-    s, ax = figure()
-    ax.figure.savefig(parser.parse_args().output, dpi=150)
+    paper_figure.main(figure, __doc__, "fig03.png")

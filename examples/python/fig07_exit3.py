@@ -4,25 +4,21 @@ C's x = -8.25; at the next tick E tips (the dashed line). Units of C's weight.
 
     PYTHONPATH=build/python python3 examples/python/fig07_exit3.py -o fig07.png
 """
-import argparse
+
 import os
+import sys
 
-import cairn
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import paper_figure  # noqa: E402
 
-ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..")
+import cairn  # noqa: E402
 
 
 def figure():
-    m = cairn.load(os.path.join(ROOT, "examples", "paper_fig6.json"))
-    s = cairn.simulate(m, os.path.join(ROOT, "examples", "plans", "paper_fig6_c_exit3.plan.json"),
-                       normalize="C")
-    ax = cairn.plot.timeline(s, contacts="point", parts=["table"],
-                             title="Fig. 7: C towards exit III (weight of C)")
-    return s, ax
+    s = paper_figure.simulate("paper_fig6.json", "paper_fig6_c_exit3.plan.json", normalize="C")
+    return s, cairn.plot.timeline(s, contacts="point", parts=["table"],
+                                  title="Fig. 7: C towards exit III (weight of C)")
 
 
 if __name__ == "__main__":
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("-o", "--output", default="fig07.png")
-    s, ax = figure()
-    ax.figure.savefig(parser.parse_args().output, dpi=150)
+    paper_figure.main(figure, __doc__, "fig07.png")

@@ -7,25 +7,21 @@ along the path; the table carries A, B and the rest of C until A is lifted at
 
     PYTHONPATH=build/python python3 examples/python/fig13_pad.py -o fig13.png
 """
-import argparse
+
 import os
+import sys
 
-import cairn
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import paper_figure  # noqa: E402
 
-ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..")
+import cairn  # noqa: E402
 
 
 def figure():
-    m = cairn.load(os.path.join(ROOT, "examples", "paper_fig9.json"))
-    s = cairn.simulate(m, os.path.join(ROOT, "examples", "plans",
-                                       "paper_fig9_cab_plus_x_pad.plan.json"), normalize="C")
-    ax = cairn.plot.timeline(s, contacts="pair",
-                             title="Fig. 13: C along +X on the pad (weight of C)")
-    return s, ax
+    s = paper_figure.simulate("paper_fig9.json", "paper_fig9_cab_plus_x_pad.plan.json", normalize="C")
+    return s, cairn.plot.timeline(s, contacts="pair",
+                                  title="Fig. 13: C along +X on the pad (weight of C)")
 
 
 if __name__ == "__main__":
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("-o", "--output", default="fig13.png")
-    s, ax = figure()
-    ax.figure.savefig(parser.parse_args().output, dpi=150)
+    paper_figure.main(figure, __doc__, "fig13.png")
