@@ -18,7 +18,8 @@ import cairn  # noqa: E402
 
 
 def figure():
-    s = paper_figure.simulate("paper_fig9.json", "paper_fig9_cab_plus_x_pad.plan.json", normalize="C")
+    s = paper_figure.simulate("paper_fig9.json", "paper_fig9_cab_plus_x_pad.plan.json",
+                              normalize="C")
     return s, cairn.plot.timeline(s, contacts="pair",
                                   title="Fig. 13: C along +X on the pad (weight of C)")
 

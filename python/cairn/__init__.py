@@ -243,7 +243,8 @@ def blocking(m, direction=None, without=None):
 def _cell_of(doc, d):
     dim = doc["dimension"]
     if d.shape != (dim,) or not np.all(np.isfinite(d)) or not np.any(d):
-        raise InputError(f"direction: must be {dim} finite numbers, not all zero (got {d.tolist()})")
+        raise InputError(f"direction: must be {dim} finite numbers, not all zero "
+                         f"(got {d.tolist()})")
     d = d / np.linalg.norm(d)
     cells = doc["cells"]
     if dim == 3:

@@ -16,6 +16,9 @@ def fig1():
     return cairn.load(example("paper_fig1.json"))
 
 
+MODEL_PARTS = ["E", "A", "B", "C", "D"]
+
+
 def wrench_balance(r, gravity):
     """Per movable part: the net force and moment about its centroid of its
     weight and the contact forces of `contact_arrays` (2-D)."""
@@ -23,29 +26,22 @@ def wrench_balance(r, gravity):
     n = arrays["normal"]
     t = np.stack([-n[:, 1], n[:, 0]], axis=1)  # docs/cli.md: tangent (-n_y, n_x)
     force_on_a = arrays["normal_force"][:, None] * n + arrays["friction_force"][:, None] * t
-    names = [p["name"] for p in r["parts"]]
     out = {}
     for p in r["parts"]:
         if p["fixed"]:
             continue
-        i = names.index(p["name"])
+        i = MODEL_PARTS.index(p["name"])  # contact_arrays["parts"] indexes the model's parts
         c = np.asarray(p["centroid"])
         f = p["mass"] * gravity
         moment = 0.0
-        model_index = MODEL_PARTS.index(p["name"])
         for k, (a, b) in enumerate(arrays["parts"]):
-            sign = 1.0 if a == model_index else -1.0 if b == model_index else 0.0
-            if sign == 0.0:
-                continue
+            sign = 1.0 if a == i else -1.0 if b == i else 0.0
             fk = sign * force_on_a[k]
             d = arrays["point"][k] - c
             f = f + fk
             moment += d[0] * fk[1] - d[1] * fk[0]
-        out[names[i]] = (f, moment)
+        out[p["name"]] = (f, moment)
     return out
-
-
-MODEL_PARTS = ["E", "A", "B", "C", "D"]
 
 
 def test_stands_and_forces_balance_weights(fig1):
