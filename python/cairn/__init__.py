@@ -23,6 +23,8 @@ import numpy as np
 from . import _cairn
 from ._cairn import InputError, Model
 
+InputError.__module__ = Model.__module__ = "cairn"  # cairn.InputError in tracebacks
+
 __all__ = [
     "InputError",
     "Model",
@@ -50,6 +52,14 @@ def __getattr__(name):
     raise AttributeError(f"module 'cairn' has no attribute {name!r}")
 
 
+def _input_error(where, message, file=""):
+    """An InputError raised by the Python half, with the attributes the
+    compiled half's have: `where` is the argument (as the JSON path)."""
+    e = InputError(": ".join(x for x in (file, where, message) if x))
+    e.file, e.json_path, e.message = file, where, message
+    return e
+
+
 def _names(value, what):
     """A list of part names from None, a name, or an iterable of names (ints
     are COMPAS node keys)."""
@@ -67,7 +77,7 @@ def _names(value, what):
 
 def _model_options(friction, supports, gravity, tolerance, interfaces):
     if interfaces not in _INTERFACES:
-        raise InputError(f"interfaces: must be one of {_INTERFACES}, not {interfaces!r}")
+        raise _input_error("interfaces", f"must be one of {_INTERFACES}, not {interfaces!r}")
     return dict(
         friction=None if friction is None else float(friction),
         supports=_names(supports, "supports"),
@@ -85,7 +95,7 @@ def load(file, format="scene", friction=None, supports=None, gravity=None, toler
     ``gravity`` (2 or 3 numbers), ``tolerance`` and ``interfaces`` ("detect"
     or "stored") of ``--friction`` ... ``--interfaces``. Raises InputError."""
     if format not in _FORMATS:
-        raise InputError(f"format: must be one of {_FORMATS}, not {format!r}")
+        raise _input_error("format", f"must be one of {_FORMATS}, not {format!r}")
     return _cairn.load(os.fspath(file), format,
                        **_model_options(friction, supports, gravity, tolerance, interfaces))
 
@@ -243,8 +253,8 @@ def blocking(m, direction=None, without=None):
 def _cell_of(doc, d):
     dim = doc["dimension"]
     if d.shape != (dim,) or not np.all(np.isfinite(d)) or not np.any(d):
-        raise InputError(f"direction: must be {dim} finite numbers, not all zero "
-                         f"(got {d.tolist()})")
+        raise _input_error("direction", f"must be {dim} finite numbers, not all zero "
+                                        f"(got {d.tolist()})")
     d = d / np.linalg.norm(d)
     cells = doc["cells"]
     if dim == 3:
@@ -253,7 +263,7 @@ def _cell_of(doc, d):
         for c in cells:
             if c["signs"] == signs:
                 return c
-        raise InputError(f"direction: no cell of the arrangement has the signs {signs}")
+        raise _input_error("direction", f"no cell of the arrangement has the signs {signs}")
     angle = float(np.degrees(np.arctan2(d[1], d[0]))) % 360.0
     for c in cells:  # critical directions first: they are single angles
         a, b = c["angles_deg"]
@@ -265,7 +275,7 @@ def _cell_of(doc, d):
             continue
         if (a <= b and a <= angle <= b) or (a > b and (angle >= a or angle <= b)):
             return c
-    raise InputError(f"direction: no cell contains {angle} degrees")
+    raise _input_error("direction", f"no cell contains {angle} degrees")
 
 
 _INT_COLUMNS = ("step", "tick", "patch")
@@ -288,8 +298,8 @@ def read_timeline(source):
             raise ValueError
         rows = [line.rstrip("\n").split(",") for line in source if line.strip()]
     except (UnicodeDecodeError, ValueError):
-        raise InputError(f"{name}: not a Cairn timeline CSV (`cairn simulate --timeline`: "
-                         "its header starts with 'time')") from None
+        raise _input_error("", "not a Cairn timeline CSV (`cairn simulate --timeline`: its "
+                                "header starts with 'time')", file=name) from None
     columns = {}
     for k, name in enumerate(header):
         values = [r[k] for r in rows]

@@ -58,3 +58,16 @@ def test_bad_compas_dict_names_the_json_path():
         cairn.from_compas(data, friction=0.5)
     assert e.value.file == "assembly_data"
     assert e.value.json_path.startswith(f"data.graph.data.node.{key}")
+
+
+def test_bad_arguments_of_the_python_api():
+    m = cairn.load(example("paper_fig1.json"))
+    with pytest.raises(cairn.InputError) as e:
+        cairn.blocking(m, direction=[0, 0])
+    assert e.value.json_path == "direction" and str(e.value).startswith("direction: ")
+    with pytest.raises(cairn.InputError) as e:
+        cairn.load(example("paper_fig1.json"), interfaces="found")
+    assert e.value.json_path == "interfaces"
+    with pytest.raises(cairn.InputError) as e:
+        cairn.read_timeline(example("paper_fig1.json"))
+    assert e.value.file.endswith("paper_fig1.json") and "timeline" in e.value.message
