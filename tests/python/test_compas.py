@@ -116,3 +116,30 @@ def test_compas_forces_of_detected_contacts():
     assert sorted(balances) == ["1", "2", "3", "4", "5", "6"]
     for block, (f, mo) in balances.items():
         assert f <= 1e-8 and mo <= 1e-8, block
+
+
+class FakeCompasObject:
+    """Stands in for a COMPAS object (no COMPAS here): `__dtype__` and
+    `__data__`, nested as COMPAS 2 nests its data structures."""
+
+    def __init__(self, dtype, data):
+        self.__dtype__, self.__data__ = dtype, data
+
+
+def as_objects(value):
+    if isinstance(value, dict):
+        if "dtype" in value and "data" in value:
+            return FakeCompasObject(value["dtype"], as_objects(value["data"]))
+        return {k: as_objects(v) for k, v in value.items()}
+    if isinstance(value, list):
+        return [as_objects(v) for v in value]
+    return value
+
+
+def test_from_compas_takes_the_assembly_object():
+    data = load_json(shared_file("compas_assembly/stack_assembly.json"))
+    assembly = as_objects(data)  # as assembly.__data__ would hold Graph and Mesh objects
+    assert isinstance(assembly, FakeCompasObject)
+    by_object = cairn.check(cairn.from_compas(assembly, friction=0.84), without=[7, 8, 9])
+    by_dict = cairn.check(cairn.from_compas(data, friction=0.84), without=[7, 8, 9])
+    assert by_object["contacts"] == by_dict["contacts"] and by_object["stable"]
