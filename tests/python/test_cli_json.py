@@ -94,3 +94,13 @@ def test_compas(cli):
     r = cairn.check(cairn.load(path, format="compas", friction=0.84), without=["7", "8", "9"])
     assert strip(r) == cli_json(cli, "check", path, "--format", "compas", "--friction", "0.84",
                                 "--without", "7,8,9")
+
+
+def test_plan_with_candidate_paths_as_a_file_and_as_a_dict(cli):
+    from conftest import load_json
+    scene, paths = "examples/paper_fig6.json", "examples/paths/paper_fig6_exits.paths.json"
+    m = cairn.load(scene)
+    by_file = cairn.plan(m, paths=paths, max=2, threads=1)
+    assert strip(by_file) == cli_json(cli, "plan", scene, "--paths", paths, "--max", "2",
+                                      "--threads", "1")
+    assert strip(cairn.plan(m, paths=load_json(paths), max=2, threads=1)) == strip(by_file)
