@@ -1,9 +1,9 @@
 """Paper Fig. 13 (3-D, Figs. 9-12): C slid along +X over B's edge, held up by
-the gripper's pad G (0 to 25 s), then A lifted (25 to 65 s), per pair of
+the gripper's pad G (0 to 25 s), then A (25 to 65 s) and B lifted, per pair of
 parts (the forces at the corners of a 3-D face are not determined, their sums
 are). C rests on B and on the pad, which carries its share of C's weight all
-along the path; the table carries A, B and the rest of C until A is lifted at
-25 s; nothing breaks (stable). Units of C's weight.
+along the path; the table carries A, B and the rest of C, then B alone, then
+nothing; nothing breaks (stable). Units of C's weight.
 
     PYTHONPATH=build/python python3 examples/python/fig13_pad.py -o fig13.png
 """

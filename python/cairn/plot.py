@@ -28,8 +28,10 @@ def timeline_series(s, contacts="pair", parts=None, normalize=None, force="norma
     """The data :func:`timeline` draws: {label: (time, force)}, the force of
     each contact pair (or patch) summed over its contact points per time step
     (the timeline has one row per tick and contact point), 0 at the time steps
-    where the pair does not touch. ``s`` is :func:`cairn.simulate`'s result
-    (or a dict with its ``timeline``).
+    where the pair does not touch (also at the ticks after the last part left
+    everything, which the timeline has no row for: ``s["steps"]`` counts
+    them). ``s`` is :func:`cairn.simulate`'s result (or a dict with its
+    ``timeline``).
 
     - ``contacts``: "pair" (one line per pair of parts), "patch" (3-D: per
       pair and contact patch, as numbered at each tick), "point" (per pair and
@@ -53,12 +55,12 @@ def timeline_series(s, contacts="pair", parts=None, normalize=None, force="norma
                             f"normalize={normalize!r}")
         values = values / float(normalize)
 
-    # The time steps, in order: (step, tick) pairs as the rows give them.
-    ticks = list(dict.fromkeys(zip(t["step"].tolist(), t["tick"].tolist())))
+    # The time steps, in order: (step, tick) pairs as the rows give them, and
+    # their times.
+    row_times = dict(zip(zip(t["step"].tolist(), t["tick"].tolist()), t["time"].tolist()))
+    ticks = _with_ticks_without_contacts(list(row_times), s.get("steps", []), row_times)
     row_tick = {k: i for i, k in enumerate(ticks)}
-    times = np.zeros(len(ticks))
-    for i, (st, tk) in enumerate(zip(t["step"].tolist(), t["tick"].tolist())):
-        times[row_tick[(st, tk)]] = t["time"][i]
+    times = np.array([row_times[k] for k in ticks], dtype=float)
 
     wanted = None
     dim = 3 if "z" in t else 2
@@ -87,6 +89,33 @@ def timeline_series(s, contacts="pair", parts=None, normalize=None, force="norma
             series[key] = (label, np.zeros(len(ticks)))
         series[key][1][row_tick[(int(t["step"][i]), int(t["tick"][i]))]] += values[i]
     return {label: (times, f) for label, f in series.values()}
+
+
+def _with_ticks_without_contacts(ticks, steps, times):
+    """The timeline has no row at a tick without contacts: once the last part
+    is lifted off everything, a step's remaining ticks are missing. Adds them
+    (where the simulation's `steps` say how many ticks a step had), at the
+    step's even spacing from start_time to end_time, so that the forces drop
+    to 0 there instead of the line ending at the last loaded tick."""
+    out = []
+    last_of_step = {}
+    for k, (st, tk) in enumerate(ticks):
+        last_of_step[st] = k
+    extra = {}
+    for step in steps:
+        st, n = step["index"], step["time_steps"]
+        recorded = [tk for (s2, tk) in ticks if s2 == st]
+        if st not in last_of_step or n <= max(recorded) + 1 or n < 2:
+            continue
+        dt = (step["end_time"] - step["start_time"]) / (n - 1)
+        extra[st] = [(st, tk) for tk in range(max(recorded) + 1, n)]
+        for key in extra[st]:
+            times[key] = step["start_time"] + key[1] * dt
+    for k, key in enumerate(ticks):
+        out.append(key)
+        if last_of_step.get(key[0]) == k:
+            out.extend(extra.get(key[0], []))
+    return out
 
 
 def timeline(s, contacts="pair", parts=None, normalize=None, force="normal_force", ax=None,
