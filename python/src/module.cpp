@@ -205,6 +205,13 @@ PYBIND11_MODULE(_cairn, m) {
   });
 
   py::class_<PyModel, std::shared_ptr<PyModel>>(m, "Model")
+      .def("__repr__",
+           [](const PyModel& self) {
+             const cairn::Assembly& a = self.model.assembly;
+             return "<cairn.Model " + cairn::JsonQuoted(self.model.def.name) + " (" +
+                    std::to_string(a.dimension()) + "-D, " + std::to_string(a.num_parts()) +
+                    " parts) from " + cairn::JsonQuoted(self.file) + ">";
+           })
       .def_property_readonly("file", [](const PyModel& self) { return self.file; })
       .def_property_readonly("name", [](const PyModel& self) { return self.model.def.name; })
       .def_property_readonly("dimension",

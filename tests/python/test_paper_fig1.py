@@ -45,7 +45,8 @@ def wrench_balance(r, gravity):
 
 
 def test_stands_and_forces_balance_weights(fig1):
-    assert fig1.parts == MODEL_PARTS
+    assert fig1.parts == MODEL_PARTS and fig1.fixed == ["E"] and fig1.dimension == 2
+    assert repr(fig1).startswith('<cairn.Model "paper Fig. 1') and "(2-D, 5 parts)" in repr(fig1)
     r = cairn.check(fig1)
     assert r["stable"] and r["verdict"] == "stable" and r["moving"] == []
     arrays = r["contact_arrays"]
