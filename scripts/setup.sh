@@ -6,13 +6,16 @@
 # Debian 12.
 #   bash scripts/setup.sh          # build + tests
 #   bash scripts/setup.sh --bench  # ... and bench/
+#   bash scripts/setup.sh --fuzz   # ... and clang with libFuzzer (fuzz/README.md)
 set -euo pipefail
 
 bench=0
+fuzz=0
 for arg in "$@"; do
   case "$arg" in
     --bench) bench=1 ;;
-    *) echo "setup: unknown option $arg (known: --bench)" >&2; exit 2 ;;
+    --fuzz) fuzz=1 ;;
+    *) echo "setup: unknown option $arg (known: --bench, --fuzz)" >&2; exit 2 ;;
   esac
 done
 
@@ -37,6 +40,12 @@ if ((bench)); then
     libbenchmark-dev           # bench/
     libsiconos-numerics-dev    # bench/: Siconos' Lemke, the peer we compare against
     libbullet-dev              # bench/: Bullet, the simulator a user would otherwise threshold
+  )
+fi
+
+if ((fuzz)); then
+  packages+=(
+    clang libclang-rt-dev      # fuzz/: libFuzzer, ASan and UBSan for clang
   )
 fi
 

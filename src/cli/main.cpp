@@ -1,7 +1,9 @@
 // cairn: the command-line tool. See docs/cli.md.
 
 #include <CLI/CLI.hpp>
+#include <cmath>
 #include <iostream>
+#include <string>
 
 #include "cli/blocking_command.h"
 #include "cli/check_command.h"
@@ -11,6 +13,30 @@
 #include "cli/simulate_command.h"
 
 namespace {
+
+// Validators that say what is wrong in Cairn's words (CLI11's own print the
+// range's bounds, 1.8e308 written out in 300 digits).
+const CLI::Validator kPositive(
+    [](std::string& value) -> std::string {
+      double x = 0;
+      if (!CLI::detail::lexical_cast(value, x) || !(x > 0) || !std::isfinite(x))
+        return "must be a positive number (got " + value + ")";
+      return "";
+    },
+    "POSITIVE");
+const CLI::Validator kNonNegativeInteger(
+    [](std::string& value) -> std::string {
+      long long x = 0;
+      if (!CLI::detail::lexical_cast(value, x) || x < 0)
+        return "must be a whole number ≥ 0 (got " + value + ")";
+      return "";
+    },
+    "N ≥ 0");
+const CLI::Validator kNotEmpty(
+    [](std::string& value) -> std::string {
+      return value.empty() ? std::string("must not be empty") : std::string();
+    },
+    "");
 
 // The options that say how the input file is read and what the command line
 // changes in its model: the same on check, simulate and convert.
@@ -49,14 +75,15 @@ CLI::App* AddSceneCommand(CLI::App& app, const char* name, const char* descripti
 
 // --without: parts taken away before the command's work.
 void AddWithout(CLI::App* cmd, std::vector<std::string>& without, const char* description) {
-  cmd->add_option("--without", without, description)->delimiter(',');
+  cmd->add_option("--without", without, description)->delimiter(',')->check(kNotEmpty);
 }
 
 CLI::App* AddCheck(CLI::App& app, cairn::cli::CheckArgs& check) {
   CLI::App* cmd =
       AddSceneCommand(app, "check", "Is one configuration of a scene stable under gravity?",
                       check.scene, check.json);
-  cmd->add_option("--normalize", check.normalize, "Divide forces by the weight of this part");
+  cmd->add_option("--normalize", check.normalize, "Divide forces by the weight of this part")
+      ->check(kNotEmpty);
   AddWithout(cmd, check.without, "Check with these parts taken away (comma-separated)");
   AddModelOptions(cmd, check.model);
   return cmd;
@@ -68,13 +95,18 @@ CLI::App* AddSimulate(CLI::App& app, cairn::cli::SimulateArgs& sim) {
       sim.scene, sim.json);
   cmd->add_option("plan", sim.plan, "Plan file (JSON, plan format 1)")->required();
   cmd->add_option("--timeline", sim.timeline,
-                  "Write one CSV row per time step and contact to this file");
-  cmd->add_option("--normalize", sim.normalize, "Divide forces by the weight of this part");
+                  "Write one CSV row per time step and contact to this file")
+      ->check(kNotEmpty);
+  cmd->add_option("--normalize", sim.normalize, "Divide forces by the weight of this part")
+      ->check(kNotEmpty);
   cmd->add_flag("--continue", sim.continue_after_failure,
                 "Go on after a failure, as if it had been prevented");
   cmd->add_flag("--suggest-fixtures", sim.suggest_fixtures,
                 "When a step fails, suggest the fewest fixels (point fixtures) that make the "
                 "plan stable, verified by re-running it");
+  cmd->add_option("--max-ticks", sim.max_ticks,
+                  "The most time steps one step of the plan may take (default 1000000)")
+      ->check(kNonNegativeInteger);
   cmd->add_option("--max-fixels", sim.max_fixels,
                   "The most fixels --suggest-fixtures adds (default 3)")
       ->check(CLI::Range(1, 20));
@@ -106,15 +138,18 @@ CLI::App* AddPlan(CLI::App& app, cairn::cli::PlanArgs& plan) {
       plan.scene, plan.json);
   cmd->add_option("--max", plan.max,
                   "Stop after K stable sequences (best-first search); default: all")
-      ->check(CLI::NonNegativeNumber);
+      ->check(kNonNegativeInteger);
   cmd->add_option("--threads", plan.threads, "Worker threads (default: every core)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(kNonNegativeInteger);
   cmd->add_option("--paths", plan.paths,
-                  "Candidate paths per part (JSON: part name -> list of paths)");
+                  "Candidate paths per part (JSON: part name -> list of paths)")
+      ->check(kNotEmpty);
   cmd->add_option("--emit-plans", plan.emit_plans,
-                  "Write each sequence as plan files (disassembly and assembly) in this folder");
+                  "Write each sequence as plan files (disassembly and assembly) in this folder")
+      ->check(kNotEmpty);
   cmd->add_option("--dot", plan.dot,
-                  "Write the AND/OR graph (Graphviz dot) with stable and unstable edges");
+                  "Write the AND/OR graph (Graphviz dot) with stable and unstable edges")
+      ->check(kNotEmpty);
   cmd->add_option("--keep", plan.keep, "Parts that stay in the assembly (comma-separated)")
       ->delimiter(',');
   cmd->add_option("--support", plan.support,
@@ -124,9 +159,8 @@ CLI::App* AddPlan(CLI::App& app, cairn::cli::PlanArgs& plan) {
   cmd->add_flag("--single-parts", plan.no_subassemblies,
                 "Remove one part per step (no subassemblies)");
   cmd->add_option("--dt", plan.dt, "Time step of simulated paths (s; default: size/100)")
-      ->check(CLI::PositiveNumber);
-  cmd->add_option("--speed", plan.speed, "Gripper speed (length/s; default 1)")
-      ->check(CLI::PositiveNumber);
+      ->check(kPositive);
+  cmd->add_option("--speed", plan.speed, "Gripper speed (length/s; default 1)")->check(kPositive);
   cmd->add_option("--allow-fixtures", plan.allow_fixtures,
                   "When nothing is stable, allow up to N fixels (fewest first)")
       ->check(CLI::Range(0, 20));
@@ -154,9 +188,14 @@ int Run(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    // --help and --version exit 0; a usage error is bad input (exit 2).
-    const int code = app.exit(e);
-    return code == 0 ? 0 : cli::kExitBadInput;
+    // --help and --version exit 0; a usage error is bad input (exit 2), said
+    // on one line as every other error is.
+    if (e.get_exit_code() == 0) return app.exit(e);
+    std::string what = e.what();
+    for (char& c : what)
+      if (c == '\n' || c == '\r') c = ' ';
+    std::cerr << "cairn: error: " << what << " (see cairn --help)\n";
+    return cli::kExitBadInput;
   }
   if (*check_cmd) return cli::RunCheck(check, std::cout, std::cerr);
   if (*sim_cmd) return cli::RunSimulate(sim, std::cout, std::cerr);

@@ -9,8 +9,10 @@
 #include <sstream>
 
 #include "cairn/core/error.h"
+#include "cairn/core/tolerances.h"
 #include "cairn/io/compas_reader.h"
 #include "cairn/io/scene_reader.h"
+#include "cli/output_files.h"
 
 namespace cairn::cli {
 
@@ -26,6 +28,10 @@ void CheckModelFlags(const ModelArgs& args) {
     if (*args.friction < 0)
       throw InputError("", "--friction",
                        "must not be negative (got " + FormatNumber(*args.friction) + ")");
+    if (*args.friction > limits::kMaxFriction)
+      throw InputError("", "--friction",
+                       "is out of range (got " + FormatNumber(*args.friction) + "; at most " +
+                           FormatNumber(limits::kMaxFriction) + ")");
   }
   if (args.tolerance && !(std::isfinite(*args.tolerance) && *args.tolerance > 0))
     throw InputError("", "--tolerance",
@@ -57,7 +63,9 @@ void ApplyModelFlags(const ModelArgs& args, const std::string& file, AssemblyDef
                        "must have " + std::to_string(dim) + " numbers in a " + std::to_string(dim) +
                            "-D scene, not " + std::to_string(args.gravity.size()));
     def.gravity = Vector3(args.gravity[0], args.gravity[1], is3 ? args.gravity[2] : 0.0);
+    def.gravity_option = "--gravity";
   }
+  if (args.tolerance) def.tolerance_option = "--tolerance";
 }
 
 // COMPAS files store no friction coefficient, and guessing one (0 is
@@ -116,26 +124,16 @@ Model LoadCompasModel(const CompasAssembly& parsed, const std::string& file,
 }
 
 void WriteAtomically(const std::string& path, const std::string& text, const std::string& flag) {
-  const std::string tmp = path + ".tmp";
-  {
-    std::ofstream f(tmp, std::ios::binary);
-    if (!(f << text) || !f.flush()) {
-      std::remove(tmp.c_str());
-      throw InputError("", flag, "cannot write '" + path + "'");
-    }
-  }
-  std::error_code ec;
-  std::filesystem::rename(tmp, path, ec);
-  if (ec) {
-    std::remove(tmp.c_str());
-    throw InputError("", flag, "cannot write '" + path + "': " + ec.message());
-  }
+  OutputFiles files;
+  files.Add(path, text, flag);
+  files.Commit();
 }
 
 int ResolvePart(const Assembly& assembly, const std::string& name, const std::string& flag,
                 const std::string& file) {
+  if (name.empty()) throw InputError("", flag, "a part name is empty");
   const int i = assembly.FindPart(name);
-  if (i < 0) throw InputError("", flag, "no part named '" + name + "' in " + file);
+  if (i < 0) throw InputError("", flag, "no part named '" + EscapedName(name) + "' in " + file);
   return i;
 }
 
@@ -143,8 +141,11 @@ std::optional<int> ResolveNormalize(const Assembly& assembly, const std::string&
                                     const std::string& file) {
   if (name.empty()) return std::nullopt;
   const int i = ResolvePart(assembly, name, "--normalize", file);
-  if (assembly.part(i).mass <= 0)
-    throw InputError("", "--normalize", "part '" + name + "' has no weight");
+  if (!(assembly.part(i).mass * assembly.gravity().norm() > 0))
+    throw InputError("", "--normalize",
+                     "part '" + EscapedName(name) + "' has no weight (" +
+                         (assembly.gravity().norm() > 0 ? "no mass" : "the scene has no gravity") +
+                         "): forces cannot be given in units of it");
   return i;
 }
 
@@ -156,6 +157,15 @@ Configuration WithoutParts(const Assembly& assembly, const std::vector<std::stri
     config.present[i] = false;
     taken.push_back(i);
   }
+  // A scene of fixed parts alone is stable (nothing can move); taking away
+  // every movable one leaves nothing to ask about.
+  bool movable = false, had_movable = false;
+  for (int i = 0; i < assembly.num_parts(); ++i) {
+    had_movable = had_movable || !assembly.part(i).fixed;
+    movable = movable || (config.present[i] && !assembly.part(i).fixed);
+  }
+  if (had_movable && !movable)
+    throw InputError("", "--without", "takes away every movable part: nothing is left to check");
   return config;
 }
 

@@ -15,6 +15,7 @@
 #include "cairn/report/plan_report.h"
 #include "cli/command.h"
 #include "cli/model.h"
+#include "cli/output_files.h"
 #include "cli/scene_writer.h"
 
 namespace cairn::cli {
@@ -55,6 +56,8 @@ int RunPlan(const PlanArgs& args, std::ostream& out, std::ostream& err) {
     // Everything is computed before anything is written.
     const std::string text = args.json ? PlannerToJson(assembly, result, args.scene).dump(2) + "\n"
                                        : PlannerToText(assembly, result, args.scene);
+    // Every file, or none (OutputFiles).
+    OutputFiles files;
     if (!args.emit_plans.empty()) {
       std::error_code ec;
       std::filesystem::create_directories(args.emit_plans, ec);
@@ -65,7 +68,7 @@ int RunPlan(const PlanArgs& args, std::ostream& out, std::ostream& err) {
       const int dim = assembly.dimension();
       for (size_t k = 0; k < result.sequences.size(); ++k) {
         const PlannedSequence& s = result.sequences[k];
-        WriteAtomically(
+        files.Add(
             (dir / Numbered("sequence_", k, ".plan.json")).string(),
             PlanDefToJson(SequenceToPlanDef(s, result, PlanMode::kDisassemble), dim).dump(2) + "\n",
             "--emit-plans");
@@ -73,25 +76,25 @@ int RunPlan(const PlanArgs& args, std::ostream& out, std::ostream& err) {
           // The plan needs its fixels: the scene with them, beside the plan.
           AssemblyDef def = model.def;
           def.fixtures.insert(def.fixtures.end(), s.fixels.begin(), s.fixels.end());
-          WriteAtomically((dir / Numbered("sequence_", k, ".scene.json")).string(),
-                          WriteSceneJson(def), "--emit-plans");
+          files.Add((dir / Numbered("sequence_", k, ".scene.json")).string(), WriteSceneJson(def),
+                    "--emit-plans");
           continue;  // the assembly direction was not checked with fixels
         }
-        WriteAtomically(
+        files.Add(
             (dir / Numbered("sequence_", k, ".assemble.plan.json")).string(),
             PlanDefToJson(SequenceToPlanDef(s, result, PlanMode::kAssemble), dim).dump(2) + "\n",
             "--emit-plans");
       }
       for (size_t k = 0; k < result.assembly_only.size(); ++k)
-        WriteAtomically(
-            (dir / Numbered("assembly_only_", k, ".plan.json")).string(),
-            PlanDefToJson(SequenceToPlanDef(result.assembly_only[k], result, PlanMode::kAssemble),
-                          dim)
-                    .dump(2) +
-                "\n",
-            "--emit-plans");
+        files.Add((dir / Numbered("assembly_only_", k, ".plan.json")).string(),
+                  PlanDefToJson(
+                      SequenceToPlanDef(result.assembly_only[k], result, PlanMode::kAssemble), dim)
+                          .dump(2) +
+                      "\n",
+                  "--emit-plans");
     }
-    if (!args.dot.empty()) WriteAtomically(args.dot, PlannerToDot(assembly, result), "--dot");
+    if (!args.dot.empty()) files.Add(args.dot, PlannerToDot(assembly, result), "--dot");
+    files.Commit();
     out << text;
     return result.sequences.empty() ? kExitUnstable : kExitStable;
   });

@@ -21,6 +21,7 @@
 #include "cairn/stability/analyze.h"
 #include "cli/command.h"
 #include "cli/model.h"
+#include "cli/progress.h"
 #include "cli/scene_writer.h"
 
 namespace cairn::cli {
@@ -33,14 +34,25 @@ int RunSimulate(const SimulateArgs& args, std::ostream& out, std::ostream& err) 
     RefuseGivenInterfaces(assembly, args.scene,
                           "parts cannot be moved along a plan (check it, with --without for "
                           "subassemblies, or let Cairn find the contacts from the shapes)");
-    const Plan plan = ReadPlan(args.plan, assembly);
+    const Plan plan = ReadPlan(args.plan, assembly, args.max_ticks);
     ReportOptions report;
     report.scene_file = args.scene;
     report.normalize_part = ResolveNormalize(assembly, args.normalize, args.scene);
     SimulationOptions options;
     options.continue_after_failure = args.continue_after_failure;
     options.record_timeline = !args.timeline.empty();
+    // A long plan says where it is, on a terminal.
+    Progress progress("cairn simulate");
+    std::vector<long long> ticks;
+    for (const PlanStep& s : plan.steps)
+      ticks.push_back(static_cast<long long>(std::ceil(s.Length() / (plan.speed * plan.dt))));
+    options.on_analysis = [&](const AnalysisInputs& in) {
+      progress.Show("step " + std::to_string(in.step + 1) + "/" +
+                    std::to_string(plan.steps.size()) + ", time step " + std::to_string(in.tick) +
+                    "/" + std::to_string(ticks[in.step]));
+    };
     const SimulationResult result = SimulatePlan(assembly, plan, options);
+    progress.Done();
     // --suggest-fixtures: when the plan fails, the fewest fixels that make it
     // stable (docs/fixtures.md). The exit code stays the plan's own verdict.
     std::optional<FixtureSuggestion> suggestion;

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "cairn/geometry/plan.h"
 #include "cli/model.h"
 
 namespace cairn::cli {
@@ -20,6 +21,8 @@ struct SimulateArgs {
   /// make the plan stable (planning/fixtures.h) and report them.
   bool suggest_fixtures = false;
   int max_fixels = 3;  ///< --max-fixels
+  /// --max-ticks: the most time steps one step of the plan may take.
+  long long max_ticks = Plan::kDefaultMaxTicks;
   ModelArgs model;
 };
 

@@ -11,6 +11,7 @@
 
 #include "cairn/core/check.h"
 #include "cairn/core/error.h"
+#include "cairn/core/tolerances.h"
 
 namespace cairn {
 namespace {
@@ -54,6 +55,29 @@ class Validator {
   void NonNegative(double x, const std::string& path) const {
     FiniteNumber(x, path);
     if (x < 0) Fail(path, "must not be negative (got " + FormatNumber(x) + ")");
+  }
+  // A friction coefficient: 0 to limits::kMaxFriction.
+  void Friction(double mu, const std::string& path) const {
+    NonNegative(mu, path);
+    if (mu > limits::kMaxFriction)
+      Fail(path, "is out of range (got " + FormatNumber(mu) + "; at most " +
+                     FormatNumber(limits::kMaxFriction) + ")");
+  }
+  // A point within the coordinate range (limits::kMaxCoordinate).
+  template <typename V>
+  void Coordinates(const V& v, const std::string& path) const {
+    FinitePoint(v, path);
+    if (v.cwiseAbs().maxCoeff() > limits::kMaxCoordinate)
+      Fail(path, "coordinate out of range (got " + Point(v) + "; |x| ≤ " +
+                     FormatNumber(limits::kMaxCoordinate) + " length units)");
+  }
+  // The fault of a value the command line may have set (`option`, e.g.
+  // "--tolerance"), reported against the option when it did, else against
+  // the file's `path`.
+  [[noreturn]] void FailValue(const std::string& option, const std::string& path,
+                              const std::string& message) const {
+    if (!option.empty()) throw InputError("", option, message);
+    Fail(path, message);
   }
 
  private:
@@ -135,16 +159,33 @@ std::string ShapePath(const PartDef& p, int i) {
 }
 
 // A 2-D part's validated polygon and mass properties.
-Part Make2dPart(const PartDef& p, const std::string& path, double tol, const Validator& check) {
-  const int nv = static_cast<int>(p.polygon.size());
-  for (int k = 1; k < nv; ++k) {
-    for (int l = 0; l < k; ++l) {
-      if ((p.polygon[k] - p.polygon[l]).norm() <= tol) {
-        check.Fail(path + Indexed("", k), "self-intersecting: vertex " + std::to_string(k) +
-                                              " repeats vertex " + std::to_string(l));
-      }
+// The first vertex k (in order) within tol of an earlier vertex l: (k, l).
+// A sweep over the vertices sorted by x, comparing each with those within
+// tol in x: O(n log n) for any polygon whose vertices do not crowd into one
+// tol-wide column.
+std::optional<std::pair<int, int>> RepeatedVertex(const Polygon& poly, double tol) {
+  const int n = static_cast<int>(poly.size());
+  std::vector<int> order(n);
+  std::iota(order.begin(), order.end(), 0);
+  std::sort(order.begin(), order.end(), [&](int a, int b) {
+    return poly[a].x() < poly[b].x() || (poly[a].x() == poly[b].x() && a < b);
+  });
+  std::optional<std::pair<int, int>> first;
+  for (int s = 0; s < n; ++s) {
+    for (int t = s + 1; t < n && poly[order[t]].x() - poly[order[s]].x() <= tol; ++t) {
+      if ((poly[order[t]] - poly[order[s]]).norm() > tol) continue;
+      const int k = std::max(order[s], order[t]), l = std::min(order[s], order[t]);
+      if (!first || std::make_pair(k, l) < *first) first = std::make_pair(k, l);
     }
   }
+  return first;
+}
+
+Part Make2dPart(const PartDef& p, const std::string& path, double tol, const Validator& check) {
+  if (const auto r = RepeatedVertex(p.polygon, tol))
+    check.Fail(path + Indexed("", r->first), "self-intersecting: vertex " +
+                                                 std::to_string(r->first) + " repeats vertex " +
+                                                 std::to_string(r->second));
   const auto box = BoundingBox(p.polygon);
   const double size = (box.second - box.first).norm();
   if (Collinear(p.polygon, tol)) check.Fail(path, "has zero area: its vertices are collinear");
@@ -222,10 +263,20 @@ struct SceneNumbers {
 SceneNumbers ReadSceneNumbers(const AssemblyDef& def, bool is3, const Validator& check) {
   SceneNumbers out;
   out.gravity = def.gravity.value_or(is3 ? Vector3(0, 0, -9.81) : Vector3(0, -9.81, 0));
-  check.FinitePoint(out.gravity, "gravity");
+  if (!Finite(out.gravity))
+    check.FailValue(def.gravity_option, "gravity",
+                    "must have finite components (got " + Point(out.gravity) + ")");
+  const double g = out.gravity.cwiseAbs().maxCoeff();
+  if (g != 0 && (g < limits::kMinGravity || g > limits::kMaxGravity))
+    check.FailValue(def.gravity_option, "gravity",
+                    "out of range (got " + Point(out.gravity) + "; |g| is 0 or between " +
+                        FormatNumber(limits::kMinGravity) + " and " +
+                        FormatNumber(limits::kMaxGravity) + " length/s²)");
   if (!is3 && out.gravity.z() != 0) check.Fail("gravity", "must have z = 0 in a 2-D scene");
-  check.NonNegative(def.friction, "friction");
-  check.FiniteNumber(def.tolerance, "tolerance");
+  check.Friction(def.friction, "friction");
+  if (!std::isfinite(def.tolerance))
+    check.FailValue(def.tolerance_option, "tolerance",
+                    "must be a finite number (got " + FormatNumber(def.tolerance) + ")");
   out.friction = def.friction;
   out.tolerance_override = def.tolerance > 0 ? def.tolerance : 0.0;
   if (def.friction_directions != 0) {
@@ -267,7 +318,7 @@ std::unordered_map<std::string, int> CheckPartNumbers(const AssemblyDef& def, bo
     if (p.mass) check.Positive(*p.mass, path + ".mass");
     if (is3) {
       for (size_t k = 0; k < p.polyhedron->vertices.size(); ++k)
-        check.FinitePoint(p.polyhedron->vertices[k],
+        check.Coordinates(p.polyhedron->vertices[k],
                           ShapePath(p, i) + ".vertices" + Indexed("", static_cast<int>(k)));
       continue;
     }
@@ -277,7 +328,7 @@ std::unordered_map<std::string, int> CheckPartNumbers(const AssemblyDef& def, bo
                  "has " + std::to_string(nv) + " vertices; a polygon needs at least 3");
     }
     for (int k = 0; k < nv; ++k) {
-      check.FinitePoint(p.polygon[k], path + ".polygon" + Indexed("", k));
+      check.Coordinates(p.polygon[k], path + ".polygon" + Indexed("", k));
     }
   }
   return index;
@@ -293,6 +344,82 @@ double SceneSize(const AssemblyDef& def, bool is3) {
       for (const Vector2& v : p.polygon) lo = lo.cwiseMin(Embed(v)), hi = hi.cwiseMax(Embed(v));
   }
   return def.parts.empty() ? 0.0 : (hi - lo).norm();
+}
+
+// The bounding box of a part's vertices (as given).
+std::pair<Vector3, Vector3> PartBox(const PartDef& p, bool is3) {
+  Vector3 lo = Vector3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+  if (is3)
+    for (const Vector3& v : p.polyhedron->vertices) lo = lo.cwiseMin(v), hi = hi.cwiseMax(v);
+  else
+    for (const Vector2& v : p.polygon) lo = lo.cwiseMin(Embed(v)), hi = hi.cwiseMax(Embed(v));
+  return {lo, hi};
+}
+
+// Every part at least limits::kMinPartSizeInTolerances length tolerances
+// across: otherwise its shape is below the tolerance (a coarse --tolerance,
+// or a scene spanning too many orders of magnitude: one part far from the
+// others makes the scaled tolerance coarse for all), and checking its shape
+// would blame it for what the scale did.
+void CheckScale(const AssemblyDef& def, bool is3, double scene_size, double tol,
+                const Validator& check) {
+  const int n = static_cast<int>(def.parts.size());
+  std::vector<Vector3> centre(n);
+  int smallest = -1;
+  double smallest_size = std::numeric_limits<double>::infinity();
+  for (int i = 0; i < n; ++i) {
+    const auto [lo, hi] = PartBox(def.parts[i], is3);
+    centre[i] = 0.5 * (lo + hi);
+    if ((hi - lo).norm() < smallest_size) smallest_size = (hi - lo).norm(), smallest = i;
+  }
+  if (smallest < 0 || smallest_size >= limits::kMinPartSizeInTolerances * tol) return;
+  const std::string size = "its size " + FormatNumber(smallest_size) + " is less than " +
+                           FormatNumber(limits::kMinPartSizeInTolerances) +
+                           " times the length tolerance " + FormatNumber(tol);
+  const PartDef& p = def.parts[smallest];
+  if (def.tolerance > 0) {
+    check.FailValue(def.tolerance_option, def.tolerance_option.empty() ? "tolerance" : "",
+                    "too coarse for part '" + EscapedName(p.name) + "' (" + PartPath(p, smallest) +
+                        "): " + size + "; give a tolerance below " +
+                        FormatNumber(smallest_size / limits::kMinPartSizeInTolerances));
+  }
+  // The part farthest from the smallest one spans the scene.
+  int far = smallest;
+  for (int i = 0; i < n; ++i)
+    if ((centre[i] - centre[smallest]).norm() > (centre[far] - centre[smallest]).norm()) far = i;
+  check.Fail(PartPath(p, smallest),
+             size + " (1e-6 of the scene's size " + FormatNumber(scene_size) +
+                 "): the scene spans too many orders of magnitude (part '" +
+                 EscapedName(def.parts[far].name) + "', " + PartPath(def.parts[far], far) +
+                 ", lies " + FormatNumber((centre[far] - centre[smallest]).norm()) +
+                 " away); bring the parts together, or set a tolerance");
+}
+
+// Each part's mass within limits::kMinMass..kMaxMass, and the movable
+// parts' masses within limits::kMaxMassRatio of each other. Reported at the
+// mass, the density, or the part, whichever set it.
+void CheckMasses(const AssemblyDef& def, const std::vector<Part>& parts, const Validator& check) {
+  const auto where = [&](int i) {
+    const PartDef& p = def.parts[i];
+    return PartPath(p, i) + (p.mass ? ".mass" : p.density ? ".density" : "");
+  };
+  int lightest = -1, heaviest = -1;
+  for (int i = 0; i < static_cast<int>(parts.size()); ++i) {
+    const double m = parts[i].mass;
+    if (!(m >= limits::kMinMass && m <= limits::kMaxMass))
+      check.Fail(where(i), "the part's mass " + FormatNumber(m) + " is out of range (" +
+                               FormatNumber(limits::kMinMass) + " to " +
+                               FormatNumber(limits::kMaxMass) + " mass units)");
+    if (parts[i].fixed) continue;
+    if (lightest < 0 || m < parts[lightest].mass) lightest = i;
+    if (heaviest < 0 || m > parts[heaviest].mass) heaviest = i;
+  }
+  if (lightest < 0 || parts[heaviest].mass <= limits::kMaxMassRatio * parts[lightest].mass) return;
+  check.Fail(where(lightest), "the part's mass " + FormatNumber(parts[lightest].mass) +
+                                  " is less than 1/" + FormatNumber(limits::kMaxMassRatio) +
+                                  " of the heaviest movable part's, '" +
+                                  EscapedName(parts[heaviest].name) + "' (" +
+                                  FormatNumber(parts[heaviest].mass) + ")");
 }
 
 // Overlap between every pair of parts, skipping pairs whose bounding boxes
@@ -363,7 +490,7 @@ std::vector<std::pair<std::pair<int, int>, double>> MakeFrictionPairs(const Asse
     if (a < 0) check.Fail(path + ".parts[0]", "no part named '" + EscapedName(fp.part_a) + "'");
     if (b < 0) check.Fail(path + ".parts[1]", "no part named '" + EscapedName(fp.part_b) + "'");
     if (a == b) check.Fail(path + ".parts[1]", "names part '" + EscapedName(fp.part_a) + "' twice");
-    check.NonNegative(fp.mu, path + ".mu");
+    check.Friction(fp.mu, path + ".mu");
     const std::pair<int, int> key{std::min(a, b), std::max(a, b)};
     for (int l = 0; l < k; ++l) {
       if (pair_mu[l].first == key) {
@@ -498,6 +625,7 @@ Assembly Assembly::Create(const AssemblyDef& def, const std::string& source_file
   const double tol =
       Tolerances::Scaled(out.scene_size_, 1.0, 1.0, 1.0, out.tolerance_override_).length;
   const double angle_tol = Tolerances{}.angle;
+  CheckScale(def, is3, out.scene_size_, tol, check);
 
   // Each part's shape, then its mass properties.
   for (int i = 0; i < static_cast<int>(def.parts.size()); ++i) {
@@ -509,6 +637,7 @@ Assembly Assembly::Create(const AssemblyDef& def, const std::string& source_file
     part.tool = p.tool;
     out.parts_.push_back(std::move(part));
   }
+  CheckMasses(def, out.parts_, check);
   // Given interfaces say how the parts touch; their shapes may interpenetrate
   // (InterfaceDef): no overlap test then.
   if (def.interfaces.empty()) CheckOverlaps(def, out.parts_, out.dimension_, tol, check);

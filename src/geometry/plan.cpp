@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 #include <string>
 #include <unordered_map>
@@ -9,6 +10,7 @@
 #include <vector>
 
 #include "cairn/core/error.h"
+#include "cairn/core/tolerances.h"
 
 namespace cairn {
 namespace {
@@ -74,10 +76,12 @@ std::vector<Vector3> RawPath(const PlanStepDef& def, const std::string& path,
     return def.path;
   }
   check.FinitePoint(def.direction, path + ".direction");
-  const double norm = def.direction.norm();
-  if (norm == 0) check.Fail(path + ".direction", "must not be zero");
+  // Scaled by its largest entry first: the norm of [1e308, 0] overflows.
+  const double largest = def.direction.cwiseAbs().maxCoeff();
+  if (largest == 0) check.Fail(path + ".direction", "must not be zero");
+  const Vector3 unit = (def.direction / largest).normalized();
   check.Positive(def.distance, path + ".distance");
-  return {Vector3(0, 0, 0), (def.distance / norm) * def.direction};
+  return {Vector3(0, 0, 0), def.distance * unit};
 }
 
 }  // namespace
@@ -186,6 +190,12 @@ std::vector<Vector3> StepPath(const PlanStepDef& sd, const std::string& path,
                               const Assembly& assembly, const PlanValidator& check) {
   std::vector<Vector3> out;
   const std::vector<Vector3> raw = RawPath(sd, path, check);
+  for (size_t k = 0; k < raw.size(); ++k)
+    if (raw[k].cwiseAbs().maxCoeff() > limits::kMaxCoordinate)
+      check.Fail(sd.has_path ? Indexed(path + ".path", k) : path + ".distance",
+                 "goes out of range (a displacement of " +
+                     FormatNumber(raw[k].cwiseAbs().maxCoeff()) + "; |x| ≤ " +
+                     FormatNumber(limits::kMaxCoordinate) + " length units)");
   if (raw.front() != Vector3(0, 0, 0)) out.push_back(Vector3(0, 0, 0));
   for (const Vector3& p : raw) {
     if (out.empty() || p != out.back()) out.push_back(p);
@@ -198,14 +208,37 @@ std::vector<Vector3> StepPath(const PlanStepDef& sd, const std::string& path,
   return out;
 }
 
+// The step's time steps, its path length over speed · dt, at most
+// `max_ticks` (a step of 2³¹ would overflow the tick counter; long before
+// that it runs for hours without a word).
+void StepTicks(const PlanStep& step, const Plan& plan, long long max_ticks, const std::string& path,
+               const PlanValidator& check) {
+  const double ticks = std::ceil(step.Length() / (plan.speed * plan.dt));
+  if (ticks <= static_cast<double>(max_ticks)) return;
+  check.Fail(path, "takes " + FormatNumber(ticks) + " time steps (path length " +
+                       FormatNumber(step.Length()) + " at speed " + FormatNumber(plan.speed) +
+                       " and dt " + FormatNumber(plan.dt) + "), more than " +
+                       std::to_string(max_ticks) +
+                       ": give a larger dt or speed, or allow more with --max-ticks");
+}
+
 }  // namespace
 
-Plan Plan::Create(const PlanDef& def, const Assembly& assembly, const std::string& file) {
+Plan Plan::Create(const PlanDef& def, const Assembly& assembly, const std::string& file,
+                  long long max_ticks) {
   const PlanValidator check(file, assembly);
   Plan plan;
   plan.mode = def.mode;
   check.Positive(def.dt, "dt");
   check.Positive(def.speed, "speed");
+  if (def.dt > kMaxDt)
+    check.Fail("dt", "is out of range (got " + FormatNumber(def.dt) + " s; at most " +
+                         FormatNumber(kMaxDt) + " s)");
+  const double size = std::max(assembly.scene_size(), std::numeric_limits<double>::min());
+  if (def.speed < kMinSpeed * size || def.speed > kMaxSpeed * size)
+    check.Fail("speed", "is out of range (got " + FormatNumber(def.speed) + "; between " +
+                            FormatNumber(kMinSpeed) + " and " + FormatNumber(kMaxSpeed) +
+                            " times the scene's size " + FormatNumber(size) + " per second)");
   plan.dt = def.dt;
   plan.speed = def.speed;
   if (def.steps.empty()) check.Fail("steps", "must list at least one step");
@@ -220,6 +253,7 @@ Plan Plan::Create(const PlanDef& def, const Assembly& assembly, const std::strin
     step.remove = RemovedParts(sd, i, bare, assembly, check, removed_at);
     step.grip = GrippedParts(sd, step.remove, bare, path, assembly, check);
     step.path = StepPath(sd, path, assembly, check);
+    StepTicks(step, plan, max_ticks, path, check);
     step.support = sd.support;
     plan.steps.push_back(std::move(step));
   }

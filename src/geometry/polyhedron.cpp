@@ -489,6 +489,10 @@ std::optional<PolyhedronFault> OrientOutward(const PolyhedronDef& def, double to
 // is tested: O(T²), acceptable for parts of tens to hundreds of faces; a
 // bounding-volume hierarchy would be the next step. Bounding boxes apart by
 // more than tol skip the exact test.
+// Up to this many triangles every pair is tested (the first fault in index
+// order reported); above, a sweep.
+constexpr size_t kBruteForceTriangles = 128;
+
 std::optional<PolyhedronFault> CheckFacesApart(const PolyhedronDef& def, double tol,
                                                const Checked& out) {
   const std::vector<Vector3>& x = def.vertices;
@@ -504,17 +508,43 @@ std::optional<PolyhedronFault> CheckFacesApart(const PolyhedronDef& def, double 
       tris.push_back(ft);
     }
   }
-  for (size_t i = 0; i < tris.size(); ++i) {
-    for (size_t j = i + 1; j < tris.size(); ++j) {
-      const FaceTriangle& s = tris[i];
-      const FaceTriangle& t = tris[j];
-      if (s.face == t.face) continue;
-      if (((s.lo - t.hi).array() > tol).any() || ((t.lo - s.hi).array() > tol).any()) continue;
-      if (TrianglesIntersect(x, s, t, tol)) {
-        return Fault(s.face, FaceName(s.face) + " intersects " + FaceName(t.face) +
-                                 " (the surface is self-intersecting)");
-      }
+  // Triangles i < j of different faces whose boxes overlap (within tol) and
+  // that intersect.
+  const auto fault = [&](size_t i, size_t j) -> std::optional<PolyhedronFault> {
+    const FaceTriangle& s = tris[std::min(i, j)];
+    const FaceTriangle& t = tris[std::max(i, j)];
+    if (s.face == t.face) return std::nullopt;
+    if (((s.lo - t.hi).array() > tol).any() || ((t.lo - s.hi).array() > tol).any())
+      return std::nullopt;
+    if (!TrianglesIntersect(x, s, t, tol)) return std::nullopt;
+    return Fault(s.face, FaceName(s.face) + " intersects " + FaceName(t.face) +
+                             " (the surface is self-intersecting)");
+  };
+  // Small solids: every pair, the first in index order reported. Larger: a
+  // sweep over the triangles' boxes sorted by their low x, each tested
+  // against the active ones whose boxes reach it (O(T log T) plus the
+  // overlapping pairs, against T² for every pair: a 60 000-triangle mesh).
+  if (tris.size() <= kBruteForceTriangles) {
+    for (size_t i = 0; i < tris.size(); ++i)
+      for (size_t j = i + 1; j < tris.size(); ++j)
+        if (auto f = fault(i, j)) return f;
+    return std::nullopt;
+  }
+  std::vector<size_t> order(tris.size());
+  for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::sort(order.begin(), order.end(), [&](size_t a, size_t b) {
+    return tris[a].lo.x() < tris[b].lo.x() || (tris[a].lo.x() == tris[b].lo.x() && a < b);
+  });
+  std::vector<size_t> active;
+  for (const size_t e : order) {
+    size_t kept = 0;
+    for (const size_t a : active) {
+      if (tris[a].hi.x() + tol < tris[e].lo.x()) continue;  // left behind for good
+      active[kept++] = a;
+      if (auto f = fault(a, e)) return f;
     }
+    active.resize(kept);
+    active.push_back(e);
   }
   return std::nullopt;
 }

@@ -258,8 +258,8 @@ class CompasParser : private io_internal::JsonChecker {
     if (value->size() != 3) {
       Fail(p, "must have 3 numbers [x, y, z], not " + std::to_string(value->size()));
     }
-    return Vector3(Number((*value)[0], Index(p, 0)), Number((*value)[1], Index(p, 1)),
-                   Number((*value)[2], Index(p, 2)));
+    return Vector3(Coordinate((*value)[0], Index(p, 0)), Coordinate((*value)[1], Index(p, 1)),
+                   Coordinate((*value)[2], Index(p, 2)));
   }
 
   // The polygon of an interface: an array of at least 3 points.
@@ -382,9 +382,9 @@ class CompasParser : private io_internal::JsonChecker {
     for (const std::string& key : SortedKeys(vertices)) {
       const std::string v_path = Child(vertex_path, key);
       const json& v = Object(vertices[key], v_path);
-      const double x = Number(Require(v, "x", v_path), Child(v_path, "x"));
-      const double y = Number(Require(v, "y", v_path), Child(v_path, "y"));
-      const double z = Number(Require(v, "z", v_path), Child(v_path, "z"));
+      const double x = Coordinate(Require(v, "x", v_path), Child(v_path, "x"));
+      const double y = Coordinate(Require(v, "y", v_path), Child(v_path, "y"));
+      const double z = Coordinate(Require(v, "z", v_path), Child(v_path, "z"));
       index.emplace(key, static_cast<int>(def.vertices.size()));
       def.vertices.emplace_back(x, y, z);
     }

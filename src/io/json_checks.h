@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "cairn/core/error.h"
+#include "cairn/core/tolerances.h"
 #include "cairn/core/types.h"
 
 namespace cairn::io_internal {
@@ -27,8 +28,10 @@ using nlohmann::json;
 // `path.key`, or `key` at the top level. The key is escaped as in JSON
 // (EscapedName): a key of the file with a quote or a newline cannot break the
 // one-line message.
+// An empty key is written `""`, so that the message still names it.
 inline std::string Child(const std::string& path, const std::string& key) {
-  return path.empty() ? EscapedName(key) : path + "." + EscapedName(key);
+  const std::string name = key.empty() ? "\"\"" : EscapedName(key);
+  return path.empty() ? name : path + "." + name;
 }
 
 // `path[i]`.
@@ -111,6 +114,15 @@ class JsonChecker {
     return x;
   }
 
+  // A coordinate (length units): finite and within limits::kMaxCoordinate.
+  double Coordinate(const json& j, const std::string& path) const {
+    const double x = Number(j, path);
+    if (std::abs(x) > limits::kMaxCoordinate)
+      Fail(path, "coordinate out of range (got " + Num(x) + "; |x| ≤ " +
+                     Num(limits::kMaxCoordinate) + " length units)");
+    return x;
+  }
+
   std::string String(const json& j, const std::string& path) const {
     if (!j.is_string()) Fail(path, "must be a string, not " + Article(j));
     return j.get<std::string>();
@@ -154,9 +166,17 @@ class JsonChecker {
   const std::string& file_;
 };
 
+// How deeply arrays and objects may nest. The deepest of Cairn's formats
+// (a COMPAS file: data.graph.data.node.<key>.block.data.face.<key>[i]) nests
+// about 10; nothing legitimate comes near this, and a document nested
+// millions deep (which a recursive reader would overflow the stack on) is
+// refused by the SAX pass below, which keeps its own stack.
+inline constexpr std::size_t kMaxJsonDepth = 256;
+
 // A SAX pass over the text that builds nothing: it finds syntax errors and
-// number overflows (with their position) and keys repeated within one object
-// (nlohmann::json would silently keep the last), with their JSON path.
+// number overflows (with their position), nesting deeper than kMaxJsonDepth
+// and keys repeated within one object (nlohmann::json would silently keep the
+// last), with their JSON path.
 class SyntaxChecker : public nlohmann::json_sax<json> {
  public:
   bool null() override { return Value(); }
@@ -169,7 +189,7 @@ class SyntaxChecker : public nlohmann::json_sax<json> {
   bool start_object(std::size_t) override {
     Value();
     frames_.emplace_back().array = false;
-    return true;
+    return Depth();
   }
   bool key(string_t& k) override {
     Frame& top = frames_.back();
@@ -187,7 +207,7 @@ class SyntaxChecker : public nlohmann::json_sax<json> {
   bool start_array(std::size_t) override {
     Value();
     frames_.emplace_back().array = true;
-    return true;
+    return Depth();
   }
   bool end_array() override {
     frames_.pop_back();
@@ -200,6 +220,7 @@ class SyntaxChecker : public nlohmann::json_sax<json> {
   }
 
   const std::optional<std::string>& duplicate_path() const { return duplicate_path_; }
+  const std::optional<std::string>& too_deep_path() const { return too_deep_path_; }
   const std::optional<std::string>& error() const { return error_; }
   std::size_t error_position() const { return error_position_; }
 
@@ -211,15 +232,23 @@ class SyntaxChecker : public nlohmann::json_sax<json> {
     std::set<std::string> keys;
   };
 
+  bool Depth() {
+    if (frames_.size() <= kMaxJsonDepth) return true;
+    too_deep_path_ = Path(8) + "...";  // the first levels say where
+    return false;
+  }
+
   // Counts an element of the enclosing array.
   bool Value() {
     if (!frames_.empty() && frames_.back().array) ++frames_.back().count;
     return true;
   }
 
-  std::string Path() const {
+  // The JSON path of the current value, at most `levels` deep.
+  std::string Path(size_t levels = kMaxJsonDepth + 1) const {
     std::string path;
-    for (const Frame& f : frames_) {
+    for (size_t i = 0; i < frames_.size() && i < levels; ++i) {
+      const Frame& f = frames_[i];
       path = f.array ? Index(path, f.count - 1) : Child(path, f.key);
     }
     return path;
@@ -227,6 +256,7 @@ class SyntaxChecker : public nlohmann::json_sax<json> {
 
   std::vector<Frame> frames_;
   std::optional<std::string> duplicate_path_;
+  std::optional<std::string> too_deep_path_;
   std::optional<std::string> error_;
   std::size_t error_position_ = 0;
 };
@@ -249,24 +279,48 @@ inline std::string DescribeJsonError(const std::string& text, std::size_t positi
          ": " + message;
 }
 
-// Reads the file at `path` and parses it: syntax first (with line and
-// column), then repeated keys (with their JSON path).
+// Line and column (1-based) of byte `offset` of `text`.
+inline std::string LineColumn(const std::string& text, std::size_t offset) {
+  const size_t end = std::min(offset, text.size());
+  const size_t line = 1 + std::count(text.begin(), text.begin() + end, '\n');
+  const size_t line_start = end == 0 ? std::string::npos : text.rfind('\n', end - 1);
+  const size_t column = line_start == std::string::npos ? end + 1 : end - line_start;
+  return "line " + std::to_string(line) + ", column " + std::to_string(column);
+}
+
+// Parses the JSON text of `file`: syntax first (with line and column; a NUL
+// byte, which nlohmann::json would take for the end of the text and so
+// accept a valid document followed by junk, is an error), then nesting depth
+// and repeated keys (with their JSON path).
+inline json ParseJsonText(const std::string& text, const std::string& file) {
+  if (const size_t nul = text.find('\0'); nul != std::string::npos)
+    throw InputError(file, "",
+                     "invalid JSON at " + LineColumn(text, nul) +
+                         ": a NUL byte (a JSON text has none; is this a binary file?)");
+  SyntaxChecker checker;
+  if (!json::sax_parse(text, &checker)) {
+    if (checker.duplicate_path()) {
+      throw InputError(file, *checker.duplicate_path(), "duplicate key in one object");
+    }
+    if (checker.too_deep_path()) {
+      throw InputError(
+          file, *checker.too_deep_path(),
+          "nested more than " + std::to_string(kMaxJsonDepth) + " arrays or objects deep");
+    }
+    throw InputError(
+        file, "", DescribeJsonError(text, checker.error_position(), checker.error().value_or("")));
+  }
+  return json::parse(text);
+}
+
+// Reads the file at `path` and parses it (ParseJsonText).
 inline json ReadJsonFile(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path, "", "cannot open the file for reading");
   std::ostringstream buffer;
   buffer << in.rdbuf();
-  const std::string text = buffer.str();
-
-  SyntaxChecker checker;
-  if (!json::sax_parse(text, &checker)) {
-    if (checker.duplicate_path()) {
-      throw InputError(path, *checker.duplicate_path(), "duplicate key in one object");
-    }
-    throw InputError(
-        path, "", DescribeJsonError(text, checker.error_position(), checker.error().value_or("")));
-  }
-  return json::parse(text);
+  if (in.bad()) throw InputError(path, "", "cannot read the file");
+  return ParseJsonText(buffer.str(), path);
 }
 
 }  // namespace cairn::io_internal

@@ -1,11 +1,11 @@
 #include "cairn/io/paths_reader.h"
 
-#include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
 
 #include "cairn/core/error.h"
 #include "cairn/io/plan_reader.h"
+#include "json_checks.h"
 
 namespace cairn {
 
@@ -13,14 +13,7 @@ using nlohmann::json;
 
 std::map<int, std::vector<CandidatePath>> ReadCandidatePaths(const std::string& file,
                                                              const Assembly& assembly) {
-  std::ifstream in(file);
-  if (!in) throw InputError(file, "", "cannot read the file");
-  json doc;
-  try {
-    doc = json::parse(in);
-  } catch (const json::parse_error& e) {
-    throw InputError(file, "", std::string("not valid JSON: ") + e.what());
-  }
+  const json doc = io_internal::ReadJsonFile(file);
   if (!doc.is_object())
     throw InputError(file, "", "must be a JSON object from part name to a list of paths");
   std::map<int, std::vector<CandidatePath>> out;

@@ -63,6 +63,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <sstream>
 
 #include "cairn/core/check.h"
@@ -498,8 +499,80 @@ void FollowAndCheck(const DenseProblem& pb, const VectorX& q_path, LcpResult* ou
 
 }  // namespace
 
+namespace {
+
+// Symmetric equilibration of an LCP (Ruiz's iteration on the symmetric
+// scaling): D = diag(d) with d_i = 1 / √(max_j |(D M D)_ij|) repeated, and a
+// scalar c = |D q|∞ / max |D M D|. LCP(M, q) and LCP(c D M D, D q) have the
+// same solutions up to z = c D ẑ, w = D⁻¹ ŵ (positive diagonal scalings keep
+// z ≥ 0, w ≥ 0 and z_i w_i = 0). The contact LCPs of light parts have
+// W M⁻¹ Wᵀ ~ 1/m (1e15 for a milligram part in kilograms) against a q of
+// accelerations ~10: in those units Lemke's relative tolerances see q as
+// roundoff. Empty when the problem is balanced already (every d within
+// kBalanced of 1): then nothing changes, to the last bit.
+struct Equilibration {
+  VectorX d;
+  double c = 1;
+};
+constexpr int kRuizPasses = 8;
+constexpr double kBalanced = 1e3;
+
+std::optional<Equilibration> Equilibrate(const MatrixX& M, const VectorX& q) {
+  const Eigen::Index n = q.size();
+  Equilibration e;
+  e.d = VectorX::Ones(n);
+  for (int pass = 0; pass < kRuizPasses; ++pass) {
+    bool moved = false;
+    for (Eigen::Index i = 0; i < n; ++i) {
+      double row = 0;
+      for (Eigen::Index j = 0; j < n; ++j) row = std::max(row, std::abs(M(i, j)) * e.d[j]);
+      row *= e.d[i];
+      if (!(row > 0) || !std::isfinite(row)) continue;
+      const double f = 1.0 / std::sqrt(row);
+      moved = moved || f < 0.5 || f > 2.0;
+      e.d[i] *= f;
+    }
+    if (!moved) break;
+  }
+  const MatrixX Ms = e.d.asDiagonal() * M * e.d.asDiagonal();
+  const double m = Ms.cwiseAbs().maxCoeff(), qs = e.d.cwiseProduct(q).cwiseAbs().maxCoeff();
+  if (m > 0 && qs > 0) e.c = qs / m;
+  // The scalar alone is no reason: Lemke's method divides by max(|M|, |q|).
+  const bool balanced = e.d.maxCoeff() <= kBalanced && e.d.minCoeff() >= 1.0 / kBalanced;
+  if (balanced || !e.d.allFinite() || !std::isfinite(e.c)) return std::nullopt;
+  return e;
+}
+
+LcpResult SolveLemkeScaled(const MatrixX& M, const VectorX& q, const LemkeParameters& params,
+                           const LcpBasis* warm_start);
+
+}  // namespace
+
 LcpResult SolveLemke(const MatrixX& M, const VectorX& q, const LemkeParameters& params,
                      const LcpBasis* warm_start) {
+  const Eigen::Index n = q.size();
+  CAIRN_THROW_UNLESS(M.rows() == n && M.cols() == n, "SolveLemke: M is "
+                                                         << M.rows() << "x" << M.cols()
+                                                         << " but q has " << n << " entries");
+  const bool finite = (M.array() * 0.0).sum() == 0.0 && (q.array() * 0.0).sum() == 0.0;
+  const std::optional<Equilibration> e =
+      n > 0 && finite ? Equilibrate(M, q) : std::optional<Equilibration>();
+  if (!e) return SolveLemkeScaled(M, q, params, warm_start);
+  const MatrixX Ms = e->c * (e->d.asDiagonal() * M * e->d.asDiagonal());
+  const VectorX qs = e->d.cwiseProduct(q);
+  LcpResult r = SolveLemkeScaled(Ms, qs, params, warm_start);
+  if (r.z.size() == n) {
+    r.z = e->c * e->d.cwiseProduct(r.z);
+    r.w = M * r.z + q;
+    r.residual = NaturalMapResidual(r.z, r.w);
+  }
+  return r;
+}
+
+namespace {
+
+LcpResult SolveLemkeScaled(const MatrixX& M, const VectorX& q, const LemkeParameters& params,
+                           const LcpBasis* warm_start) {
   const Eigen::Index n = q.size();
   CAIRN_THROW_UNLESS(M.rows() == n && M.cols() == n, "SolveLemke: M is "
                                                          << M.rows() << "x" << M.cols()
@@ -559,5 +632,7 @@ LcpResult SolveLemke(const MatrixX& M, const VectorX& q, const LemkeParameters& 
   }
   return result;
 }
+
+}  // namespace
 
 }  // namespace cairn

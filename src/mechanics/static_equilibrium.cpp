@@ -123,8 +123,13 @@ struct EquilibriumLp {
   std::vector<Generator> generators;
   std::vector<Matrix6> P;  // (nb) free projectors
   Triplets a;
-  std::vector<double> rhs;  // (6 nb) −P F_ext
+  std::vector<double> rhs;  // (6 nb) −P F_ext / load_scale
   int nrows = 0;
+  // The unit of the LP's forces: the largest load entry (force units; 1
+  // without loads). The LP solvers' tolerances are absolute (Clp: 1e-7 of a
+  // row), so a part of mass 1e-15 would sit below them in force units; in
+  // these units every problem's loads are O(1).
+  double load_scale = 1.0;
 };
 
 EquilibriumLp MakeEquilibriumLp(const ContactLcp& lcp, bool frictionless) {
@@ -144,8 +149,12 @@ EquilibriumLp MakeEquilibriumLp(const ContactLcp& lcp, bool frictionless) {
   }
   lp.a.DropDust();
   lp.rhs.resize(lp.nrows);
+  double largest = 0;
+  for (int b = 0; b < nb; ++b)
+    largest = std::max(largest, (lp.P[b] * lcp.bodies[b].F_ext).cwiseAbs().maxCoeff());
+  if (largest > 0) lp.load_scale = largest;
   for (int b = 0; b < nb; ++b) {
-    const Vector6 r = -(lp.P[b] * lcp.bodies[b].F_ext);
+    const Vector6 r = -(lp.P[b] * lcp.bodies[b].F_ext) / lp.load_scale;
     for (int k = 0; k < 6; ++k) lp.rhs[6 * b + k] = r[k];
   }
   return lp;
@@ -225,7 +234,7 @@ bool ReadEquilibrium(const ContactLcp& lcp, const EquilibriumLp& e, const double
     scale = std::max(scale, lcp.bodies[b].F_ext.cwiseAbs().maxCoeff());
   }
   for (int j = 0; j < static_cast<int>(e.generators.size()); ++j) {
-    const double amount = std::max(0.0, x[j]);
+    const double amount = std::max(0.0, x[j]) * e.load_scale;
     const Generator& g = e.generators[j];
     const int c = g.contact;
     out.normal_force[c] += amount;
@@ -242,7 +251,9 @@ bool ReadEquilibrium(const ContactLcp& lcp, const EquilibriumLp& e, const double
   }
   out.residual = 0;
   for (int b = 0; b < nb; ++b) out.residual = std::max(out.residual, net[b].cwiseAbs().maxCoeff());
-  return out.residual <= kEquilibriumResidual * std::max(1.0, scale);
+  // Relative to the loads (no absolute floor: a light part's forces are
+  // small, and so must be their imbalance).
+  return out.residual <= kEquilibriumResidual * scale;
 }
 
 }  // namespace
@@ -347,9 +358,13 @@ bool SolveElasticLp(const EquilibriumLp& e, const std::vector<double>& radius, C
     cost[ng + 2 * i] = cost[ng + 2 * i + 1] = w;
   }
   const std::vector<double> col_lo(ncols, 0.0), col_hi(ncols, COIN_DBL_MAX);
+  // In force units (the duals, the motion, are what this LP is for; their
+  // accuracy was measured in these units: docs/benchmarks.md).
+  std::vector<double> rhs = e.rhs;
+  for (double& r : rhs) r *= e.load_scale;
   lp.setLogLevel(0);
-  lp.loadProblem(a.Matrix(e.nrows, ncols), col_lo.data(), col_hi.data(), cost.data(), e.rhs.data(),
-                 e.rhs.data());
+  lp.loadProblem(a.Matrix(e.nrows, ncols), col_lo.data(), col_hi.data(), cost.data(), rhs.data(),
+                 rhs.data());
   if (ncols >= kBarrierColumns) {
     // With crossover: a vertex of the dual, so that bodies that need not
     // move are exactly at rest.
@@ -416,10 +431,13 @@ void CheckMechanism(const ContactLcp& lcp, const EquilibriumLp& e,
       out.moving.push_back(b);
   }
   out.least_generator_power = least;
+  // Gravity's power is a load (force units) times a motion of at most 1:
+  // its slack scales with the loads, so that light parts' mechanisms count.
   const double slack = kMechanismSlack * std::max(1.0, wrench_scale);
-  out.found = out.power > slack && least >= -slack;
+  const double power_slack = kMechanismSlack * e.load_scale;
+  out.found = out.power > power_slack && least >= -slack;
   if (!out.found)
-    out.message = out.power <= slack
+    out.message = out.power <= power_slack
                       ? "no motion along which gravity does work is admissible"
                       : "the mechanism failed its check (power " + std::to_string(out.power) +
                             ", least generator power " + std::to_string(least) + ")";

@@ -66,6 +66,12 @@ int Count(const Key& k) {
 
 // ---- A small, deterministic worker pool -------------------------------------
 
+// Best-first search evaluates this many of a node's edges at a time (in
+// parallel where there are threads), speculatively: a fixed number, not the
+// number of threads, so that which edges are evaluated, and so the graph and
+// the statistics the search reports, are the same whatever the threads.
+constexpr int kBestFirstBatch = 2;
+
 // Runs task(i) for i in [0, n) on `threads` threads. Results go to slots the
 // caller indexes by i, so the outcome does not depend on the interleaving.
 void ParallelFor(int n, int threads, const std::function<void(int)>& task) {
@@ -630,8 +636,8 @@ void Planner::Enumerate() {
 }
 
 // Best-first search: depth first along the most promising edge, edges
-// evaluated lazily (a batch of as many as there are threads at a time),
-// nodes without a stable completion remembered.
+// evaluated lazily (kBestFirstBatch at a time, in parallel), nodes without a
+// stable completion remembered.
 bool Planner::Visit(int node, std::vector<int>& stack) {
   if (found_ >= opt_.max_sequences) return false;
   if (Count(keys_[node]) == 0) {
@@ -645,7 +651,7 @@ bool Planner::Visit(int node, std::vector<int>& stack) {
   for (size_t k = 0; k < edges.size() && found_ < opt_.max_sequences; ++k) {
     if (!evaluated_[edges[k]]) {
       std::vector<int> batch;
-      for (size_t b = k; b < edges.size() && static_cast<int>(batch.size()) < threads_; ++b)
+      for (size_t b = k; b < edges.size() && static_cast<int>(batch.size()) < kBestFirstBatch; ++b)
         if (!evaluated_[edges[b]] && !dead_[result_.edges[edges[b]].to]) batch.push_back(edges[b]);
       if (batch.empty()) batch.push_back(edges[k]);
       EvaluateEdges(batch);

@@ -14,6 +14,7 @@ namespace cairn {
 namespace {
 using report_internal::Angular;
 using report_internal::Clean;
+using report_internal::ForceRoundoffScale;
 using report_internal::Tangential;
 using report_internal::Vec;
 std::string PartName(const Assembly& a, int i) { return report_internal::PartName(a, i, "world"); }
@@ -74,6 +75,7 @@ json ContactsToJson(const CheckJsonContext& cx, const StabilityResult& result) {
   const bool st = cx.st;
   const double g = cx.g;
   const double force_scale = cx.force_scale;
+  const double forces = ForceRoundoffScale(assembly, force_scale);
   json contacts = json::array();
   for (const ContactReport& cr : result.contacts) {
     const Contact& c = cr.contact;
@@ -84,8 +86,8 @@ json ContactsToJson(const CheckJsonContext& cx, const StabilityResult& result) {
     jc["feature"] = to_string(c.feature);
     if (dim == 3) jc["patch"] = c.patch;
     jc["mu"] = c.mu;
-    jc["normal_force"] = Clean(cr.normal_force / force_scale, 1.0);
-    jc["friction_force"] = Tangential(cr.friction_force / force_scale, c, dim);
+    jc["normal_force"] = Clean(cr.normal_force / force_scale, forces);
+    jc["friction_force"] = Tangential(cr.friction_force / force_scale, c, dim, forces);
     jc[st ? "normal_velocity" : "normal_acceleration"] = Clean(cr.normal_motion, g);
     jc[st ? "sliding_velocity" : "tangential_acceleration"] =
         Tangential(cr.tangent_motion, c, dim, g);

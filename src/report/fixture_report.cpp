@@ -10,6 +10,7 @@ namespace cairn {
 
 namespace {
 using report_internal::Clean;
+using report_internal::ForceRoundoffScale;
 using report_internal::Num;
 }  // namespace
 
@@ -32,7 +33,7 @@ nlohmann::json FixtureSuggestionToJson(const Assembly& assembly,
     json f = report_internal::FixtureToJson(s.fixture, dim);
     f["face"] = s.face;
     f["step"] = s.step;
-    f["max_force"] = Clean(s.max_force / force_scale);
+    f["max_force"] = Clean(s.max_force / force_scale, ForceRoundoffScale(assembly, force_scale));
     fixels.push_back(f);
     entries.push_back(report_internal::FixtureToJson(s.fixture, dim));
   }

@@ -16,6 +16,12 @@ namespace cairn::report_internal {
 
 // Rounds away floating-point dust so that reports are stable across
 // platforms: values below 1e-12 of the scale print as 0.
+// The scale below whose roundoff a reported force is 0: the scene's largest
+// weight in the reported unit (a milligram part's forces are not dust).
+inline double ForceRoundoffScale(const Assembly& assembly, double force_scale) {
+  return (assembly.max_weight() > 0 ? assembly.max_weight() : 1.0) / force_scale;
+}
+
 inline double Clean(double x, double scale = 1.0) {
   return std::abs(x) < numeric::kRoundoff * scale ? 0.0 : x;
 }

@@ -12,6 +12,7 @@ namespace cairn {
 namespace {
 using report_internal::Angular;
 using report_internal::Clean;
+using report_internal::ForceRoundoffScale;
 using report_internal::Tangential;
 using report_internal::Vec;
 std::string PartName(const Assembly& a, int i) { return report_internal::PartName(a, i, "world"); }
@@ -24,6 +25,7 @@ nlohmann::json SimulationToJson(const Assembly& assembly, const Plan& plan,
                                 const SimulationResult& result, const ReportOptions& options) {
   using nlohmann::json;
   const auto [force_scale, force_unit] = ForceScale(assembly, options);
+  const double forces = ForceRoundoffScale(assembly, force_scale);
   const int dim = assembly.dimension();
   json doc;
   doc["verdict"] = to_string(result.verdict);
@@ -58,8 +60,8 @@ nlohmann::json SimulationToJson(const Assembly& assembly, const Plan& plan,
           {"parts", {PartName(assembly, c.contact.part_a), PartName(assembly, c.contact.part_b)}},
           {"point", Vec(c.contact.p_WC, dim)},
           {"normal", Vec(c.contact.n_W, dim)},
-          {"normal_force", Clean(c.normal_force / force_scale)},
-          {"friction_force", Tangential(c.friction_force / force_scale, c.contact, dim)},
+          {"normal_force", Clean(c.normal_force / force_scale, forces)},
+          {"friction_force", Tangential(c.friction_force / force_scale, c.contact, dim, forces)},
           {"normal_velocity", Clean(c.normal_motion)},
           {"sliding_velocity", Tangential(c.tangent_motion, c.contact, dim)},
           {"breaks", c.breaking},

@@ -164,7 +164,9 @@ TEST(PairContactCache, GivesExactlyTheContactsOfComputingThemAgain) {
     }
     // From the second step on, every pair without the moved block is a hit:
     // base-table, side-table, base-side.
-    if (step > 0) EXPECT_EQ(cache.hits() - hits_before, 3) << "step " << step;
+    if (step > 0) {
+      EXPECT_EQ(cache.hits() - hits_before, 3) << "step " << step;
+    }
   }
   EXPECT_GT(compared, 0);
 }

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <random>
 
 namespace cairn {
 namespace {
@@ -189,6 +190,88 @@ TEST(EdgeNormal, OutwardForCounterClockwise) {
   const Vector2 n = EdgeNormal({{0, 0}, {3, 4}, {0, 4}}, 0);
   EXPECT_NEAR(n.norm(), 1.0, kEps);
   EXPECT_TRUE(n.isApprox(Vector2(0.8, -0.6)));
+}
+
+
+// FindSelfIntersection above 64 vertices is a sweep over the edges' boxes:
+// it must agree with the test of every pair of edges (written here) on
+// whether a polygon is simple, and name a pair that truly touches.
+namespace sweep_check {
+
+double Cross(const Vector2& o, const Vector2& a, const Vector2& b) {
+  return (a - o).x() * (b - o).y() - (a - o).y() * (b - o).x();
+}
+
+// The distance between segments [a0, a1] and [b0, b1]: 0 where they cross,
+// else the least distance of an end to the other segment.
+double SegmentDistance(const Vector2& a0, const Vector2& a1, const Vector2& b0,
+                       const Vector2& b1) {
+  const double d1 = Cross(a0, a1, b0), d2 = Cross(a0, a1, b1);
+  const double d3 = Cross(b0, b1, a0), d4 = Cross(b0, b1, a1);
+  if (((d1 > 0 && d2 < 0) || (d1 < 0 && d2 > 0)) && ((d3 > 0 && d4 < 0) || (d3 < 0 && d4 > 0)))
+    return 0;
+  return std::min({DistanceToSegment(a0, b0, b1), DistanceToSegment(a1, b0, b1),
+                   DistanceToSegment(b0, a0, a1), DistanceToSegment(b1, a0, a1)});
+}
+
+bool TouchesBruteForce(const Polygon& p, double tol, int* a, int* b) {
+  const int n = static_cast<int>(p.size());
+  for (int i = 0; i < n; ++i)
+    for (int j = i + 1; j < n; ++j) {
+      const bool adjacent = j == i + 1 || (i == 0 && j == n - 1);
+      if (adjacent) continue;  // adjacent edges share a vertex by construction
+      if (SegmentDistance(p[i], p[(i + 1) % n], p[j], p[(j + 1) % n]) <= tol) {
+        *a = i, *b = j;
+        return true;
+      }
+    }
+  return false;
+}
+
+}  // namespace sweep_check
+
+TEST(SelfIntersection, TheSweepAgreesWithEveryPairOnLargePolygons) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> jitter(0.7, 1.3);
+  int simple = 0, crossing = 0;
+  for (int trial = 0; trial < 60; ++trial) {
+    const int n = 65 + trial * 3;
+    Polygon p;
+    for (int k = 0; k < n; ++k) {  // a star-shaped polygon: simple
+      const double t = 2 * 3.141592653589793 * k / n;
+      const double r = jitter(rng);
+      p.push_back(Vector2(r * std::cos(t), r * std::sin(t)));
+    }
+    if (trial % 2) std::swap(p[n / 3], p[2 * n / 3]);  // two far vertices swapped: crossings
+    int a = -1, b = -1;
+    const bool brute = sweep_check::TouchesBruteForce(p, 1e-9, &a, &b);
+    const auto found = FindSelfIntersection(p, 1e-9);
+    ASSERT_EQ(found.has_value(), brute) << "trial " << trial;
+    if (!found) {
+      ++simple;
+      continue;
+    }
+    ++crossing;
+    const int i = found->edge_a, j = found->edge_b;
+    EXPECT_LT(i, j);
+    EXPECT_LE(sweep_check::SegmentDistance(p[i], p[(i + 1) % n], p[j], p[(j + 1) % n]), 1e-9);
+  }
+  EXPECT_GT(simple, 0);
+  EXPECT_GT(crossing, 0);
+}
+
+TEST(SelfIntersection, ASixtyThousandGonIsSimple) {
+  const int n = 60000;
+  Polygon p;
+  for (int k = 0; k < n; ++k) {
+    const double t = 2 * 3.141592653589793 * k / n;
+    p.push_back(Vector2(2 * std::cos(t), 2 + 2 * std::sin(t)));
+  }
+  EXPECT_FALSE(FindSelfIntersection(p, 1e-6 * 4).has_value());
+  // One vertex pulled across the disc and out the other side: its two
+  // edges cross the boundary there.
+  p[n / 2] = Vector2(2.5, 2.0);
+  EXPECT_TRUE(FindSelfIntersection(p, 1e-6 * 4).has_value());
 }
 
 }  // namespace

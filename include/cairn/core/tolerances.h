@@ -31,6 +31,32 @@ inline constexpr double kRoundoff = 1e-12;
 inline constexpr double kParameterSlack = 1e-9;
 }  // namespace numeric
 
+/// The ranges of a scene's numbers that Cairn accepts (docs/scene-format.md,
+/// "Validated ranges"). Beyond them the products the mechanics forms
+/// (moments, inertias m·L², impulses m·g·Δt, the LCP's W M⁻¹ Wᵀ) lose their
+/// precision or leave the range of a double, and a verdict could not be
+/// trusted; so the input is refused, naming the value, instead.
+namespace limits {
+/// |x| of every vertex and point of a scene (length units).
+inline constexpr double kMaxCoordinate = 1e12;
+/// A part's size (the diagonal of its bounding box) at least this many
+/// length tolerances: a smaller part is within the tolerance of a point, so
+/// its edges and faces cannot be told apart (a scene spanning too many orders
+/// of magnitude, or a --tolerance too coarse for its parts).
+inline constexpr double kMinPartSizeInTolerances = 100;
+/// A part's mass (mass units), given or from its density.
+inline constexpr double kMinMass = 1e-30, kMaxMass = 1e30;
+/// The heaviest movable part at most this many times the lightest: the
+/// contact problem's matrix W M⁻¹ Wᵀ has entries in the ratio of the masses.
+inline constexpr double kMaxMassRatio = 1e9;
+/// Coulomb friction coefficients (dimensionless): at most this. A contact
+/// that must never slide is modelled well by μ = 100 already; the friction
+/// pyramid's generators n + μ d lose the normal's digits beyond this.
+inline constexpr double kMaxFriction = 1e3;
+/// |g| (length/s²): zero (no gravity) or within these.
+inline constexpr double kMinGravity = 1e-9, kMaxGravity = 1e9;
+}  // namespace limits
+
 /// Relative factors from which Tolerances are scaled (dimensionless).
 struct ToleranceFactors {
   double length = 1e-6;        ///< × scene size L.

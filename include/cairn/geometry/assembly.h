@@ -80,6 +80,10 @@ struct AssemblyDef {
   int friction_directions = 0;
   std::vector<FrictionPairDef> friction_pairs;
   double tolerance = 0;  ///< contact distance tolerance (length); ≤ 0: scaled to the scene
+  /// The command-line options that set `tolerance` and `gravity` instead of
+  /// the file (e.g. "--tolerance"), if any: a fault of either is then
+  /// reported against the option, not the file.
+  std::string tolerance_option, gravity_option;
   std::vector<PartDef> parts;
   std::vector<FixtureDef> fixtures;
   std::vector<InterfaceDef> interfaces;  ///< given contacts (3-D); empty: found from the shapes
@@ -164,6 +168,9 @@ class Assembly {
   bool IsFrictionless() const;
   /// The diagonal of the bounding box of all parts (length).
   double scene_size() const { return scene_size_; }
+  /// The largest weight of a movable part, m |g| (force units; 0 without
+  /// gravity): the scale of the scene's forces.
+  double max_weight() const { return max_weight_; }
   /// The contact distance tolerance (length): the scene's, or 1e-6 · size.
   double length_tolerance() const { return tolerances_.length; }
   /// All tolerances, scaled to this scene for a time step `dt` (s).

@@ -77,7 +77,21 @@ struct Plan {
   /// removed, a `grip` part outside `remove` that is not a tool, a tool in
   /// `remove`, an empty path or zero-length path, both or neither path forms,
   /// a zero direction, a negative distance, dt or speed ≤ 0, non-finite numbers.
-  static Plan Create(const PlanDef& def, const Assembly& assembly, const std::string& file = "");
+  /// Also refused (docs/plan-format.md, "Validated ranges"): dt above
+  /// kMaxDt, a speed outside kMinSpeed..kMaxSpeed scene sizes per second,
+  /// path points beyond limits::kMaxCoordinate, and a step of more than
+  /// `max_ticks` time steps (its path length over speed · dt).
+  static Plan Create(const PlanDef& def, const Assembly& assembly, const std::string& file = "",
+                     long long max_ticks = kDefaultMaxTicks);
+
+  /// The time steps of one step a plan may take unless the caller allows more
+  /// (`cairn simulate --max-ticks`): a path of a million steps takes minutes.
+  static constexpr long long kDefaultMaxTicks = 1'000'000;
+  /// The longest time step (s).
+  static constexpr double kMaxDt = 1e6;
+  /// The gripper's speed in scene sizes per second: slower, a step moves
+  /// less than roundoff; faster, the velocities leave the LCP's range.
+  static constexpr double kMinSpeed = 1e-12, kMaxSpeed = 1e12;
 };
 
 /// A candidate path for a part or subassembly.

@@ -22,6 +22,7 @@ PlanDef ParsePlanJson(const nlohmann::json& doc, const std::string& file, int di
 /// Plan::Create. @throws InputError (unreadable file, JSON syntax error with
 /// its line and column, a key repeated in one object, or any fault of
 /// ParsePlanJson and Plan::Create).
-Plan ReadPlan(const std::string& path, const Assembly& assembly);
+Plan ReadPlan(const std::string& path, const Assembly& assembly,
+              long long max_ticks = Plan::kDefaultMaxTicks);
 
 }  // namespace cairn
