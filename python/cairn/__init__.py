@@ -197,13 +197,14 @@ def _contact_arrays(m, doc):
 
 
 def simulate(m, plan, continue_after_failure=False, normalize=None, suggest_fixtures=False,
-             max_fixels=3):
+             max_fixels=3, max_ticks=None):
     """``cairn simulate --json``: runs a plan (a plan file, or a plan as a
     dict) along its paths. The dict has the CLI's keys, plus ``timeline``: the
     ``--timeline`` CSV as a dict of numpy columns named by its header (one
     entry per tick and contact point; :func:`cairn.plot.timeline` sums them per
     pair or patch). With ``suggest_fixtures`` the key ``fixtures`` as the CLI's
-    ``--suggest-fixtures``."""
+    ``--suggest-fixtures``; ``max_ticks`` is ``--max-ticks`` (None: the CLI's
+    default)."""
     _check_model(m)
     if isinstance(plan, dict):
         plan_file, plan_text = "plan", _dumps(plan)
@@ -211,7 +212,9 @@ def simulate(m, plan, continue_after_failure=False, normalize=None, suggest_fixt
         plan_file, plan_text = os.fspath(plan), ""
     doc_text, csv = _cairn.simulate(m, plan_file, plan_text, bool(continue_after_failure),
                                     _normalize(normalize), bool(suggest_fixtures),
-                                    int(max_fixels))
+                                    int(max_fixels),
+                                    _cairn.DEFAULT_MAX_TICKS if max_ticks is None
+                                    else int(max_ticks))
     doc = json.loads(doc_text)
     doc["timeline"] = read_timeline(io.StringIO(csv))
     return doc

@@ -112,17 +112,17 @@ std::pair<std::string, std::string> Simulate(const PyModel& m, const std::string
                                              const std::string& plan_text,
                                              bool continue_after_failure,
                                              const std::string& normalize, bool suggest_fixtures,
-                                             int max_fixels) {
+                                             int max_fixels, long long max_ticks) {
   py::gil_scoped_release release;
   const Assembly& assembly = m.model.assembly;
   cli::RefuseGivenInterfaces(assembly, m.file,
                              "parts cannot be moved along a plan (check it, with without= for "
                              "subassemblies, or let Cairn find the contacts from the shapes)");
   // A plan file, or a plan given as a dict (named "plan" in messages).
-  const Plan plan = plan_text.empty() ? ReadPlan(plan_file, assembly)
+  const Plan plan = plan_text.empty() ? ReadPlan(plan_file, assembly, max_ticks)
                                       : Plan::Create(ParsePlanJson(ParseText(plan_text, plan_file),
                                                                    plan_file, assembly.dimension()),
-                                                     assembly, plan_file);
+                                                     assembly, plan_file, max_ticks);
   ReportOptions report;
   report.scene_file = m.file;
   report.normalize_part = cli::ResolveNormalize(assembly, normalize, m.file);
@@ -252,6 +252,7 @@ PYBIND11_MODULE(_cairn, m) {
         return parts;
       });
 
+  m.attr("DEFAULT_MAX_TICKS") = cairn::Plan::kDefaultMaxTicks;
   m.def("load", &Load, py::arg("file"), py::arg("format"), py::arg("friction"), py::arg("supports"),
         py::arg("gravity"), py::arg("tolerance"), py::arg("interfaces"));
   m.def("from_compas", &FromCompas, py::arg("text"), py::arg("name"), py::arg("friction"),
@@ -259,7 +260,7 @@ PYBIND11_MODULE(_cairn, m) {
   m.def("check", &Check, py::arg("model"), py::arg("without"), py::arg("normalize"));
   m.def("simulate", &Simulate, py::arg("model"), py::arg("plan_file"), py::arg("plan_text"),
         py::arg("continue_after_failure"), py::arg("normalize"), py::arg("suggest_fixtures"),
-        py::arg("max_fixels"));
+        py::arg("max_fixels"), py::arg("max_ticks"));
   m.def("plan", &PlanSequences, py::arg("model"), py::arg("max"), py::arg("single_parts"),
         py::arg("paths"), py::arg("allow_fixtures"), py::arg("keep"), py::arg("support"),
         py::arg("threads"));

@@ -71,3 +71,12 @@ def test_bad_arguments_of_the_python_api():
     with pytest.raises(cairn.InputError) as e:
         cairn.read_timeline(example("paper_fig1.json"))
     assert e.value.file.endswith("paper_fig1.json") and "timeline" in e.value.message
+
+
+def test_max_ticks_as_the_cli(cli):
+    scene, plan = "examples/paper_fig1.json", "examples/plans/paper_fig1_dcba.plan.json"
+    with pytest.raises(cairn.InputError) as e:
+        cairn.simulate(cairn.load(scene), plan, max_ticks=2)
+    code, out, err = cli("simulate", scene, plan, "--max-ticks", "2")
+    assert code == 2 and out == "" and err == f"cairn: error: {e.value}\n"
+    assert cairn.simulate(cairn.load(scene), plan, max_ticks=7)["stable"]
