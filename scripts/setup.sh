@@ -29,6 +29,11 @@ packages=(
   libassimp-dev          # mesh parts (OBJ, STL)
   libboost-dev           # Boost.Geometry: clipping coplanar faces of 3-D contacts
   libgtest-dev libgmock-dev  # tests
+  # The Python module (python/, docs/python.md) and its tests: Debian's
+  # interpreter, numpy, pybind11, pytest, matplotlib (cairn.plot), and venv,
+  # pip, setuptools and wheel for `pip install .` offline.
+  python3-dev python3-numpy pybind11-dev python3-pytest python3-matplotlib
+  python3-venv python3-pip python3-setuptools python3-wheel
 )
 if ((bench)); then
   packages+=(

@@ -68,52 +68,58 @@ void ApplyModelFlags(const ModelArgs& args, const std::string& file, AssemblyDef
   if (args.tolerance) def.tolerance_option = "--tolerance";
 }
 
+// COMPAS files store no friction coefficient, and guessing one (0 is
+// "everything slides", compas_cra's 0.84 is a choice of theirs) would change
+// the verdict silently.
+void RequireCompasFriction(const ModelArgs& args) {
+  if (!args.friction)
+    throw InputError("", "--friction",
+                     "is required with --format compas (COMPAS files store no friction "
+                     "coefficient; give 0 for frictionless contacts)");
+}
+
 }  // namespace
 
 Model LoadModel(const std::string& file, const ModelArgs& args) {
   CheckModelFlags(args);
-  Model m;
-  std::optional<CompasModel> compas;
   if (args.format == "compas") {
-    // COMPAS files store no friction coefficient, and guessing one (0 is
-    // "everything slides", compas_cra's 0.84 is a choice of theirs) would
-    // change the verdict silently.
-    if (!args.friction)
-      throw InputError("", "--friction",
-                       "is required with --format compas (COMPAS files store no friction "
-                       "coefficient; give 0 for frictionless contacts)");
-    CompasOptions options;
-    options.friction = *args.friction;
-    options.tolerance = args.tolerance.value_or(0.0);
-    options.stored_interfaces = args.interfaces == "stored";
-    compas = CompasToModel(ReadCompasAssembly(file), options, file);
-    m.def = compas->def;
-  } else {
-    if (args.interfaces == "stored")
-      throw InputError("", "--interfaces",
-                       "stored is for --format compas (a scene file gives its interfaces in "
-                       "`interfaces`)");
-    try {
-      m.def = ReadSceneDef(file);
-    } catch (const InputError& e) {
-      // A COMPAS file read as a scene misses the version key first: say what
-      // to do instead of only what is wrong.
-      if (e.json_path() != "cairn" || e.message().find("required key is missing") != 0) throw;
-      throw InputError(e.file(), e.json_path(),
-                       e.message() + "; if this is a COMPAS assembly, give --format compas");
-    }
-    if (args.friction) m.def.friction = *args.friction;
-    if (args.tolerance) m.def.tolerance = *args.tolerance;
+    RequireCompasFriction(args);
+    return LoadCompasModel(ReadCompasAssembly(file), file, args);
   }
-
+  if (args.interfaces == "stored")
+    throw InputError("", "--interfaces",
+                     "stored is for --format compas (a scene file gives its interfaces in "
+                     "`interfaces`)");
+  Model m;
+  try {
+    m.def = ReadSceneDef(file);
+  } catch (const InputError& e) {
+    // A COMPAS file read as a scene misses the version key first: say what
+    // to do instead of only what is wrong.
+    if (e.json_path() != "cairn" || e.message().find("required key is missing") != 0) throw;
+    throw InputError(e.file(), e.json_path(),
+                     e.message() + "; if this is a COMPAS assembly, give --format compas");
+  }
+  if (args.friction) m.def.friction = *args.friction;
+  if (args.tolerance) m.def.tolerance = *args.tolerance;
   ApplyModelFlags(args, file, m.def);
+  m.assembly = Assembly::Create(m.def, file);
+  return m;
+}
 
-  if (compas) {
-    compas->def = m.def;
-    m.assembly = CreateCompasAssembly(*compas, file);
-  } else {
-    m.assembly = Assembly::Create(m.def, file);
-  }
+Model LoadCompasModel(const CompasAssembly& parsed, const std::string& file,
+                      const ModelArgs& args) {
+  CheckModelFlags(args);
+  RequireCompasFriction(args);
+  CompasOptions options;
+  options.friction = *args.friction;
+  options.tolerance = args.tolerance.value_or(0.0);
+  options.stored_interfaces = args.interfaces == "stored";
+  CompasModel compas = CompasToModel(parsed, options, file);
+  ApplyModelFlags(args, file, compas.def);
+  Model m;
+  m.def = compas.def;
+  m.assembly = CreateCompasAssembly(compas, file);
   return m;
 }
 

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "cairn/geometry/assembly.h"
+#include "cairn/io/compas_reader.h"
 
 namespace cairn::cli {
 
@@ -45,6 +46,12 @@ struct Model {
 /// --tolerance and --gravity. @throws InputError: of the file (with its JSON
 /// path), or of a flag (the flag as path).
 Model LoadModel(const std::string& file, const ModelArgs& args);
+
+/// LoadModel for a COMPAS assembly already parsed (ParseCompasAssembly: the
+/// Python module's `cairn.from_compas` of a dict): the model options applied
+/// as for `--format compas`; `file` names the document in messages.
+/// @throws InputError as LoadModel.
+Model LoadCompasModel(const CompasAssembly& parsed, const std::string& file, const ModelArgs& args);
 
 /// The index of the part `name` given to `flag` (`--without`, `--keep`, ...).
 /// @throws InputError naming the flag when `file`'s model has no such part.

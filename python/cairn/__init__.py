@@ -1,0 +1,331 @@
+"""Cairn from Python: does an assembly of rigid parts stay put? (docs/python.md)
+
+    import cairn
+    m = cairn.load("examples/paper_fig1.json")
+    r = cairn.check(m, without=["C"])      # the keys of `cairn check --json`
+    r["stable"], r["moving"], r["contact_arrays"]["normal_force"]
+
+Every result is the dict of the CLI's ``--json`` document for the same input,
+built by the same C++ code, with numeric columns added as numpy arrays
+(``contact_arrays`` of check, ``timeline`` of simulate). Solves release the
+GIL, so threads can check many assemblies at once. Bad input raises
+:class:`InputError` (a ``ValueError``) with the CLI's message: the file, the
+JSON path and what is wrong.
+"""
+
+import io
+import json
+import os
+import tempfile
+
+import numpy as np
+
+from . import _cairn
+from ._cairn import InputError, Model
+
+InputError.__module__ = Model.__module__ = "cairn"  # cairn.InputError in tracebacks
+
+__all__ = [
+    "InputError",
+    "Model",
+    "load",
+    "from_compas",
+    "check",
+    "simulate",
+    "plan",
+    "blocking",
+    "compas_forces",
+    "read_timeline",
+    "plot",
+]
+
+_FORMATS = ("scene", "compas")
+_INTERFACES = ("detect", "stored")
+
+
+def __getattr__(name):
+    # cairn.plot on first use (it imports matplotlib only when it draws), so
+    # that `python3 -m cairn.plot` does not find it imported already.
+    if name == "plot":
+        import importlib
+        return importlib.import_module(".plot", __name__)
+    raise AttributeError(f"module 'cairn' has no attribute {name!r}")
+
+
+def _input_error(where, message, file=""):
+    """An InputError raised by the Python half, with the attributes the
+    compiled half's have: `where` is the argument (as the JSON path)."""
+    e = InputError(": ".join(x for x in (file, where, message) if x))
+    e.file, e.json_path, e.message = file, where, message
+    return e
+
+
+def _names(value, what):
+    """A list of part names from None, a name, or an iterable of names (ints
+    are COMPAS node keys)."""
+    if value is None:
+        return []
+    if isinstance(value, (str, int)):
+        value = [value]
+    names = []
+    for v in value:
+        if not isinstance(v, (str, int)) or isinstance(v, bool):
+            raise TypeError(f"{what}: part names are strings (or COMPAS node keys), not {v!r}")
+        names.append(str(v))
+    return names
+
+
+def _model_options(friction, supports, gravity, tolerance, interfaces):
+    if interfaces not in _INTERFACES:
+        raise _input_error("interfaces", f"must be one of {_INTERFACES}, not {interfaces!r}")
+    return dict(
+        friction=None if friction is None else float(friction),
+        supports=_names(supports, "supports"),
+        gravity=[] if gravity is None else [float(g) for g in gravity],
+        tolerance=None if tolerance is None else float(tolerance),
+        interfaces=interfaces,
+    )
+
+
+def load(file, format="scene", friction=None, supports=None, gravity=None, tolerance=None,
+         interfaces="detect"):
+    """Reads a model from a file, as the CLI does: ``format`` "scene" (scene
+    format 1) or "compas" (a COMPAS assembly, which needs ``friction``), and
+    the model options ``friction``, ``supports`` (parts fixed in addition),
+    ``gravity`` (2 or 3 numbers), ``tolerance`` and ``interfaces`` ("detect"
+    or "stored") of ``--friction`` ... ``--interfaces``. Raises InputError."""
+    if format not in _FORMATS:
+        raise _input_error("format", f"must be one of {_FORMATS}, not {format!r}")
+    return _cairn.load(os.fspath(file), format,
+                       **_model_options(friction, supports, gravity, tolerance, interfaces))
+
+
+def _plain(data):
+    """A COMPAS assembly (an object with ``__data__`` or ``to_data()``, or its
+    data) as plain JSON data: what ``compas.json_dumps`` writes."""
+    if isinstance(data, (str, bytes)):
+        raise TypeError("from_compas takes the assembly's data (a dict), not text: "
+                        "json.load the file, or use cairn.load(file, format='compas')")
+    try:
+        import compas  # noqa: F401  (only to serialise COMPAS objects)
+        if not isinstance(data, dict) or _has_objects(data):
+            return json.loads(compas.json_dumps(data))
+    except ImportError:
+        pass
+    if not isinstance(data, dict) and hasattr(data, "__data__"):
+        data = data.__data__
+    elif not isinstance(data, dict) and hasattr(data, "to_data"):
+        data = data.to_data()
+    return data
+
+
+def _has_objects(value):
+    if isinstance(value, dict):
+        return any(_has_objects(v) for v in value.values())
+    if isinstance(value, (list, tuple)):
+        return any(_has_objects(v) for v in value)
+    return hasattr(value, "__data__")
+
+
+def _json_default(value):
+    # numpy numbers and arrays, and anything COMPAS-like, as JSON.
+    if isinstance(value, np.generic):
+        return value.item()
+    if isinstance(value, np.ndarray):
+        return value.tolist()
+    if hasattr(value, "__data__"):
+        return {"dtype": getattr(value, "__dtype__", type(value).__name__), "data": value.__data__}
+    raise TypeError(f"not JSON data: {value!r}")
+
+
+def _dumps(data):
+    return json.dumps(data, default=_json_default, allow_nan=True)
+
+
+def from_compas(assembly_data, friction=None, supports=None, gravity=None, tolerance=None,
+                interfaces="detect", name="assembly_data"):
+    """The model of a COMPAS block assembly given as data: the dict of
+    ``json.load`` of its file (or ``assembly.__data__`` / ``to_data()``, or the
+    assembly itself when COMPAS is installed). ``friction`` is required (COMPAS
+    files store none; compas_cra's examples use 0.84); ``supports`` names
+    blocks by their node keys. Messages name the document ``name``."""
+    text = _dumps(_plain(assembly_data))
+    return _cairn.from_compas(text, name,
+                              **_model_options(friction, supports, gravity, tolerance,
+                                               interfaces))
+
+
+def _check_model(m):
+    if not isinstance(m, Model):
+        raise TypeError(f"expected a cairn.Model (cairn.load, cairn.from_compas), not {type(m)}")
+
+
+def _normalize(normalize):
+    if normalize is None:
+        return ""
+    return str(normalize)
+
+
+def check(m, without=None, normalize=None):
+    """``cairn check --json``: is the assembly, with the parts ``without``
+    taken away, stable? The dict has the CLI's keys, plus ``contact_arrays``
+    (numpy columns of ``contacts``: ``point`` (n, d), ``normal`` (n, d),
+    ``normal_force`` (n,), ``friction_force`` ((n,) in 2-D, (n, 3) in 3-D),
+    ``parts`` (n, 2) part indices into ``m.parts``, -1 for the world).
+    ``normalize`` names the part whose weight is the force unit."""
+    _check_model(m)
+    doc = json.loads(_cairn.check(m, _names(without, "without"), _normalize(normalize)))
+    doc["contact_arrays"] = _contact_arrays(m, doc)
+    return doc
+
+
+def _contact_arrays(m, doc):
+    contacts = doc["contacts"]
+    dim = doc["dimension"]
+    index = {name: i for i, name in enumerate(m.parts)}
+    n = len(contacts)
+    friction_shape = (n,) if dim == 2 else (n, 3)
+    return {
+        "point": np.array([c["point"] for c in contacts], dtype=float).reshape(n, dim),
+        "normal": np.array([c["normal"] for c in contacts], dtype=float).reshape(n, dim),
+        "normal_force": np.array([c["normal_force"] for c in contacts], dtype=float),
+        "friction_force": np.array([c["friction_force"] for c in contacts],
+                                   dtype=float).reshape(friction_shape),
+        "parts": np.array([[index.get(p, -1) for p in c["parts"]] for c in contacts],
+                          dtype=np.int64).reshape(n, 2),
+    }
+
+
+def simulate(m, plan, continue_after_failure=False, normalize=None, suggest_fixtures=False,
+             max_fixels=3, max_ticks=None):
+    """``cairn simulate --json``: runs a plan (a plan file, or a plan as a
+    dict) along its paths. The dict has the CLI's keys, plus ``timeline``: the
+    ``--timeline`` CSV as a dict of numpy columns named by its header (one
+    entry per tick and contact point; :func:`cairn.plot.timeline` sums them per
+    pair or patch). With ``suggest_fixtures`` the key ``fixtures`` as the CLI's
+    ``--suggest-fixtures``; ``max_ticks`` is ``--max-ticks`` (None: the CLI's
+    default)."""
+    _check_model(m)
+    if isinstance(plan, dict):
+        plan_file, plan_text = "plan", _dumps(plan)
+    else:
+        plan_file, plan_text = os.fspath(plan), ""
+    doc_text, csv = _cairn.simulate(m, plan_file, plan_text, bool(continue_after_failure),
+                                    _normalize(normalize), bool(suggest_fixtures),
+                                    int(max_fixels),
+                                    _cairn.DEFAULT_MAX_TICKS if max_ticks is None
+                                    else int(max_ticks))
+    doc = json.loads(doc_text)
+    doc["timeline"] = read_timeline(io.StringIO(csv))
+    return doc
+
+
+def plan(m, max=None, single_parts=False, paths=None, allow_fixtures=0, keep=None,
+         support="full", threads=0):
+    """``cairn plan --json``: stable disassembly sequences. ``max``: stop after
+    this many (best-first; None: all); ``single_parts``: no subassemblies;
+    ``paths``: candidate paths (a file, or its contents as a dict);
+    ``allow_fixtures``: up to this many fixels where nothing is stable;
+    ``keep``: parts never removed; ``support``: "full", "none" or "both"."""
+    _check_model(m)
+    keep = _names(keep, "keep")
+    args = (int(max or 0), bool(single_parts))
+    rest = (int(allow_fixtures), keep, str(support), int(threads))
+    if isinstance(paths, dict):
+        # The candidate-paths reader reads files: the dict goes through one.
+        with tempfile.TemporaryDirectory() as tmp:
+            path = os.path.join(tmp, "paths.json")
+            with open(path, "w", encoding="utf-8") as f:
+                f.write(_dumps(paths))
+            return json.loads(_cairn.plan(m, *args, path, *rest))
+    return json.loads(_cairn.plan(m, *args, "" if paths is None else os.fspath(paths), *rest))
+
+
+def blocking(m, direction=None, without=None):
+    """``cairn blocking --json``: the nondirectional blocking graph. With a
+    ``direction`` (2 or 3 numbers), ``cells`` holds only the cell of the
+    arrangement that contains it: which parts can leave along it and which
+    block which."""
+    _check_model(m)
+    doc = json.loads(_cairn.blocking(m, _names(without, "without")))
+    if direction is not None:
+        doc["cells"] = [_cell_of(doc, np.asarray(direction, dtype=float))]
+    return doc
+
+
+def _cell_of(doc, d):
+    dim = doc["dimension"]
+    if d.shape != (dim,) or not np.all(np.isfinite(d)) or not np.any(d):
+        raise _input_error("direction", f"must be {dim} finite numbers, not all zero "
+                                        f"(got {d.tolist()})")
+    d = d / np.linalg.norm(d)
+    cells = doc["cells"]
+    if dim == 3:
+        signs = [0 if abs(s) <= 1e-9 else (1 if s > 0 else -1)
+                 for s in (np.asarray(doc["normals"], dtype=float).reshape(-1, 3) @ d)]
+        for c in cells:
+            if c["signs"] == signs:
+                return c
+        raise _input_error("direction", f"no cell of the arrangement has the signs {signs}")
+    angle = float(np.degrees(np.arctan2(d[1], d[0]))) % 360.0
+    for c in cells:  # critical directions first: they are single angles
+        a, b = c["angles_deg"]
+        if c["dimension"] == 0 and min(abs(angle - a), 360 - abs(angle - a)) <= 1e-7:
+            return c
+    for c in cells:
+        a, b = c["angles_deg"]
+        if c["dimension"] == 0:
+            continue
+        if (a <= b and a <= angle <= b) or (a > b and (angle >= a or angle <= b)):
+            return c
+    raise _input_error("direction", f"no cell contains {angle} degrees")
+
+
+_INT_COLUMNS = ("step", "tick", "patch")
+_BOOL_COLUMNS = ("breaks", "slides")
+_NAME_COLUMNS = ("part_a", "part_b")
+
+
+def read_timeline(source):
+    """A ``--timeline`` CSV (a path, or a file object) as a dict of numpy
+    columns named by its header: ``time`` and the forces as floats, ``step``,
+    ``tick`` (and ``patch`` in 3-D) as ints, ``breaks``/``slides`` as bools,
+    ``part_a``/``part_b`` as strings. One entry per tick and contact point."""
+    if isinstance(source, (str, os.PathLike)):
+        with open(source, encoding="utf-8") as f:
+            return read_timeline(f)
+    name = getattr(source, "name", "timeline")
+    try:
+        header = source.readline().strip().split(",")
+        if header[0] != "time":
+            raise ValueError
+        rows = [line.rstrip("\n").split(",") for line in source if line.strip()]
+    except (UnicodeDecodeError, ValueError):
+        raise _input_error("", "not a Cairn timeline CSV (`cairn simulate --timeline`: its "
+                                "header starts with 'time')", file=name) from None
+    columns = {}
+    for k, name in enumerate(header):
+        values = [r[k] for r in rows]
+        if name in _NAME_COLUMNS:
+            columns[name] = np.array(values, dtype=str)
+        elif name in _INT_COLUMNS:
+            columns[name] = np.array(values, dtype=np.int64)
+        elif name in _BOOL_COLUMNS:
+            columns[name] = np.array([v == "1" for v in values], dtype=bool)
+        else:
+            columns[name] = np.array(values, dtype=float)
+    return columns
+
+
+def compas_forces(assembly_data, r):
+    """The COMPAS assembly data with Cairn's contact forces written where
+    compas_cra writes its own: each stored interface's ``forces``, one
+    ``{"c_np", "c_nn", "c_u", "c_v"}`` per interface point (the force on
+    block v of edge (u, v) is (c_np - c_nn) n + c_u xaxis + c_v yaxis, n the
+    interface's normal from u to v). ``r`` is :func:`check`'s result for the
+    same assembly (``from_compas`` of this data, best with
+    ``interfaces="stored"``: then every contact is an interface point). The
+    data given is not changed: a copy is returned. Raises ValueError when a
+    contact that carries force is not at a point of a stored interface."""
+    from ._compas import fill_forces
+    return fill_forces(_plain(assembly_data), r)
