@@ -67,11 +67,6 @@ int RunPlan(const PlanArgs& args, std::ostream& out, std::ostream& err) {
     // Every file, or none (OutputFiles).
     OutputFiles files;
     if (!args.emit_plans.empty()) {
-      std::error_code ec;
-      std::filesystem::create_directories(args.emit_plans, ec);
-      if (ec)
-        throw InputError("", "--emit-plans",
-                         "cannot create folder '" + args.emit_plans + "': " + ec.message());
       const std::filesystem::path dir(args.emit_plans);
       const int dim = assembly.dimension();
       for (size_t k = 0; k < result.sequences.size(); ++k) {
@@ -102,7 +97,23 @@ int RunPlan(const PlanArgs& args, std::ostream& out, std::ostream& err) {
                   "--emit-plans");
     }
     if (!args.dot.empty()) files.Add(args.dot, PlannerToDot(assembly, result), "--dot");
-    files.Commit();
+    // The --emit-plans folder is made only now that every file is checked,
+    // and taken away again (when this run made it) if the files fail.
+    bool made_folder = false;
+    if (!args.emit_plans.empty()) {
+      std::error_code ec;
+      made_folder = std::filesystem::create_directories(args.emit_plans, ec);
+      if (ec)
+        throw InputError("", "--emit-plans",
+                         "cannot create folder '" + args.emit_plans + "': " + ec.message());
+    }
+    try {
+      files.Commit();
+    } catch (...) {
+      std::error_code ec;
+      if (made_folder) std::filesystem::remove(args.emit_plans, ec);  // empty: nothing committed
+      throw;
+    }
     out << text;
     return result.sequences.empty() ? kExitUnstable : kExitStable;
   });

@@ -267,10 +267,7 @@ TEST(HostileOutput, AFailedWriteLeavesNoPlanFileBehind) {
   const CliRun r = Cairn("plan " + ExamplePath("paper_fig1.json") + " --emit-plans " + dir +
                          " --dot " + std::filesystem::temp_directory_path().string());
   ExpectBadInput(r, {"--dot"});
-  size_t files = 0;
-  if (std::filesystem::exists(dir))
-    for ([[maybe_unused]] const auto& e : std::filesystem::directory_iterator(dir)) ++files;
-  EXPECT_EQ(files, 0u);
+  EXPECT_FALSE(std::filesystem::exists(dir)) << "not even the folder is left";
   std::filesystem::remove_all(dir);
 }
 
@@ -284,7 +281,7 @@ std::string WithoutTimes(const std::string& doc) {
 
 TEST(Determinism, PlanGivesTheSameDocumentWithOneOrTwoThreads) {
   for (const std::string& args : {"plan " + ExamplePath("jenga.json") + " --max 2 --json",
-                                 "plan " + ExamplePath("paper_fig6.json") + " --json"}) {
+                                  "plan " + ExamplePath("paper_fig6.json") + " --json"}) {
     const CliRun one = Cairn(args + " --threads 1");
     const CliRun two = Cairn(args + " --threads 2");
     ASSERT_EQ(one.exit_code, two.exit_code) << args;
@@ -307,7 +304,7 @@ TEST(Determinism, CheckSimulateAndBlockingRepeatToTheByte) {
   };
   EXPECT_EQ(strip(s1.out), strip(s2.out));
   for (const std::string& args : {"check " + ExamplePath("wall.json") + " --json",
-                                 "blocking " + ExamplePath("paper_fig9.json") + " --json"})
+                                  "blocking " + ExamplePath("paper_fig9.json") + " --json"})
     EXPECT_EQ(Cairn(args).out, Cairn(args).out) << args;
 }
 
