@@ -269,6 +269,7 @@ struct PairContactCache::Impl {
     Eigen::Isometry3d X_a, X_b;
     std::vector<PolyhedronContactPoint> points;
   };
+  const Assembly* assembly = nullptr;  // the pairs are this assembly's parts
   double tol = 0, angle_tol = 0;
   std::unordered_map<std::uint64_t, Entry> pairs;
   int hits = 0;
@@ -482,8 +483,10 @@ std::vector<Contact> DetectContacts(const Assembly& assembly, const Configuratio
                                     PairContactCache* cache) {
   const PlacedParts placed = PlaceParts(assembly, config);
   PairContactCache::Impl* pair_cache = cache ? &cache->impl() : nullptr;
-  if (pair_cache && (pair_cache->tol != tol || pair_cache->angle_tol != angle_tol)) {
+  if (pair_cache && (pair_cache->assembly != &assembly || pair_cache->tol != tol ||
+                     pair_cache->angle_tol != angle_tol)) {
     pair_cache->pairs.clear();
+    pair_cache->assembly = &assembly;
     pair_cache->tol = tol;
     pair_cache->angle_tol = angle_tol;
   }

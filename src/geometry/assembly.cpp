@@ -334,18 +334,6 @@ std::unordered_map<std::string, int> CheckPartNumbers(const AssemblyDef& def, bo
   return index;
 }
 
-// The diagonal of the box around every vertex of the scene (its size).
-double SceneSize(const AssemblyDef& def, bool is3) {
-  Vector3 lo = Vector3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
-  for (const PartDef& p : def.parts) {
-    if (is3)
-      for (const Vector3& v : p.polyhedron->vertices) lo = lo.cwiseMin(v), hi = hi.cwiseMax(v);
-    else
-      for (const Vector2& v : p.polygon) lo = lo.cwiseMin(Embed(v)), hi = hi.cwiseMax(Embed(v));
-  }
-  return def.parts.empty() ? 0.0 : (hi - lo).norm();
-}
-
 // The bounding box of a part's vertices (as given).
 std::pair<Vector3, Vector3> PartBox(const PartDef& p, bool is3) {
   Vector3 lo = Vector3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
@@ -354,6 +342,16 @@ std::pair<Vector3, Vector3> PartBox(const PartDef& p, bool is3) {
   else
     for (const Vector2& v : p.polygon) lo = lo.cwiseMin(Embed(v)), hi = hi.cwiseMax(Embed(v));
   return {lo, hi};
+}
+
+// The diagonal of the box around every vertex of the scene (its size).
+double SceneSize(const AssemblyDef& def, bool is3) {
+  Vector3 lo = Vector3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+  for (const PartDef& p : def.parts) {
+    const auto [plo, phi] = PartBox(p, is3);
+    lo = lo.cwiseMin(plo), hi = hi.cwiseMax(phi);
+  }
+  return def.parts.empty() ? 0.0 : (hi - lo).norm();
 }
 
 // Every part at least limits::kMinPartSizeInTolerances length tolerances

@@ -509,10 +509,13 @@ namespace {
 // W M⁻¹ Wᵀ ~ 1/m (1e15 for a milligram part in kilograms) against a q of
 // accelerations ~10: in those units Lemke's relative tolerances see q as
 // roundoff. Empty when the problem is balanced already (every d within
-// kBalanced of 1): then nothing changes, to the last bit.
+// kBalanced of 1): then nothing changes, to the last bit. The scalar alone
+// is no reason to scale: Lemke's method divides by max(|M|, |q|).
 struct Equilibration {
   VectorX d;
   double c = 1;
+  MatrixX M;  // c D M D
+  VectorX q;  // D q
 };
 constexpr int kRuizPasses = 8;
 constexpr double kBalanced = 1e3;
@@ -534,12 +537,16 @@ std::optional<Equilibration> Equilibrate(const MatrixX& M, const VectorX& q) {
     }
     if (!moved) break;
   }
-  const MatrixX Ms = e.d.asDiagonal() * M * e.d.asDiagonal();
-  const double m = Ms.cwiseAbs().maxCoeff(), qs = e.d.cwiseProduct(q).cwiseAbs().maxCoeff();
+  // Balanced already: nothing more to compute (the common case, on the path
+  // of every small contact LCP).
+  if (!e.d.allFinite() || (e.d.maxCoeff() <= kBalanced && e.d.minCoeff() >= 1.0 / kBalanced))
+    return std::nullopt;
+  e.M = e.d.asDiagonal() * M * e.d.asDiagonal();
+  e.q = e.d.cwiseProduct(q);
+  const double m = e.M.cwiseAbs().maxCoeff(), qs = e.q.cwiseAbs().maxCoeff();
   if (m > 0 && qs > 0) e.c = qs / m;
-  // The scalar alone is no reason: Lemke's method divides by max(|M|, |q|).
-  const bool balanced = e.d.maxCoeff() <= kBalanced && e.d.minCoeff() >= 1.0 / kBalanced;
-  if (balanced || !e.d.allFinite() || !std::isfinite(e.c)) return std::nullopt;
+  if (!std::isfinite(e.c)) return std::nullopt;
+  e.M *= e.c;
   return e;
 }
 
@@ -558,9 +565,7 @@ LcpResult SolveLemke(const MatrixX& M, const VectorX& q, const LemkeParameters& 
   const std::optional<Equilibration> e =
       n > 0 && finite ? Equilibrate(M, q) : std::optional<Equilibration>();
   if (!e) return SolveLemkeScaled(M, q, params, warm_start);
-  const MatrixX Ms = e->c * (e->d.asDiagonal() * M * e->d.asDiagonal());
-  const VectorX qs = e->d.cwiseProduct(q);
-  LcpResult r = SolveLemkeScaled(Ms, qs, params, warm_start);
+  LcpResult r = SolveLemkeScaled(e->M, e->q, params, warm_start);
   if (r.z.size() == n) {
     r.z = e->c * e->d.cwiseProduct(r.z);
     r.w = M * r.z + q;

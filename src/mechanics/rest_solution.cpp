@@ -342,8 +342,8 @@ std::shared_ptr<RestLpProblem> LoadOrUpdate(const RestLpMatrix& m, RowBounds rb,
 // and its rank among the contacts of the component with the same ones (the
 // corners of one face-face patch). Its index in the LCP is no identity: when
 // a contact opens, every later one shifts, and a basis keyed by index would
-// start the next LP from statuses of other contacts (the Jenga pull's ticks
-// 16 and 32: 343 and 365 dual simplex iterations).
+// start the next LP from statuses of other contacts (the Jenga pull's tick
+// 16, where 8 contacts open: 343 dual simplex iterations, 0 keyed so).
 std::vector<std::uint64_t> ContactKeys(const ContactLcp& lcp) {
   const auto mix = [](std::uint64_t h, std::uint64_t v) {  // splitmix64 of h ^ v
     std::uint64_t z = (h ^ v) + 0x9e3779b97f4a7c15ULL;

@@ -65,7 +65,8 @@ struct ContactStats {
 /// tolerances: along a path, where one part moves, only the pairs with a
 /// moved part are computed again (the Jenga pull: 3 of ~150 pairs a tick).
 /// A pair is reused only when both placements are bitwise those of the last
-/// time, so the contacts are exactly those computing them again would give.
+/// time, so the contacts are exactly those computing them again would give;
+/// another assembly or other tolerances empty the cache.
 /// Not thread-safe: one cache per sequence of configurations (a workspace).
 class PairContactCache {
  public:
