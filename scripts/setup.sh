@@ -34,6 +34,9 @@ packages=(
   # pip, setuptools and wheel for `pip install .` offline.
   python3-dev python3-numpy pybind11-dev python3-pytest python3-matplotlib
   python3-venv python3-pip python3-setuptools python3-wheel
+  # The result pages (--html, docs/html.md) tested in a real browser:
+  # Debian's Chromium, headless, driven by playwright-core from npm (below).
+  chromium fonts-dejavu-core
 )
 if ((bench)); then
   packages+=(
@@ -54,13 +57,27 @@ for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
 done
 
+sudo_cmd=()
+if [[ $(id -u) -ne 0 ]]; then sudo_cmd=(sudo); fi
 if ((${#missing[@]})); then
   echo "setup: installing ${missing[*]}"
-  sudo_cmd=()
-  if [[ $(id -u) -ne 0 ]]; then sudo_cmd=(sudo); fi
   export DEBIAN_FRONTEND=noninteractive
   "${sudo_cmd[@]}" apt-get update -qq
   "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
 else
   echo "setup: all packages present"
+fi
+
+# The browser tests' driver (web/package.json: playwright-core; three.js and
+# esbuild, which rebuild web/dist/viewer.js) from the npm registry, at the
+# versions of web/package-lock.json. Node.js is the machine's (>= 20), or
+# Debian's when there is none.
+if ! command -v node >/dev/null || ! command -v npm >/dev/null; then
+  echo "setup: installing nodejs npm"
+  "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends nodejs npm >/dev/null
+fi
+web_dir="$(cd "$(dirname "$0")/../web" && pwd)"
+if [[ ! -d "$web_dir/node_modules/playwright-core" || "$web_dir/package-lock.json" -nt "$web_dir/node_modules/.package-lock.json" ]]; then
+  echo "setup: npm ci in web/"
+  (cd "$web_dir" && npm ci --no-audit --no-fund --loglevel=error)
 fi

@@ -18,9 +18,11 @@
 #include "cairn/planning/fixtures.h"
 #include "cairn/report/check_report.h"
 #include "cairn/report/fixture_report.h"
+#include "cairn/report/html_report.h"
 #include "cairn/stability/analyze.h"
 #include "cli/command.h"
 #include "cli/model.h"
+#include "cli/output_files.h"
 #include "cli/scene_writer.h"
 
 namespace cairn::cli {
@@ -35,8 +37,14 @@ int RunCheck(const CheckArgs& args, std::ostream& out, std::ostream& err) {
     StabilityOptions analysis;
     analysis.check_equilibrium = true;  // report jamming (weak stability) too
     const StabilityResult result = AnalyzeConfiguration(assembly, config, analysis);
+    // Everything is computed before anything is written.
+    const nlohmann::json doc = StabilityToJson(assembly, config, result, report);
+    OutputFiles files;
+    if (!args.html.empty())
+      files.Add(args.html, CheckPage(assembly, config, doc, report), "--html");
+    files.Commit();
     if (args.json)
-      out << StabilityToJson(assembly, config, result, report).dump(2) << '\n';
+      out << doc.dump(2) << '\n';
     else
       out << StabilityToText(assembly, config, result, report);
     return result.stable() ? kExitStable : kExitUnstable;

@@ -12,6 +12,7 @@ namespace cairn::cli {
 struct CheckArgs {
   std::string scene;
   bool json = false;
+  std::string html;                  // --html FILE: the result page, or empty
   std::string normalize;             // part name, or empty
   std::vector<std::string> without;  // part names
   ModelArgs model;

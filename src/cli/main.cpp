@@ -78,6 +78,13 @@ void AddWithout(CLI::App* cmd, std::vector<std::string>& without, const char* de
   cmd->add_option("--without", without, description)->delimiter(',')->check(kNotEmpty);
 }
 
+// --html FILE: the result page (docs/html.md).
+void AddHtml(CLI::App* cmd, std::string& html) {
+  cmd->add_option("--html", html,
+                  "Write the result as one self-contained HTML page (opens from disk in a browser)")
+      ->check(kNotEmpty);
+}
+
 CLI::App* AddCheck(CLI::App& app, cairn::cli::CheckArgs& check) {
   CLI::App* cmd =
       AddSceneCommand(app, "check", "Is one configuration of a scene stable under gravity?",
@@ -85,6 +92,7 @@ CLI::App* AddCheck(CLI::App& app, cairn::cli::CheckArgs& check) {
   cmd->add_option("--normalize", check.normalize, "Divide forces by the weight of this part")
       ->check(kNotEmpty);
   AddWithout(cmd, check.without, "Check with these parts taken away (comma-separated)");
+  AddHtml(cmd, check.html);
   AddModelOptions(cmd, check.model);
   return cmd;
 }
@@ -97,6 +105,7 @@ CLI::App* AddSimulate(CLI::App& app, cairn::cli::SimulateArgs& sim) {
   cmd->add_option("--timeline", sim.timeline,
                   "Write one CSV row per time step and contact to this file")
       ->check(kNotEmpty);
+  AddHtml(cmd, sim.html);
   cmd->add_option("--normalize", sim.normalize, "Divide forces by the weight of this part")
       ->check(kNotEmpty);
   cmd->add_flag("--continue", sim.continue_after_failure,
@@ -150,6 +159,7 @@ CLI::App* AddPlan(CLI::App& app, cairn::cli::PlanArgs& plan) {
   cmd->add_option("--dot", plan.dot,
                   "Write the AND/OR graph (Graphviz dot) with stable and unstable edges")
       ->check(kNotEmpty);
+  AddHtml(cmd, plan.html);
   cmd->add_option("--keep", plan.keep, "Parts that stay in the assembly (comma-separated)")
       ->delimiter(',');
   cmd->add_option("--support", plan.support,

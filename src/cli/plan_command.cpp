@@ -12,6 +12,7 @@
 #include "cairn/core/error.h"
 #include "cairn/io/paths_reader.h"
 #include "cairn/planning/planner.h"
+#include "cairn/report/html_report.h"
 #include "cairn/report/plan_report.h"
 #include "cli/command.h"
 #include "cli/model.h"
@@ -62,8 +63,9 @@ int RunPlan(const PlanArgs& args, std::ostream& out, std::ostream& err) {
     progress.Done();
 
     // Everything is computed before anything is written.
-    const std::string text = args.json ? PlannerToJson(assembly, result, args.scene).dump(2) + "\n"
-                                       : PlannerToText(assembly, result, args.scene);
+    const nlohmann::json doc = PlannerToJson(assembly, result, args.scene);
+    const std::string text =
+        args.json ? doc.dump(2) + "\n" : PlannerToText(assembly, result, args.scene);
     // Every file, or none (OutputFiles).
     OutputFiles files;
     if (!args.emit_plans.empty()) {
@@ -97,6 +99,11 @@ int RunPlan(const PlanArgs& args, std::ostream& out, std::ostream& err) {
                   "--emit-plans");
     }
     if (!args.dot.empty()) files.Add(args.dot, PlannerToDot(assembly, result), "--dot");
+    if (!args.html.empty()) {
+      ReportOptions report;
+      report.scene_file = args.scene;
+      files.Add(args.html, PlanPage(assembly, result, doc, report), "--html");
+    }
     // The --emit-plans folder is made only now that every file is checked,
     // and taken away again (when this run made it) if the files fail.
     bool made_folder = false;

@@ -16,6 +16,7 @@ struct PlanArgs {
   int threads = 0;                // --threads; 0: every core
   std::string paths;              // --paths FILE: candidate paths per part
   std::string emit_plans;         // --emit-plans DIR
+  std::string html;               // --html FILE: the result page, or empty
   std::string dot;                // --dot FILE
   std::vector<std::string> keep;  // --keep: parts never removed
   std::string support = "full";   // --support full|none|both

@@ -17,14 +17,29 @@
 #include "cairn/motion/simulate.h"
 #include "cairn/planning/fixtures.h"
 #include "cairn/report/fixture_report.h"
+#include "cairn/report/html_report.h"
 #include "cairn/report/simulation_report.h"
 #include "cairn/stability/analyze.h"
 #include "cli/command.h"
 #include "cli/model.h"
+#include "cli/output_files.h"
 #include "cli/progress.h"
 #include "cli/scene_writer.h"
 
 namespace cairn::cli {
+namespace {
+
+// What a plan step does with each part, as the page colours it: the gripped
+// parts (tools included) move with the gripper, the rest of `remove` is
+// carried, every other part is judged.
+std::vector<PartRole> PlanRoles(const Assembly& assembly, const PlanStep& step) {
+  std::vector<PartRole> roles(assembly.num_parts(), PartRole::kJudged);
+  for (int p : step.remove) roles[p] = PartRole::kCarried;
+  for (int p : step.grip) roles[p] = PartRole::kPrescribed;
+  return roles;
+}
+
+}  // namespace
 
 int RunSimulate(const SimulateArgs& args, std::ostream& out, std::ostream& err) {
   return RunGuarded(err, [&]() -> int {
@@ -40,13 +55,19 @@ int RunSimulate(const SimulateArgs& args, std::ostream& out, std::ostream& err) 
     report.normalize_part = ResolveNormalize(assembly, args.normalize, args.scene);
     SimulationOptions options;
     options.continue_after_failure = args.continue_after_failure;
-    options.record_timeline = !args.timeline.empty();
+    // The page draws every tick: its poses and roles (recorded here) and its
+    // contacts (the timeline).
+    options.record_timeline = !args.timeline.empty() || !args.html.empty();
+    std::vector<SimulationFrame> frames;
     // A long plan says where it is, on a terminal.
     Progress progress("cairn simulate");
     std::vector<long long> ticks;
     for (const PlanStep& s : plan.steps)
       ticks.push_back(static_cast<long long>(std::ceil(s.Length() / (plan.speed * plan.dt))));
     options.on_analysis = [&](const AnalysisInputs& in) {
+      if (!args.html.empty() && in.judged)
+        frames.push_back({in.step, in.tick, in.time, in.config->present, in.config->poses,
+                          PlanRoles(assembly, plan.steps[in.step])});
       progress.Show("step " + std::to_string(in.step + 1) + "/" +
                     std::to_string(plan.steps.size()) + ", time step " + std::to_string(in.tick) +
                     "/" + std::to_string(ticks[in.step]));
@@ -61,21 +82,25 @@ int RunSimulate(const SimulateArgs& args, std::ostream& out, std::ostream& err) 
     if (args.suggest_fixtures && !result.stable())
       suggestion = SuggestFixtures(model.def, assembly, plan, result, search);
     // Everything is computed before anything is written.
+    nlohmann::json doc = SimulationToJson(assembly, plan, result, report);
+    // null: asked for, but the plan is stable without fixels.
+    if (args.suggest_fixtures)
+      doc["fixtures"] = suggestion ? FixtureSuggestionToJson(assembly, *suggestion, search, report)
+                                   : nlohmann::json(nullptr);
     std::string text;
     if (args.json) {
-      nlohmann::json doc = SimulationToJson(assembly, plan, result, report);
-      // null: asked for, but the plan is stable without fixels.
-      if (args.suggest_fixtures)
-        doc["fixtures"] = suggestion
-                              ? FixtureSuggestionToJson(assembly, *suggestion, search, report)
-                              : nlohmann::json(nullptr);
       text = doc.dump(2) + "\n";
     } else {
       text = SimulationToText(assembly, plan, result, report);
       if (suggestion) text += FixtureSuggestionToText(assembly, *suggestion, search, report);
     }
+    // Every file, or none (OutputFiles).
+    OutputFiles files;
     if (!args.timeline.empty())
-      WriteAtomically(args.timeline, TimelineToCsv(assembly, result, report), "--timeline");
+      files.Add(args.timeline, TimelineToCsv(assembly, result, report), "--timeline");
+    if (!args.html.empty())
+      files.Add(args.html, SimulationPage(assembly, result, frames, doc, report), "--html");
+    files.Commit();
     out << text;
     switch (result.verdict) {
       case MotionVerdict::kStable:

@@ -15,6 +15,7 @@ struct SimulateArgs {
   std::string plan;
   bool json = false;
   std::string timeline;   // CSV file, or empty
+  std::string html;       // --html FILE: the result page, or empty
   std::string normalize;  // part name, or empty
   bool continue_after_failure = false;
   /// --suggest-fixtures: when a step fails, look for the fewest fixels that

@@ -356,7 +356,8 @@ class PlanSimulation {
     TickAnalysis an;
     const int k = st.k, tick = tm.tick;
     const DriveInputs drive = MakeDrive(st, tm, tick == 0);
-    if (options_.on_analysis) options_.on_analysis({k, tick, true, &config_, &drive, &so});
+    if (options_.on_analysis)
+      options_.on_analysis({k, tick, tm.t_now, true, &config_, &drive, &so});
     an.r = AnalyzeConfiguration(a_, config_, so, &drive, &workspace_);
     ++st.report.ticks;
     for (const ComponentReport& c : an.r.components) st.report.pivots += c.pivots;
@@ -368,7 +369,8 @@ class PlanSimulation {
         result_.timeline.push_back({tm.t_now, k, tick, c});
     if (tick == 0 && tick < st.moves) {
       const DriveInputs go = MakeDrive(st, tm, false);
-      if (options_.on_analysis) options_.on_analysis({k, tick, false, &config_, &go, &so});
+      if (options_.on_analysis)
+        options_.on_analysis({k, tick, tm.t_now, false, &config_, &go, &so});
       an.moved = AnalyzeConfiguration(a_, config_, so, &go, &workspace_);
       an.has_moved = true;
       if (!an.moved.diagnostics.empty())

@@ -116,8 +116,9 @@ struct SimulationResult {
 /// path, and diagnostics): its inputs, exactly as AnalyzeConfiguration gets
 /// them. Valid only during the call.
 struct AnalysisInputs {
-  int step = -1;  ///< index into Plan::steps
-  int tick = 0;   ///< tick within the step
+  int step = -1;    ///< index into Plan::steps
+  int tick = 0;     ///< tick within the step
+  double time = 0;  ///< s, from the start of the plan
   /// false: tick 0's second solve (gripper moving): it judges the pushes of
   /// the first instant and moves the carried parts; its pivots are not
   /// counted in MotionStepReport::pivots.

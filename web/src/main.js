@@ -1,0 +1,519 @@
+// Cairn's result page (`--html`): reads the data the command embedded
+// (<script id="cairn-data" type="application/json">) and draws it: the
+// scene, the verdict and its evidence (forces, the parts that move and how),
+// a time scrubber over a simulation's ticks with a force-versus-time chart,
+// a plan's sequences step by step. docs/html.md describes the page and the
+// data; `window.cairn` is the page's small API for scripts and tests.
+
+import * as THREE from 'three';
+import { kColors, kCss } from './style.js';
+import { SceneView, contactsFromReport, emptyContacts, pad3 } from './scene_view.js';
+import { ForceChart } from './chart.js';
+
+const $ = (tag, attrs = {}, ...children) => {
+  const e = document.createElement(tag);
+  for (const [k, v] of Object.entries(attrs)) {
+    if (k === 'class') e.className = v;
+    else if (k.startsWith('on')) e.addEventListener(k.slice(2), v);
+    else e.setAttribute(k, v);
+  }
+  for (const c of children) e.append(c);
+  return e;
+};
+const fmt = (x, digits = 4) => (typeof x === 'number' ? Number(x.toPrecision(digits)).toString() : String(x));
+const vec = (v) => '(' + pad3(v).slice(0, v && v.length === 2 ? 2 : 3).map((x) => fmt(x)).join(', ') + ')';
+
+function main() {
+  const style = document.createElement('style');
+  style.textContent = kCss;
+  document.head.appendChild(style);
+  const data = JSON.parse(document.getElementById('cairn-data').textContent);
+  const page = new Page(data);
+  window.cairn = page.api();
+  page.start();
+}
+
+class Page {
+  constructor(data) {
+    this.data = data;
+    this.scene = data.scene;
+    this.result = data.result || {};
+    this.names = this.scene.parts.map((p) => p.name);
+    this.index = new Map(this.names.map((n, i) => [n, i]));
+    this.unit = this.result.force_unit || this.scene.force_unit || 'force units';
+    this.indexOf = (name) => (this.index.has(name) ? this.index.get(name) : -1);
+    this.buildLayout();
+    this.view = new SceneView(this.viewEl, this.scene);
+    this.view.setForceReference(this.forceReference());
+    this.view.setFixels(this.scene.fixtures || []);
+    this.bindPicking();
+  }
+
+  // The force an arrow of 12 % of the scene stands for (stated in the
+  // legend): the largest normal force the page shows, at any tick or node;
+  // without contacts, the heaviest movable part's weight.
+  forceReference() {
+    let m = 0;
+    const scan = (fn) => { for (const x of fn) m = Math.max(m, x); };
+    for (const c of this.result.contacts || []) m = Math.max(m, c.normal_force || 0);
+    for (const f of this.data.frames || []) scan(f.contacts.fn);
+    for (const c of Object.values((this.data.plan && this.data.plan.nodes) || {})) scan(c.fn);
+    return m > 0 ? m : this.scene.force_reference > 0 ? this.scene.force_reference : 1;
+  }
+
+  // --- layout --------------------------------------------------------------
+  buildLayout() {
+    const d = this.data, r = this.result;
+    const verdict = d.kind === 'plan' ? planVerdict(r) : r.verdict || (r.stable ? 'stable' : 'unstable');
+    const good = verdict === 'stable' || verdict === 'planned';
+    this.app = document.getElementById('cairn-app') || document.body.appendChild($('div', { id: 'cairn-app' }));
+    const head = $('header', {},
+      $('h1', {}, d.title || this.scene.name || 'Cairn'),
+      $('span', { class: 'kind' }, 'cairn ' + d.kind + (this.scene.file ? ' · ' + this.scene.file : '')),
+      $('span', { class: 'badge ' + (good ? 'good' : verdict === 'infeasible' ? 'warn' : 'bad'), id: 'verdict' }, verdict));
+    this.viewEl = $('div', { id: 'view' });
+    this.tip = $('div', { id: 'tip' });
+    this.overlayEl = $('div', { id: 'overlay' }, this.scene.dimension === 2 ? 'drag: pan · wheel: zoom' : 'drag: orbit · right-drag: pan · wheel: zoom');
+    this.viewEl.append(this.tip, this.overlayEl);
+    this.side = $('aside', {});
+    this.foot = $('footer', {});
+    this.app.append(head, this.viewEl, this.side, this.foot);
+    this.storyEl = $('ol', { id: 'story' });
+    this.infoEl = $('div', { id: 'info' }, 'Hover or click a part or a contact point.');
+    this.side.append($('h2', {}, 'What happens'), this.storyEl);
+    this.extraSide = $('div', {});
+    this.side.append(this.extraSide, $('h2', {}, 'Selected'), this.infoEl, $('h2', {}, 'Legend'), this.legend());
+  }
+
+  legend() {
+    const row = (color, text) => $('div', {}, $('span', { class: 'sw', style: 'background:' + color }), text);
+    const el = $('div', { class: 'legend' },
+      row(kColors.fixed, 'fixed'), row(kColors.judged, 'must stay put'),
+      row(kColors.gripped, 'gripped (moved by the gripper)'), row(kColors.carried, 'carried along'),
+      row(kColors.tool, 'tool'), row(kColors.failed, 'moves: fails'), row(kColors.fixel, 'fixel'),
+      row(kColors.normal, 'normal force on the part'), row(kColors.friction, 'friction force on the part'));
+    this.scaleNote = $('div', { class: 'note', id: 'force-scale' });
+    const gain = $('input', { type: 'range', min: '-3', max: '3', step: '0.1', value: '0', id: 'gain' });
+    gain.addEventListener('input', () => {
+      this.view.arrowGain = Math.pow(2, Number(gain.value));
+      this.view.drawContacts();
+      this.updateScaleNote();
+    });
+    const forces = $('input', { type: 'checkbox', checked: '' });
+    forces.addEventListener('change', () => { this.view.showForces = forces.checked; this.view.drawContacts(); });
+    const friction = $('input', { type: 'checkbox', checked: '' });
+    friction.addEventListener('change', () => { this.view.showFriction = friction.checked; this.view.drawContacts(); });
+    el.append(this.scaleNote, $('label', { class: 'ctl' }, 'arrow length', gain),
+              $('label', { class: 'ctl' }, forces, 'forces'), $('label', { class: 'ctl' }, friction, 'friction'));
+    return el;
+  }
+
+  updateScaleNote() {
+    const v = this.view;
+    const len = v.forceReference * v.forceScale * v.arrowGain;
+    this.scaleNote.textContent = 'An arrow ' + fmt(len, 3) + ' scene units long is ' + fmt(v.forceReference, 3) + ' ' + this.unit +
+      ' (the largest normal force shown; the heaviest movable part weighs ' + fmt(this.scene.force_reference, 3) + ').';
+  }
+
+  // --- picking -------------------------------------------------------------
+  bindPicking() {
+    const canvas = this.view.renderer.domElement;
+    let down = null;
+    canvas.addEventListener('pointerdown', (e) => { down = [e.clientX, e.clientY]; });
+    canvas.addEventListener('pointermove', (e) => {
+      const hit = this.view.pick(e.clientX, e.clientY);
+      const text = hit ? this.describe(hit) : '';
+      this.tip.style.display = text ? 'block' : 'none';
+      if (text) {
+        const r = this.viewEl.getBoundingClientRect();
+        this.tip.textContent = text;
+        this.tip.style.left = Math.min(e.clientX - r.left + 14, r.width - 260) + 'px';
+        this.tip.style.top = (e.clientY - r.top + 14) + 'px';
+      }
+    });
+    canvas.addEventListener('pointerleave', () => { this.tip.style.display = 'none'; });
+    canvas.addEventListener('click', (e) => {
+      if (down && Math.hypot(e.clientX - down[0], e.clientY - down[1]) > 4) return;  // a drag
+      this.select(this.view.pick(e.clientX, e.clientY));
+    });
+  }
+
+  select(hit) {
+    this.selected = hit;
+    this.infoEl.textContent = hit ? this.describe(hit) : 'Hover or click a part or a contact point.';
+    if (hit && hit.contact !== undefined && this.chart) {
+      const c = this.view.contacts;
+      this.chart.select(c.a[hit.contact], c.b[hit.contact]);
+    }
+  }
+
+  describe(hit) {
+    if (hit.part !== undefined) {
+      const p = this.scene.parts[hit.part];
+      const role = this.view.parts[hit.part].role || '';
+      const lines = [p.name + (p.fixed ? ' (fixed)' : p.tool ? ' (tool)' : ''), 'role: ' + roleWords(role),
+                     'mass: ' + fmt(p.mass), 'centroid: ' + vec(p.centroid)];
+      const mo = (this.motions || []).find((m) => m.part === hit.part);
+      if (mo) lines.push('motion: ' + motionWords(mo));
+      return lines.join('\n');
+    }
+    const c = this.view.contacts, k = hit.contact;
+    const name = (i) => (i >= 0 ? this.names[i] : 'the fixed world');
+    const ft = [c.ft[3 * k], c.ft[3 * k + 1], c.ft[3 * k + 2]];
+    const flags = c.flags[k];
+    return [
+      'contact ' + name(c.a[k]) + ' on ' + name(c.b[k]),
+      'point: ' + vec(this.scene.dimension === 2 ? [c.p[3 * k], c.p[3 * k + 1]] : [c.p[3 * k], c.p[3 * k + 1], c.p[3 * k + 2]]),
+      'normal (into ' + name(c.a[k]) + '): ' + vec(this.scene.dimension === 2 ? [c.n[3 * k], c.n[3 * k + 1]] : [c.n[3 * k], c.n[3 * k + 1], c.n[3 * k + 2]]),
+      'normal force: ' + fmt(c.fn[k]) + ' ' + this.unit,
+      'friction force: ' + fmt(Math.hypot(...ft)) + ' ' + this.unit,
+      (flags & 1 ? 'breaks (opens)' : flags & 2 ? 'slides' : 'holds'),
+    ].join('\n');
+  }
+
+  // --- the three kinds -----------------------------------------------------
+  start() {
+    if (this.data.kind === 'simulate') this.startSimulation();
+    else if (this.data.kind === 'plan') this.startPlan();
+    else this.startCheck();
+    this.updateScaleNote();
+    // Ready once the first frame is drawn (scripts and tests wait on it).
+    requestAnimationFrame(() => {
+      this.view.render();
+      requestAnimationFrame(() => {
+        this.loadTime = performance.now();
+        document.body.dataset.cairnReady = 'true';
+      });
+    });
+  }
+
+  motionsOfCheck() {
+    return (this.result.parts || []).filter((p) => p.moving).map((p) => ({
+      part: this.indexOf(p.name), motion: p.motion, pivot: p.pivot, axis: p.axis,
+      linear: p.acceleration && p.acceleration.linear, angular: p.acceleration && p.acceleration.angular,
+    }));
+  }
+
+  startCheck() {
+    const r = this.result;
+    const absent = (r.without || []).map(this.indexOf);
+    const moving = new Set((r.moving || []).map(this.indexOf));
+    this.motions = this.motionsOfCheck();
+    this.view.setPoses([], absent);
+    this.view.setRoles((i) => (this.scene.parts[i].fixed ? 'fixed' : moving.has(i) ? 'failed' : this.scene.parts[i].tool ? 'tool' : 'judged'));
+    this.view.setContacts(contactsFromReport(r.contacts, this.indexOf));
+    this.view.setMotions(this.motions);
+    const story = [];
+    story.push((r.stable ? 'Stable' : 'Not stable') + (r.stability ? ' (' + r.stability + ')' : '') +
+               (absent.length ? ' without ' + absent.map((i) => this.names[i]).join(', ') : '') + '.');
+    for (const m of this.motions) story.push(this.names[m.part] + ' ' + motionWords(m) + '.');
+    if (r.diagnostics) story.push(r.diagnostics);
+    this.setStory(story);
+    this.foot.append($('div', { class: 'note' }, (r.contacts || []).length + ' contacts · ' + this.names.length + ' parts'));
+  }
+
+  setStory(lines) {
+    this.storyEl.replaceChildren(...lines.map((l) => $('li', {}, l)));
+  }
+
+  // A simulation: frames (one per tick), a scrubber, play, the chart.
+  startSimulation() {
+    const frames = this.data.frames || [];
+    const f = this.result.failure;
+    this.failureFrame = f ? frames.findIndex((x) => x.step === f.step && x.tick === f.tick) : -1;
+    this.failedParts = new Set(f ? (f.parts || []).map(this.indexOf) : []);
+    this.failureMotions = f ? (f.motions || []).map((m) => ({
+      part: this.indexOf(m.part), motion: m.motion, pivot: m.pivot,
+      linear: m.velocity && m.velocity.linear, angular: m.velocity && m.velocity.angular,
+      axis: m.axis,
+    })) : [];
+    const story = [];
+    for (const s of this.result.steps || [])
+      story.push('Step ' + (s.index + 1) + ': remove ' + (s.parts || []).join(', ') + ' (' + s.verdict + ', ' + (s.time_steps || 0) + ' time steps).');
+    if (f && f.description) story.push(brief(f.description));
+    this.setStory(story);
+
+    const row = $('div', { class: 'row' });
+    this.playBtn = $('button', { id: 'play' }, 'Play');
+    this.playBtn.addEventListener('click', () => this.togglePlay());
+    this.scrub = $('input', { type: 'range', id: 'scrub', min: '0', max: String(Math.max(frames.length - 1, 0)), step: '1', value: '0' });
+    this.scrub.addEventListener('input', () => this.setFrame(Number(this.scrub.value)));
+    const wrap = $('div', { id: 'scrub-wrap' }, this.scrub);
+    if (this.failureFrame >= 0 && frames.length > 1) {
+      const mark = $('div', { class: 'mark', id: 'failure-mark', title: 'failure' });
+      mark.style.left = 'calc(' + (100 * this.failureFrame) / (frames.length - 1) + '% - 1px)';
+      wrap.append(mark);
+    }
+    this.timeEl = $('span', { id: 'time' });
+    row.append(this.playBtn, wrap, this.timeEl);
+    this.chartCanvas = $('canvas', { id: 'chart' });
+    this.foot.append(row, this.chartCanvas);
+    this.chart = new ForceChart(this.chartCanvas, frames, this.names, this.unit, this.failureFrame);
+    this.chart.select(...this.defaultPair(frames));
+    this.setFrame(this.failureFrame >= 0 ? this.failureFrame : 0);
+  }
+
+  // The pair the chart opens on: the failing part's most loaded contact
+  // pair, or the most loaded pair of all.
+  defaultPair(frames) {
+    let best = null, bestForce = -1;
+    for (const fr of frames) {
+      const c = fr.contacts;
+      const sums = new Map();
+      for (let k = 0; k < c.a.length; ++k) {
+        const key = c.a[k] + ',' + c.b[k];
+        sums.set(key, (sums.get(key) || 0) + c.fn[k]);
+      }
+      for (const [key, s] of sums) {
+        const [a, b] = key.split(',').map(Number);
+        const w = s + (this.failedParts.has(a) || this.failedParts.has(b) ? 1e30 : 0);
+        if (w > bestForce) { bestForce = w; best = [a, b]; }
+      }
+    }
+    return best || [-1, -1];
+  }
+
+  setFrame(k) {
+    const frames = this.data.frames || [];
+    if (!frames.length) return;
+    k = Math.max(0, Math.min(frames.length - 1, Math.round(k)));
+    this.frame = k;
+    const fr = frames[k];
+    this.scrub.value = String(k);
+    const roles = new Map(fr.roles || []);
+    const failed = this.failureFrame >= 0 && k >= this.failureFrame;
+    this.view.setPoses(fr.poses, fr.absent);
+    this.view.setRoles((i) => {
+      const p = this.scene.parts[i];
+      if (p.fixed) return 'fixed';
+      if (failed && this.failedParts.has(i)) return 'failed';
+      const r = roles.get(i);
+      return r || (p.tool ? 'tool' : 'judged');
+    });
+    this.view.setContacts(fr.contacts);
+    this.motions = k === this.failureFrame ? this.failureMotions : [];
+    this.view.setMotions(this.motions);
+    const step = (this.result.steps || [])[fr.step];
+    this.timeEl.textContent = 't = ' + fmt(fr.time, 4) + ' s · step ' + (fr.step + 1) + ' · tick ' + fr.tick +
+      (k === this.failureFrame ? ' · FAILS' : '') + (step ? '' : '');
+    this.chart.setFrame(k);
+    if (this.selected) this.infoEl.textContent = this.selected.part !== undefined ? this.describe(this.selected) : this.infoEl.textContent;
+  }
+
+  togglePlay() {
+    const frames = this.data.frames || [];
+    if (this.playing) {
+      this.playing = false;
+      this.playBtn.textContent = 'Play';
+      return;
+    }
+    if (this.frame >= frames.length - 1) this.setFrame(0);
+    this.playing = true;
+    this.playBtn.textContent = 'Pause';
+    // About four seconds for the whole simulation, at most 30 frames a second.
+    const period = Math.max(1000 / 30, 4000 / Math.max(frames.length, 1));
+    let last = performance.now();
+    const tick = (now) => {
+      if (!this.playing) return;
+      if (now - last >= period) {
+        last = now;
+        if (this.frame >= frames.length - 1) { this.togglePlay(); return; }
+        this.setFrame(this.frame + 1);
+      }
+      requestAnimationFrame(tick);
+    };
+    requestAnimationFrame(tick);
+  }
+
+  // A plan: the stable sequences; each plays step by step. A step's parts
+  // slide along its path; the contacts and forces shown are the rest state
+  // of the assembly that remains at the start of the step.
+  startPlan() {
+    const r = this.result;
+    const seqs = r.sequences || [];
+    const shown = this.data.plan ? this.data.plan.sequences_shown : seqs.length;
+    const story = [seqs.length ? seqs.length + ' stable sequence' + (seqs.length === 1 ? '' : 's') + (r.complete === false ? ' (search stopped early)' : '') + '.' : 'No stable sequence: ' + (r.message || '')];
+    const nonin = r.noninvertible_steps || [];
+    if (nonin.length) story.push(nonin.length + ' removal' + (nonin.length === 1 ? ' is' : 's are') + ' stable one way only (non-invertible: marked ⚠).');
+    if ((r.assembly_only_sequences || []).length) story.push(r.assembly_only_sequences.length + ' sequence(s) stable only as assembly.');
+    this.setStory(story);
+    const list = $('ul', { id: 'seqs' });
+    this.seqItems = seqs.slice(0, shown).map((s, i) => {
+      const warn = !s.invertible ? $('span', { class: 'warn', title: 'not invertible' }, ' ⚠') : '';
+      const fix = s.fixels ? $('span', { class: 'warn', title: 'needs fixels' }, ' ✚' + s.fixels.length + ' fixel' + (s.fixels.length === 1 ? '' : 's')) : '';
+      const li = $('li', {}, (i + 1) + '. ' + s.steps.map((st) => st.remove.join('+')).join(' → '), warn, fix);
+      li.addEventListener('click', () => this.selectSequence(i));
+      list.append(li);
+      return li;
+    });
+    if (shown < seqs.length) list.append($('li', { class: 'note' }, '… and ' + (seqs.length - shown) + ' more (in the JSON)'));
+    this.stepList = $('ol', { class: 'steps', id: 'steps' });
+    this.extraSide.append($('h2', {}, 'Sequences'), list, $('h2', {}, 'Steps'), this.stepList);
+    const row = $('div', { class: 'row' });
+    this.playBtn = $('button', { id: 'play' }, 'Play');
+    this.playBtn.addEventListener('click', () => this.togglePlanPlay());
+    this.scrub = $('input', { type: 'range', id: 'scrub', min: '0', max: '0', step: '0.01', value: '0' });
+    this.scrub.addEventListener('input', () => this.setPlanTime(Number(this.scrub.value)));
+    this.timeEl = $('span', { id: 'time' });
+    row.append(this.playBtn, $('div', { id: 'scrub-wrap' }, this.scrub), this.timeEl);
+    this.foot.append(row);
+    this.view.setPoses([], []);
+    this.view.setRoles((i) => (this.scene.parts[i].fixed ? 'fixed' : 'judged'));
+    if (seqs.length) this.selectSequence(0);
+  }
+
+  selectSequence(i) {
+    this.sequence = i;
+    this.seqItems.forEach((li, k) => li.classList.toggle('on', k === i));
+    const s = this.result.sequences[i];
+    const nonin = this.result.noninvertible_steps || [];
+    this.stepList.replaceChildren(...s.steps.map((st, k) => {
+      const check = (s.checks || [])[k] || {};
+      const one = nonin.some((n) => sameSet(n.remove, st.remove) && n.label === check.label);
+      return $('li', {}, st.remove.join('+') + ' ' + (check.label || '') + (check.assembly && check.assembly !== check.disassembly ? ' ⚠ assembly ' + check.assembly : one ? ' ⚠' : ''));
+    }));
+    this.scrub.max = String(s.steps.length);
+    this.view.setFixels([...(this.scene.fixtures || []), ...(s.fixels || []).map((f) => ({ ...f, part: this.indexOf(f.part) }))]);
+    this.setPlanTime(0);
+  }
+
+  // t in [0, steps]: step floor(t), fraction t − floor(t) of its path.
+  setPlanTime(t) {
+    const s = this.result.sequences[this.sequence];
+    if (!s) return;
+    const n = s.steps.length;
+    t = Math.max(0, Math.min(n, t));
+    this.planTime = t;
+    this.scrub.value = String(t);
+    const k = Math.min(Math.floor(t), n - 1), frac = t >= n ? 1 : t - k;
+    const gone = [];
+    for (let j = 0; j < k; ++j) for (const name of s.steps[j].remove) gone.push(this.indexOf(name));
+    const step = s.steps[k];
+    const moving = new Set(step.remove.map(this.indexOf));
+    const done = t >= n;
+    this.view.setPoses([], done ? [...gone, ...moving] : gone);
+    const d = pathPoint(step, frac, this.scene.dimension);
+    for (const i of moving) this.view.offsetPart(i, d);
+    this.view.setRoles((i) => (this.scene.parts[i].fixed ? 'fixed' : moving.has(i) ? 'gripped' : 'judged'));
+    const present = this.scene.parts.map((_, i) => i).filter((i) => !gone.includes(i));
+    const node = this.data.plan && this.data.plan.nodes ? this.data.plan.nodes[present.join(',')] : null;
+    this.view.setContacts(node && frac === 0 ? node : emptyContacts());
+    this.view.setMotions([]);
+    [...this.stepList.children].forEach((li, j) => li.classList.toggle('now', j === k && !done));
+    this.timeEl.textContent = done ? 'done' : 'step ' + (k + 1) + ' of ' + n + ': ' + step.remove.join('+') + (frac === 0 ? ' (at rest: forces shown)' : '');
+  }
+
+  togglePlanPlay() {
+    if (this.playing) { this.playing = false; this.playBtn.textContent = 'Play'; return; }
+    const s = this.result.sequences[this.sequence];
+    if (!s) return;
+    if (this.planTime >= s.steps.length) this.setPlanTime(0);
+    this.playing = true;
+    this.playBtn.textContent = 'Pause';
+    let last = performance.now();
+    const tick = (now) => {
+      if (!this.playing) return;
+      const t = this.planTime + (now - last) / 1500;  // 1.5 s a step
+      last = now;
+      if (t >= s.steps.length) { this.setPlanTime(s.steps.length); this.togglePlanPlay(); return; }
+      this.setPlanTime(t);
+      requestAnimationFrame(tick);
+    };
+    requestAnimationFrame(tick);
+  }
+
+  // --- the API for scripts and tests ----------------------------------------
+  api() {
+    const page = this;
+    return {
+      kind: this.data.kind,
+      get frameCount() { return (page.data.frames || []).length; },
+      get frame() { return page.frame; },
+      get failureFrame() { return page.failureFrame; },
+      setFrame: (k) => page.setFrame(k),
+      setPlanTime: (t) => page.setPlanTime(t),
+      selectSequence: (i) => page.selectSequence(i),
+      selectPair: (a, b) => page.chart && page.chart.select(page.indexOf(a), page.indexOf(b)),
+      partPose: (name) => page.view.partPosition(page.indexOf(name)),
+      partVisible: (name) => page.view.parts[page.indexOf(name)].group.visible,
+      partRole: (name) => page.view.parts[page.indexOf(name)].role,
+      // Where a part is drawn on the canvas (CSS pixels from the canvas' top left).
+      partScreen: (name) => {
+        const g = page.view.parts[page.indexOf(name)].group;
+        const v = g.position.clone().project(page.view.camera);
+        const r = page.view.renderer.domElement.getBoundingClientRect();
+        return [((v.x + 1) / 2) * r.width, ((1 - v.y) / 2) * r.height];
+      },
+      contactCount: () => page.view.contacts.a.length,
+      chartMarkerX: () => (page.chart ? page.chart.markerX : null),
+      loadTime: () => page.loadTime,
+      // Draws n frames (poses and contacts of successive ticks when there
+      // are any) and returns the mean time of one, in ms.
+      frameTime: (n = 30) => {
+        const frames = (page.data.frames || []).length;
+        const t0 = performance.now();
+        for (let k = 0; k < n; ++k) {
+          if (frames) page.setFrame(k % frames);
+          page.view.render();
+        }
+        page.view.renderer.getContext().finish();
+        return (performance.now() - t0) / n;
+      },
+    };
+  }
+}
+
+function pathPoint(step, frac, dim) {
+  if (step.direction) {
+    const d = pad3(step.direction);
+    return new THREE.Vector3(...d).multiplyScalar(frac * step.distance);
+  }
+  const pts = (step.path || [[0, 0, 0]]).map((p) => new THREE.Vector3(...pad3(p)));
+  let total = 0;
+  for (let k = 1; k < pts.length; ++k) total += pts[k].distanceTo(pts[k - 1]);
+  let want = frac * total;
+  for (let k = 1; k < pts.length; ++k) {
+    const l = pts[k].distanceTo(pts[k - 1]);
+    if (want <= l && l > 0) return pts[k - 1].clone().lerp(pts[k], want / l).sub(pts[0]);
+    want -= l;
+  }
+  return pts[pts.length - 1].clone().sub(pts[0]);
+}
+
+// A failure's words up to its list of contacts (the list is in the panel
+// of each contact, and in the JSON).
+function brief(text) {
+  const cut = text.indexOf('; contact ');
+  return cut > 0 && text.length > 160 ? text.slice(0, cut) + '; …' : text;
+}
+
+function sameSet(a, b) {
+  return a.length === b.length && a.every((x) => b.includes(x));
+}
+
+function planVerdict(r) {
+  return (r.sequences || []).length ? 'planned' : 'no stable sequence';
+}
+
+function roleWords(role) {
+  return { fixed: 'fixed', judged: 'must stay put', gripped: 'gripped', carried: 'carried', tool: 'tool', failed: 'moves (fails)' }[role] || role;
+}
+
+function motionWords(m) {
+  const lin = pad3(m.linear);
+  if (m.motion === 'tips' && m.pivot) {
+    const w = pad3(m.angular);
+    const turn = m.pivot.length === 2 ? (w[2] < 0 ? ' clockwise' : ' counter-clockwise') : ' about the axis ' + vec(normalize(w));
+    return 'tips about ' + vec(m.pivot) + turn;
+  }
+  const n = Math.hypot(...lin);
+  return (m.motion || 'moves') + (n > 0 ? ' along ' + vec(lin.map((x) => x / n).slice(0, m.pivot && m.pivot.length === 2 ? 2 : 3)) : '');
+}
+
+function normalize(v) {
+  const n = Math.hypot(...v);
+  return n > 0 ? v.map((x) => x / n) : v;
+}
+
+if (document.readyState === 'loading') document.addEventListener('DOMContentLoaded', main);
+else main();

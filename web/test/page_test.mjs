@@ -1,0 +1,216 @@
+// The result pages in a real browser (headless Chromium): ctest's `web.pages`
+// (tests/web/CMakeLists.txt). Cairn writes each kind of page from the bundled
+// examples, and each is opened from file:// as a user opens it:
+//   node web/test/page_test.mjs --cairn build/cairn --root . --out DIR
+// Each check below names what it asserts; the first failure ends the run
+// with exit 1 and the reason.
+
+import { execFileSync } from 'node:child_process';
+import { mkdirSync, writeFileSync, readFileSync, existsSync } from 'node:fs';
+import { join, resolve } from 'node:path';
+import { launch, openPage } from './browser.mjs';
+
+const arg = (name, fallback) => {
+  const k = process.argv.indexOf(name);
+  return k > 0 ? process.argv[k + 1] : fallback;
+};
+const cairn = resolve(arg('--cairn', 'build/cairn'));
+const root = resolve(arg('--root', '.'));
+const out = resolve(arg('--out', '/tmp/cairn-pages'));
+mkdirSync(out, { recursive: true });
+
+let failures = 0;
+function check(ok, what) {
+  console.log((ok ? 'ok   ' : 'FAIL ') + what);
+  if (!ok) failures++;
+}
+
+// Runs cairn and returns its stdout; its exit code is the verdict (0
+// stable, 1 not), both fine here.
+function run(args) {
+  try {
+    return execFileSync(cairn, args, { encoding: 'utf8', stdio: ['ignore', 'pipe', 'pipe'], maxBuffer: 1 << 28 });
+  } catch (e) {
+    if (e.status !== 1) throw new Error('cairn ' + args.join(' ') + ' exited ' + e.status + ': ' + e.stderr);
+    return e.stdout;
+  }
+}
+
+const ex = (f) => join(root, 'examples', f);
+const page = (name) => join(out, name + '.html');
+
+// Pixels of the drawing, read in the page: the share of the canvas that is
+// not background, and the colour at a point (CSS pixels).
+async function pixels(p, points = []) {
+  return p.evaluate((points) => {
+    const src = document.querySelector('#view canvas');
+    const c = document.createElement('canvas');
+    c.width = src.width;
+    c.height = src.height;
+    const g = c.getContext('2d');
+    g.drawImage(src, 0, 0);
+    const img = g.getImageData(0, 0, c.width, c.height).data;
+    const bg = [0xf6, 0xf5, 0xf2];
+    let drawn = 0;
+    for (let k = 0; k < img.length; k += 4)
+      if (Math.abs(img[k] - bg[0]) + Math.abs(img[k + 1] - bg[1]) + Math.abs(img[k + 2] - bg[2]) > 30) drawn++;
+    const sx = c.width / src.clientWidth, sy = c.height / src.clientHeight;
+    const at = points.map(([x, y]) => {
+      const k = 4 * (Math.round(y * sy) * c.width + Math.round(x * sx));
+      return [img[k], img[k + 1], img[k + 2]];
+    });
+    return { drawn: drawn / (img.length / 4), at };
+  }, points);
+}
+
+const near = (rgb, hex, tol = 40) => {
+  const want = [1, 3, 5].map((k) => parseInt(hex.slice(k, k + 2), 16));
+  return rgb.reduce((s, v, k) => s + Math.abs(v - want[k]), 0) <= tol;
+};
+
+async function common(opened, name) {
+  check(opened.errors.length === 0, name + ': no console errors or exceptions' + (opened.errors.length ? ' (' + opened.errors.join('; ') + ')' : ''));
+  check(opened.requests.length === 0, name + ': no network requests' + (opened.requests.length ? ' (' + opened.requests.join(', ') + ')' : ''));
+  const html = readFileSync(page(name), 'utf8');
+  check(!/\s(src|href)\s*=\s*["']?(https?:)?\/\//i.test(html), name + ': no src/href to a network address');
+  const { drawn } = await pixels(opened.page);
+  check(drawn > 0.01, name + ': the drawing is not blank (' + (100 * drawn).toFixed(1) + ' % of the canvas drawn)');
+}
+
+// --- the pages ----------------------------------------------------------------
+run(['check', ex('paper_fig1.json'), '--without', 'C', '--html', page('fig1_check')]);
+run(['check', ex('paper_fig1.json'), '--html', page('fig1_stable')]);
+run(['simulate', ex('jenga.json'), join(root, 'examples/plans/jenga_pull_l9.plan.json'), '--html', page('jenga_pull')]);
+run(['simulate', ex('paper_fig1.json'), join(root, 'examples/plans/paper_fig1_b_first.plan.json'), '--html', page('fig1_b_first')]);
+run(['plan', ex('paper_fig1.json'), '--html', page('fig1_plan')]);
+run(['check', ex('jenga.json'), '--html', page('jenga_check')]);
+
+// A scene whose names would break a naive page: quotes, </script>, <!--, &.
+const hostile = {
+  cairn: 1, name: 'Evil </script><script>alert(1)</script> "quoted" & <!-- co',
+  parts: [
+    { name: 'table', fixed: true, polygon: [[-2, -1], [2, -1], [2, 0], [-2, 0]] },
+    { name: '</script><img src=x onerror=alert(2)>', polygon: [[-1, 0], [1, 0], [1, 1], [-1, 1]] },
+    { name: "it's \"B\" <!-- & \u2028 é", polygon: [[-0.5, 1], [2.5, 1], [2.5, 1.5], [-0.5, 1.5]] },
+  ],
+};
+writeFileSync(join(out, 'hostile.json'), JSON.stringify(hostile));
+run(['check', join(out, 'hostile.json'), '--html', page('hostile')]);
+
+const browser = await launch();
+const open = (name, viewport) => openPage(page(name), viewport, browser);
+try {
+  // check, 2-D, unstable: Fig. 1 without C. B and D tip: drawn in the
+  // failing colour; A stays put: drawn in its own.
+  {
+    const o = await open('fig1_check');
+    await common(o, 'fig1_check');
+    const p = o.page;
+    check(await p.evaluate(() => document.getElementById('verdict').textContent === 'unstable'), 'fig1_check: the badge says unstable');
+    const [b, d, a] = await p.evaluate(() => [cairn.partScreen('B'), cairn.partScreen('D'), cairn.partScreen('A')]);
+    // B's centroid is under its motion arrow; a point of B beside it.
+    const { at } = await pixels(p, [[b[0] - 30, b[1]], [d[0], d[1] - 8], [a[0] - 20, a[1]]]);
+    check(near(at[0], '#e0312b'), 'fig1_check: B is drawn in the failing colour (' + at[0] + ')');
+    check(near(at[1], '#e0312b'), 'fig1_check: D is drawn in the failing colour (' + at[1] + ')');
+    check(near(at[2], '#d9b26f'), 'fig1_check: A is drawn as a part that stays put (' + at[2] + ')');
+    check(await p.evaluate(() => /B tips about \(1, 1\.25\) clockwise/.test(document.getElementById('story').textContent)),
+          'fig1_check: the page says B tips about (1, 1.25) clockwise');
+    check(await p.evaluate(() => cairn.contactCount()) === 6, 'fig1_check: its 6 contacts are drawn');
+    // Hovering B shows its numbers.
+    await p.mouse.move(b[0] - 30 + (await p.evaluate(() => document.querySelector('#view canvas').getBoundingClientRect().left)),
+                       b[1] + (await p.evaluate(() => document.querySelector('#view canvas').getBoundingClientRect().top)));
+    await p.waitForTimeout(100);
+    check(await p.evaluate(() => /^B\b[\s\S]*tips about/.test(document.getElementById('tip').textContent)),
+          'fig1_check: hovering B shows its name and motion');
+    await o.close();
+  }
+  {
+    const o = await open('fig1_stable');
+    await common(o, 'fig1_stable');
+    check(await o.page.evaluate(() => document.getElementById('verdict').textContent === 'stable'), 'fig1_stable: the badge says stable');
+    await o.close();
+  }
+
+  // simulate, 3-D: the Jenga pull. The scrubber moves the pulled block and
+  // the chart's marker; the failure is marked.
+  {
+    const o = await open('jenga_pull');
+    await common(o, 'jenga_pull');
+    const p = o.page;
+    const n = await p.evaluate(() => cairn.frameCount);
+    const doc = JSON.parse(run(['simulate', ex('jenga.json'), join(root, 'examples/plans/jenga_pull_l9.plan.json'), '--json']));
+    check(n === doc.steps[0].time_steps, 'jenga_pull: one frame per analysed tick (' + n + ')');
+    check(await p.evaluate(() => cairn.failureFrame === cairn.frameCount - 1), 'jenga_pull: the failure is the last tick');
+    check(await p.evaluate(() => !!document.getElementById('failure-mark')), 'jenga_pull: the failure is marked on the timeline');
+    await p.focus('#scrub');
+    await p.keyboard.press('Home');
+    const first = await p.evaluate(() => [cairn.frame, cairn.partPose('L09_2'), cairn.chartMarkerX(), cairn.partRole('L09_2')]);
+    await p.keyboard.press('End');
+    const last = await p.evaluate(() => [cairn.frame, cairn.partPose('L09_2'), cairn.chartMarkerX(), cairn.partRole('L09_2')]);
+    check(first[0] === 0 && last[0] === n - 1, 'jenga_pull: Home and End on the scrubber go to the first and last tick');
+    // The plan pulls L09_2 along +x at 0.04 m/s: at the failure it is
+    // 0.04 · t along x (to the page's 7 digits), and has not moved otherwise.
+    const dx = last[1][0] - first[1][0], rest = Math.hypot(last[1][1] - first[1][1], last[1][2] - first[1][2]);
+    const want = 0.04 * doc.failure.time;
+    check(Math.abs(dx - want) < 1e-6 && rest < 1e-6,
+          'jenga_pull: the scrubber draws L09_2 pulled ' + dx.toFixed(5) + ' m along x (0.04 m/s × ' + doc.failure.time + ' s)');
+    check(last[2] > first[2] + 100, 'jenga_pull: the chart marker follows the scrubber (' + first[2].toFixed(0) + ' → ' + last[2].toFixed(0) + ' px)');
+    check(first[3] === 'gripped' && last[3] === 'failed', 'jenga_pull: L09_2 gripped, then failed at the failure (' + first[3] + ', ' + last[3] + ')');
+    await o.close();
+  }
+  {
+    const o = await open('fig1_b_first');
+    await common(o, 'fig1_b_first');
+    await o.close();
+  }
+
+  // plan: the sequences are listed and play step by step.
+  {
+    const o = await open('fig1_plan');
+    await common(o, 'fig1_plan');
+    const p = o.page;
+    const n = await p.evaluate(() => document.querySelectorAll('#seqs li').length);
+    check(n === 7, 'fig1_plan: its 7 stable sequences are listed (' + n + ')');
+    await p.click('#seqs li:nth-child(2)');
+    const steps = await p.evaluate(() => [...document.querySelectorAll('#steps li')].map((li) => li.textContent));
+    check(steps.length === 3 && /^A\+B/.test(steps[2]), 'fig1_plan: clicking sequence 2 shows its 3 steps (' + steps.join(' | ') + ')');
+    const d0 = await p.evaluate(() => { cairn.setPlanTime(0); return cairn.partPose('D'); });
+    const d1 = await p.evaluate(() => { cairn.setPlanTime(0.5); return cairn.partPose('D'); });
+    check(Math.abs(d1[1] - d0[1] - 1.0) < 1e-9, 'fig1_plan: half way through step 1, D is 1 up (half of its 2)');
+    const gone = await p.evaluate(() => { cairn.setPlanTime(1.2); return cairn.partVisible('D'); });
+    check(!gone, 'fig1_plan: in step 2, D (removed in step 1) is gone');
+    const contacts = await p.evaluate(() => { cairn.setPlanTime(1); return cairn.contactCount(); });
+    check(contacts > 0, 'fig1_plan: at the start of a step the rest forces are drawn (' + contacts + ' contacts)');
+    await o.close();
+  }
+
+  // 3-D check.
+  {
+    const o = await open('jenga_check');
+    await common(o, 'jenga_check');
+    await o.close();
+  }
+
+  // The hostile names: the page still loads and shows them as text.
+  {
+    const o = await open('hostile');
+    await common(o, 'hostile');
+    const p = o.page;
+    check(await p.evaluate(() => document.title.startsWith('Evil </script><script>alert(1)</script> "quoted" & <!-- co')),
+          'hostile: the title is the scene name, as text');
+    check(await p.evaluate(() => cairn.partRole('</script><img src=x onerror=alert(2)>') !== undefined &&
+                                 cairn.partRole("it's \"B\" <!-- & \u2028 é") !== undefined),
+          'hostile: the parts keep their names');
+    check(await p.evaluate(() => document.querySelectorAll('img, script[src]').length === 0), 'hostile: no element was injected');
+    await o.close();
+  }
+
+  // Determinism: the same command writes the same page.
+  run(['check', ex('paper_fig1.json'), '--without', 'C', '--html', join(out, 'again.html')]);
+  check(readFileSync(join(out, 'again.html'), 'utf8') === readFileSync(page('fig1_check'), 'utf8'), 'the same command writes the same page byte for byte');
+} finally {
+  await browser.close();
+}
+if (!existsSync(cairn)) failures++;
+console.log(failures ? failures + ' check(s) failed' : 'all checks passed');
+process.exit(failures ? 1 : 0);
