@@ -200,31 +200,69 @@ json Frames(const Assembly& a, const SimulationResult& result,
 
 // --- a plan's nodes -----------------------------------------------------------
 
-// The rest state (contacts and forces) of every assembly the listed
-// sequences pass through, keyed by its present parts ("0,1,3").
-json PlanNodes(const Assembly& a, const PlannerResult& result, double force_scale) {
-  json nodes = json::object();
-  const size_t shown = std::min(result.sequences.size(), static_cast<size_t>(kMaxPageSequences));
-  StabilityWorkspace workspace;
-  for (size_t s = 0; s < shown; ++s) {
-    // A sequence with fixels stands only with them: its nodes are not drawn
-    // with forces (the page says so).
-    if (!result.sequences[s].fixels.empty()) continue;
-    Configuration config = Configuration::Assembled(a);
-    for (const PlannedStep& step : result.sequences[s].steps) {
-      std::string key;
-      for (int i = 0; i < a.num_parts(); ++i)
-        if (config.present[i]) key += (key.empty() ? "" : ",") + std::to_string(i);
-      if (!nodes.contains(key)) {
-        StabilityOptions options;
-        const StabilityResult r = AnalyzeConfiguration(a, config, options, nullptr, &workspace);
-        nodes[key] = Contacts(a, r.contacts, force_scale);
+// The plan's page data: the rest state (contacts and forces) of every
+// assembly that the listed sequences and the one-way removals start from,
+// keyed by its present parts ("0,1,3"), and the present parts of each one-way
+// removal (`noninvertible_steps`, in order).
+class PlanNodes {
+ public:
+  PlanNodes(const Assembly& a, double force_scale) : a_(a), force_scale_(force_scale) {}
+
+  void AddSequences(const PlannerResult& result, size_t shown) {
+    for (size_t s = 0; s < shown; ++s) {
+      // A sequence with fixels stands only with them: its nodes are not
+      // drawn with forces.
+      if (!result.sequences[s].fixels.empty()) continue;
+      Configuration config = Configuration::Assembled(a_);
+      for (const PlannedStep& step : result.sequences[s].steps) {
+        Add(config);
+        for (const std::string& name : step.step.remove) config.present[a_.FindPart(name)] = false;
       }
-      for (const std::string& name : step.step.remove) config.present[a.FindPart(name)] = false;
     }
   }
-  return nodes;
-}
+
+  // `remaining` names the movable parts of the node, the kept ones aside:
+  // those are the movable parts the root node does not list.
+  void AddOneWay(const PlannerResult& result, const json& noninvertible) {
+    std::vector<bool> kept(a_.num_parts(), false);
+    for (int i = 0; i < a_.num_parts(); ++i) kept[i] = !a_.part(i).fixed && !a_.part(i).tool;
+    if (!result.nodes.empty())
+      for (int i : result.nodes.front().parts) kept[i] = false;
+    for (const json& n : noninvertible) {
+      Configuration config = Configuration::Assembled(a_);
+      for (int i = 0; i < a_.num_parts(); ++i) config.present[i] = a_.part(i).fixed || kept[i];
+      for (const json& name : n["remaining"]) config.present[a_.FindPart(name)] = true;
+      oneway_.push_back(Present(config));
+      if (oneway_.size() <= static_cast<size_t>(kMaxPageSequences) && n["fixels"].is_null())
+        Add(config);
+    }
+  }
+
+  json ToJson(size_t shown) const {
+    return {{"sequences_shown", shown}, {"nodes", nodes_}, {"oneway", oneway_}};
+  }
+
+ private:
+  static std::vector<int> Present(const Configuration& config) {
+    std::vector<int> present;
+    for (size_t i = 0; i < config.present.size(); ++i)
+      if (config.present[i]) present.push_back(static_cast<int>(i));
+    return present;
+  }
+  void Add(const Configuration& config) {
+    std::string key;
+    for (int i : Present(config)) key += (key.empty() ? "" : ",") + std::to_string(i);
+    if (nodes_.contains(key)) return;
+    const StabilityResult r = AnalyzeConfiguration(a_, config, {}, nullptr, &workspace_);
+    nodes_[key] = Contacts(a_, r.contacts, force_scale_);
+  }
+
+  const Assembly& a_;
+  double force_scale_;
+  StabilityWorkspace workspace_;
+  json nodes_ = json::object();
+  json oneway_ = json::array();
+};
 
 std::string Title(const Assembly& a, const ReportOptions& options) {
   return !a.name().empty() ? a.name() : options.scene_file;
@@ -313,14 +351,15 @@ std::string PlanPage(const Assembly& assembly, const PlannerResult& result, cons
                      const ReportOptions& options) {
   const double force_scale = ForceScale(assembly, options).first;
   const size_t shown = std::min(result.sequences.size(), static_cast<size_t>(kMaxPageSequences));
-  return HtmlPage(
-      {{"cairn_page", 1},
-       {"kind", "plan"},
-       {"title", Title(assembly, options)},
-       {"scene", SceneData(assembly, options)},
-       {"result", doc},
-       {"plan",
-        {{"sequences_shown", shown}, {"nodes", PlanNodes(assembly, result, force_scale)}}}});
+  PlanNodes nodes(assembly, force_scale);
+  nodes.AddSequences(result, shown);
+  nodes.AddOneWay(result, doc.value("noninvertible_steps", json::array()));
+  return HtmlPage({{"cairn_page", 1},
+                   {"kind", "plan"},
+                   {"title", Title(assembly, options)},
+                   {"scene", SceneData(assembly, options)},
+                   {"result", doc},
+                   {"plan", nodes.ToJson(shown)}});
 }
 
 }  // namespace cairn

@@ -254,10 +254,11 @@ class Page {
   }
 
   // The pair the chart opens on: the failing part's most loaded contact
-  // pair, or the most loaded pair of all.
+  // pair at the failure, or the most loaded pair of all.
   defaultPair(frames) {
     let best = null, bestForce = -1;
-    for (const fr of frames) {
+    const scan = this.failureFrame >= 0 ? [frames[this.failureFrame]] : frames;
+    for (const fr of scan) {
       const c = fr.contacts;
       const sums = new Map();
       for (let k = 0; k < c.a.length; ++k) {
@@ -349,6 +350,20 @@ class Page {
     if (shown < seqs.length) list.append($('li', { class: 'note' }, '… and ' + (seqs.length - shown) + ' more (in the JSON)'));
     this.stepList = $('ol', { class: 'steps', id: 'steps' });
     this.extraSide.append($('h2', {}, 'Sequences'), list, $('h2', {}, 'Steps'), this.stepList);
+    // The removals stable one way only (paper Section VIII): each plays as a
+    // one-step sequence from the assembly it leaves.
+    if (nonin.length) {
+      const one = $('ul', { id: 'oneway' , class: 'steps' });
+      this.onewayItems = nonin.map((n, i) => {
+        const li = $('li', { title: n.failure || '' }, '⚠ ' + n.remove.join('+') + ' ' + n.label + ' from {' + n.remaining.join(', ') +
+                     '}: disassembly ' + n.disassembly + ', assembly ' + n.assembly);
+        li.style.cursor = 'pointer';
+        li.addEventListener('click', () => this.selectOneWay(i));
+        one.append(li);
+        return li;
+      });
+      this.extraSide.append($('h2', {}, 'Stable one way only'), one);
+    }
     const row = $('div', { class: 'row' });
     this.playBtn = $('button', { id: 'play' }, 'Play');
     this.playBtn.addEventListener('click', () => this.togglePlanPlay());
@@ -362,10 +377,27 @@ class Page {
     if (seqs.length) this.selectSequence(0);
   }
 
+  selectOneWay(i) {
+    const n = this.result.noninvertible_steps[i];
+    const step = { remove: n.remove, path: n.path, support: n.support };
+    const present = this.data.plan && this.data.plan.oneway ? this.data.plan.oneway[i] : null;
+    this.showSequence({ steps: [step], checks: [n], present, fixels: n.fixels, invertible: false });
+    this.seqItems.forEach((li) => li.classList.remove('on'));
+    (this.onewayItems || []).forEach((li, k) => li.classList.toggle('now', k === i));
+    this.infoEl.textContent = n.remove.join('+') + ' ' + n.label + ': disassembly ' + n.disassembly + ', assembly ' + n.assembly +
+      (n.failure ? '\n' + n.failure : '');
+  }
+
   selectSequence(i) {
-    this.sequence = i;
     this.seqItems.forEach((li, k) => li.classList.toggle('on', k === i));
-    const s = this.result.sequences[i];
+    (this.onewayItems || []).forEach((li) => li.classList.remove('now'));
+    this.showSequence(this.result.sequences[i]);
+  }
+
+  // s: a sequence of the plan document (or a one-way removal as one); with
+  // `present`, the indices of the parts present at its start (default: all).
+  showSequence(s) {
+    this.current = s;
     const nonin = this.result.noninvertible_steps || [];
     this.stepList.replaceChildren(...s.steps.map((st, k) => {
       const check = (s.checks || [])[k] || {};
@@ -379,7 +411,7 @@ class Page {
 
   // t in [0, steps]: step floor(t), fraction t − floor(t) of its path.
   setPlanTime(t) {
-    const s = this.result.sequences[this.sequence];
+    const s = this.current;
     if (!s) return;
     const n = s.steps.length;
     t = Math.max(0, Math.min(n, t));
@@ -387,6 +419,10 @@ class Page {
     this.scrub.value = String(t);
     const k = Math.min(Math.floor(t), n - 1), frac = t >= n ? 1 : t - k;
     const gone = [];
+    if (s.present) {
+      const present = new Set(s.present);
+      this.scene.parts.forEach((p, i) => { if (!present.has(i)) gone.push(i); });
+    }
     for (let j = 0; j < k; ++j) for (const name of s.steps[j].remove) gone.push(this.indexOf(name));
     const step = s.steps[k];
     const moving = new Set(step.remove.map(this.indexOf));
@@ -395,7 +431,7 @@ class Page {
     const d = pathPoint(step, frac, this.scene.dimension);
     for (const i of moving) this.view.offsetPart(i, d);
     this.view.setRoles((i) => (this.scene.parts[i].fixed ? 'fixed' : moving.has(i) ? 'gripped' : 'judged'));
-    const present = this.scene.parts.map((_, i) => i).filter((i) => !gone.includes(i));
+    const present = this.scene.parts.map((_, i) => i).filter((i) => !gone.includes(i) && !this.scene.parts[i].tool);
     const node = this.data.plan && this.data.plan.nodes ? this.data.plan.nodes[present.join(',')] : null;
     this.view.setContacts(node && frac === 0 ? node : emptyContacts());
     this.view.setMotions([]);
@@ -405,7 +441,7 @@ class Page {
 
   togglePlanPlay() {
     if (this.playing) { this.playing = false; this.playBtn.textContent = 'Play'; return; }
-    const s = this.result.sequences[this.sequence];
+    const s = this.current;
     if (!s) return;
     if (this.planTime >= s.steps.length) this.setPlanTime(0);
     this.playing = true;
@@ -433,6 +469,7 @@ class Page {
       setFrame: (k) => page.setFrame(k),
       setPlanTime: (t) => page.setPlanTime(t),
       selectSequence: (i) => page.selectSequence(i),
+      selectOneWay: (i) => page.selectOneWay(i),
       selectPair: (a, b) => page.chart && page.chart.select(page.indexOf(a), page.indexOf(b)),
       partPose: (name) => page.view.partPosition(page.indexOf(name)),
       partVisible: (name) => page.view.parts[page.indexOf(name)].group.visible,

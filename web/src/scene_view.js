@@ -72,14 +72,18 @@ function partGeometry(part, dim) {
 
 // Arrows as line segments plus instanced cone heads: thousands of contacts
 // stay one draw call each.
+// They are drawn over the parts (no depth test): a force between two faces
+// is inside the solids.
 class ArrowSet {
   constructor(color, capacity, headSize) {
     this.color = color;
     this.headSize = headSize;
-    this.lines = new THREE.LineSegments(new THREE.BufferGeometry(),
-                                        new THREE.LineBasicMaterial({ color }));
+    const over = { color, depthTest: false, transparent: true, opacity: 0.9 };
+    this.lines = new THREE.LineSegments(new THREE.BufferGeometry(), new THREE.LineBasicMaterial(over));
+    this.lines.renderOrder = 20;
     const cone = new THREE.ConeGeometry(0.35, 1, 10).translate(0, -0.5, 0);
-    this.heads = new THREE.InstancedMesh(cone, new THREE.MeshBasicMaterial({ color }), capacity);
+    this.heads = new THREE.InstancedMesh(cone, new THREE.MeshBasicMaterial(over), capacity);
+    this.heads.renderOrder = 20;
     this.heads.count = 0;
     this.group = new THREE.Group();
     this.group.add(this.lines, this.heads);
@@ -93,6 +97,7 @@ class ArrowSet {
       this.group.remove(this.heads);
       this.heads.dispose();
       this.heads = new THREE.InstancedMesh(this.heads.geometry, this.heads.material, cap);
+      this.heads.renderOrder = 20;
       this.group.add(this.heads);
     }
     arrows.forEach(([from, to], k) => {
