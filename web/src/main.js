@@ -120,22 +120,29 @@ class Page {
     const canvas = this.view.renderer.domElement;
     let down = null;
     canvas.addEventListener('pointerdown', (e) => { down = [e.clientX, e.clientY]; });
+    let pending = null;
     canvas.addEventListener('pointermove', (e) => {
-      const hit = this.view.pick(e.clientX, e.clientY);
-      const text = hit ? this.describe(hit) : '';
-      this.tip.style.display = text ? 'block' : 'none';
-      if (text) {
-        const r = this.viewEl.getBoundingClientRect();
-        this.tip.textContent = text;
-        this.tip.style.left = Math.min(e.clientX - r.left + 14, r.width - 260) + 'px';
-        this.tip.style.top = (e.clientY - r.top + 14) + 'px';
-      }
+      // One pick per frame, however fast the pointer moves.
+      if (!pending) requestAnimationFrame(() => { this.hover(pending); pending = null; });
+      pending = e;
     });
     canvas.addEventListener('pointerleave', () => { this.tip.style.display = 'none'; });
     canvas.addEventListener('click', (e) => {
       if (down && Math.hypot(e.clientX - down[0], e.clientY - down[1]) > 4) return;  // a drag
       this.select(this.view.pick(e.clientX, e.clientY));
     });
+  }
+
+  // The numbers of what is under the pointer, in a tooltip.
+  hover(e) {
+    const hit = this.view.pick(e.clientX, e.clientY);
+    const text = hit ? this.describe(hit) : '';
+    this.tip.style.display = text ? 'block' : 'none';
+    if (!text) return;
+    const r = this.viewEl.getBoundingClientRect();
+    this.tip.textContent = text;
+    this.tip.style.left = Math.min(e.clientX - r.left + 14, r.width - 260) + 'px';
+    this.tip.style.top = (e.clientY - r.top + 14) + 'px';
   }
 
   select(hit) {
@@ -475,13 +482,12 @@ class Page {
       partVisible: (name) => page.view.parts[page.indexOf(name)].group.visible,
       partRole: (name) => page.view.parts[page.indexOf(name)].role,
       // Where a part is drawn on the canvas (CSS pixels from the canvas' top left).
-      partScreen: (name) => {
-        const g = page.view.parts[page.indexOf(name)].group;
-        const v = g.position.clone().project(page.view.camera);
-        const r = page.view.renderer.domElement.getBoundingClientRect();
-        return [((v.x + 1) / 2) * r.width, ((1 - v.y) / 2) * r.height];
-      },
+      partScreen: (name) => page.view.screenOf(page.view.parts[page.indexOf(name)].group.position.toArray()),
       contactCount: () => page.view.contacts.a.length,
+      // Where contact k is drawn, and the parts it is between (by name).
+      contactScreen: (k) => page.view.screenOf(page.view.contacts.p.slice(3 * k, 3 * k + 3)),
+      contactParts: (k) => [page.view.contacts.a[k], page.view.contacts.b[k]].map((i) => (i >= 0 ? page.names[i] : null)),
+      chartPair: () => (page.chart ? page.chart.pair.map((i) => (i >= 0 ? page.names[i] : null)) : null),
       chartMarkerX: () => (page.chart ? page.chart.markerX : null),
       loadTime: () => page.loadTime,
       // Draws n frames (poses and contacts of successive ticks when there

@@ -392,13 +392,29 @@ export class SceneView {
                                   -((clientY - rect.top) / rect.height) * 2 + 1);
     const ray = new THREE.Raycaster();
     ray.setFromCamera(ndc, this.camera);
-    const hits = ray.intersectObjects([this.dots, ...this.parts.filter((p) => p.group.visible).map((p) => p.mesh)], false);
-    for (const h of hits) {
-      if (h.object === this.dots && h.instanceId !== undefined && h.instanceId < this.dots.count)
-        return { contact: h.instanceId };
+    const hits = ray.intersectObjects(this.parts.filter((p) => p.group.visible).map((p) => p.mesh), false);
+    const partHit = hits.length ? hits[0] : null;
+    // Contact points by their distance to the ray (thousands of them: no
+    // triangles tested), the nearest along the ray that is not behind the
+    // part the ray hits first.
+    const c = this.contacts, reach = 1.5 * this.mark, p = new THREE.Vector3();
+    let best = -1, bestT = Infinity;
+    for (let k = 0; k < c.a.length; ++k) {
+      p.set(c.p[3 * k], c.p[3 * k + 1], c.p[3 * k + 2]);
+      const t = p.clone().sub(ray.ray.origin).dot(ray.ray.direction);
+      if (t < 0 || t >= bestT || ray.ray.distanceSqToPoint(p) > reach * reach) continue;
+      best = k;
+      bestT = t;
     }
-    for (const h of hits) if (h.object.userData.part !== undefined) return { part: h.object.userData.part };
-    return null;
+    if (best >= 0 && (!partHit || bestT <= partHit.distance + 2 * reach)) return { contact: best };
+    return partHit ? { part: partHit.object.userData.part } : null;
+  }
+
+  // Where the world point p is drawn: CSS pixels from the canvas' top left.
+  screenOf(p) {
+    const v = new THREE.Vector3(...p).project(this.camera);
+    const r = this.renderer.domElement.getBoundingClientRect();
+    return [((v.x + 1) / 2) * r.width, ((1 - v.y) / 2) * r.height];
   }
 
   requestRender() {

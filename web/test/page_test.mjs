@@ -158,9 +158,26 @@ try {
     check(first[3] === 'gripped' && last[3] === 'failed', 'jenga_pull: L09_2 gripped, then failed at the failure (' + first[3] + ', ' + last[3] + ')');
     await o.close();
   }
+  // Clicking a contact point shows its numbers and plots its pair.
   {
     const o = await open('fig1_b_first');
     await common(o, 'fig1_b_first');
+    const p = o.page;
+    const box = await p.evaluate(() => document.querySelector('#view canvas').getBoundingClientRect().toJSON());
+    const n = await p.evaluate(() => cairn.contactCount());
+    let clicked = null;
+    for (let k = 0; k < n && !clicked; ++k) {
+      const parts = await p.evaluate((k) => cairn.contactParts(k), k);
+      if (!parts.includes('D')) continue;
+      const [x, y] = await p.evaluate((k) => cairn.contactScreen(k), k);
+      await p.mouse.click(box.x + x, box.y + y);
+      clicked = parts;
+    }
+    check(clicked !== null, 'fig1_b_first: a contact of D is drawn');
+    const info = await p.evaluate(() => document.getElementById('info').textContent);
+    check(/^contact /.test(info) && /normal force: /.test(info), 'fig1_b_first: clicking it shows its numbers (' + info.split('\n')[0] + ')');
+    const pair = await p.evaluate(() => cairn.chartPair());
+    check(clicked && pair.join() === clicked.join(), 'fig1_b_first: and plots its pair (' + pair.join('–') + ')');
     await o.close();
   }
 
