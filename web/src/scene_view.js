@@ -280,7 +280,7 @@ export class SceneView {
     const head = Math.min(this.size * 0.018, 0.08 * typical);
     this.normals = new ArrowSet(kColors.normal, 64, head);
     this.frictions = new ArrowSet(kColors.friction, 64, head);
-    const dot = new THREE.SphereGeometry(1, 10, 8);
+    const dot = new THREE.SphereGeometry(1, 8, 6);
     this.dots = new THREE.InstancedMesh(dot, new THREE.MeshBasicMaterial({ color: 0x1d1f23 }), 64);
     this.dots.count = 0;
     this.motionArrows = new ArrowSet(kColors.failed, 8, head * 1.6);
@@ -352,18 +352,24 @@ export class SceneView {
       const lin = new THREE.Vector3(...pad3(mo.linear));
       const ang = new THREE.Vector3(...pad3(mo.angular));
       if (mo.motion === 'tips' && mo.pivot) {
+        // The pivot: a ring about the axis of the tip (2-D: about z), drawn
+        // over the parts; in 3-D the axis itself, a rod through the pivot.
         const pivot = new THREE.Vector3(...pad3(mo.pivot));
-        const ring = new THREE.Mesh(new THREE.TorusGeometry(this.size * 0.02, this.size * 0.004, 8, 32),
-                                    new THREE.MeshBasicMaterial({ color: kColors.pivot }));
+        const over = new THREE.MeshBasicMaterial({ color: kColors.pivot, depthTest: false, transparent: true, opacity: 0.85 });
+        const r = this.dim === 2 ? this.size * 0.02 : this.size * 0.03;
+        const ring = new THREE.Mesh(new THREE.TorusGeometry(r, r * 0.18, 8, 32), over);
         ring.position.copy(pivot);
         const axis = mo.axis ? new THREE.Vector3(...pad3(mo.axis)).normalize()
           : ang.lengthSq() > 0 ? ang.clone().normalize() : kUp.clone();
         ring.quaternion.setFromUnitVectors(kUp, axis);
+        ring.renderOrder = 30;
         this.motionMarks.add(ring);
-        if (this.dim === 3) {  // the axis of the tip, through the pivot
-          const half = axis.clone().multiplyScalar(this.size * 0.12);
-          const g = new THREE.BufferGeometry().setFromPoints([pivot.clone().sub(half), pivot.clone().add(half)]);
-          this.motionMarks.add(new THREE.Line(g, new THREE.LineBasicMaterial({ color: kColors.pivot })));
+        if (this.dim === 3) {
+          const rod = new THREE.Mesh(new THREE.CylinderGeometry(r * 0.12, r * 0.12, this.size * 0.25, 8), over);
+          rod.position.copy(pivot);
+          rod.quaternion.setFromUnitVectors(new THREE.Vector3(0, 1, 0), axis);
+          rod.renderOrder = 30;
+          this.motionMarks.add(rod);
         }
         // The centroid's direction of motion: ω × (c − pivot).
         const v = new THREE.Vector3().crossVectors(ang, at.clone().sub(pivot));
