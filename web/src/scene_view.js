@@ -48,32 +48,28 @@ function partGeometry(part, dim) {
     const edges = new THREE.BufferGeometry().setFromPoints([...pts, pts[0]]);
     return { fill, edges, loop: true };
   }
-  const v = part.vertices, t = part.triangles;
-  const pos = new Float32Array(t.length * 3);
-  for (let k = 0; k < t.length; ++k) {
-    pos[3 * k] = v[3 * t[k]] - c.x;
-    pos[3 * k + 1] = v[3 * t[k] + 1] - c.y;
-    pos[3 * k + 2] = v[3 * t[k] + 2] - c.z;
-  }
-  const fill = new THREE.BufferGeometry();
-  fill.setAttribute('position', new THREE.BufferAttribute(pos, 3));
-  fill.computeVertexNormals();  // not indexed: flat faces
-  const e = part.edges || [];
-  const epos = new Float32Array(e.length * 3);
-  for (let k = 0; k < e.length; ++k) {
-    epos[3 * k] = v[3 * e[k]] - c.x;
-    epos[3 * k + 1] = v[3 * e[k] + 1] - c.y;
-    epos[3 * k + 2] = v[3 * e[k] + 2] - c.z;
-  }
-  const edges = new THREE.BufferGeometry();
-  edges.setAttribute('position', new THREE.BufferAttribute(epos, 3));
+  // The vertices `indices` lists, one after the other, relative to c: the
+  // triangles (not indexed: flat faces) and the edges' segments.
+  const gather = (indices) => {
+    const v = part.vertices, pos = new Float32Array(indices.length * 3);
+    indices.forEach((i, k) => {
+      pos[3 * k] = v[3 * i] - c.x;
+      pos[3 * k + 1] = v[3 * i + 1] - c.y;
+      pos[3 * k + 2] = v[3 * i + 2] - c.z;
+    });
+    const g = new THREE.BufferGeometry();
+    g.setAttribute('position', new THREE.BufferAttribute(pos, 3));
+    return g;
+  };
+  const fill = gather(part.triangles);
+  fill.computeVertexNormals();
+  const edges = gather(part.edges || []);
   return { fill, edges, loop: false };
 }
 
 // Arrows as line segments plus instanced cone heads: thousands of contacts
-// stay one draw call each.
-// They are drawn over the parts (no depth test): a force between two faces
-// is inside the solids.
+// stay one draw call each. They are drawn over the parts (no depth test): a
+// force between two faces is inside the solids.
 class ArrowSet {
   constructor(color, capacity, headSize) {
     this.color = color;
