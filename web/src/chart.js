@@ -20,6 +20,7 @@ export class ForceChart {
 
   select(a, b) {
     this.pair = [a, b];
+    if (this.onSelect) this.onSelect(a, b);
     const same = (x, y) => (x === a && y === b) || (x === b && y === a);
     this.normal = [];
     this.friction = [];

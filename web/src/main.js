@@ -254,8 +254,23 @@ class Page {
     this.timeEl = $('span', { id: 'time' });
     row.append(this.playBtn, wrap, this.timeEl);
     this.chartCanvas = $('canvas', { id: 'chart' });
-    this.foot.append(row, this.chartCanvas);
+    // The chart's pair: any pair that touches at some tick (or click a
+    // contact point).
+    this.pairSelect = $('select', { id: 'pair' });
+    const name = (i) => (i >= 0 ? this.names[i] : 'world');
+    const pairs = new Map();
+    for (const fr of frames)
+      for (let k = 0; k < fr.contacts.a.length; ++k) {
+        const a = fr.contacts.a[k], b = fr.contacts.b[k];
+        const key = Math.min(a, b) + ',' + Math.max(a, b);
+        if (!pairs.has(key)) pairs.set(key, [a, b]);
+      }
+    for (const [key, [a, b]] of [...pairs].sort((x, y) => name(x[1][0]).localeCompare(name(y[1][0])) || name(x[1][1]).localeCompare(name(y[1][1]))))
+      this.pairSelect.append(new Option(name(a) + ' – ' + name(b), key));
+    this.pairSelect.addEventListener('change', () => this.chart.select(...this.pairSelect.value.split(',').map(Number)));
+    this.foot.append(row, $('label', { class: 'ctl' }, 'force between', this.pairSelect), this.chartCanvas);
     this.chart = new ForceChart(this.chartCanvas, frames, this.names, this.unit, this.failureFrame);
+    this.chart.onSelect = (a, b) => { this.pairSelect.value = Math.min(a, b) + ',' + Math.max(a, b); };
     this.chart.select(...this.defaultPair(frames));
     this.setFrame(this.failureFrame >= 0 ? this.failureFrame : 0);
   }

@@ -48,7 +48,8 @@ footer button:hover { background:#f0efec; }
 #scrub { width:100%; }
 .mark { position:absolute; top:-2px; width:3px; height:8px; background:#c62d26; border-radius:1px; pointer-events:none; }
 #time { min-width:15em; font-family: ui-monospace, "DejaVu Sans Mono", monospace; font-size:12px; }
-#chart { width:100%; height:150px; display:block; margin-top:6px; }
+#chart { width:100%; height:150px; display:block; margin-top:2px; }
+footer select { font:inherit; max-width:60%; }
 #seqs { list-style:none; margin:0; padding:0; }
 #seqs li { padding:4px 6px; border-radius:4px; cursor:pointer; margin:1px 0; }
 #seqs li.on { background:#e9eefb; }

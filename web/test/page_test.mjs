@@ -178,6 +178,11 @@ try {
     check(/^contact /.test(info) && /normal force: /.test(info), 'fig1_b_first: clicking it shows its numbers (' + info.split('\n')[0] + ')');
     const pair = await p.evaluate(() => cairn.chartPair());
     check(clicked && pair.join() === clicked.join(), 'fig1_b_first: and plots its pair (' + pair.join('–') + ')');
+    // The pair list: choosing A – E plots it.
+    const options = await p.evaluate(() => [...document.querySelectorAll('#pair option')].map((o) => o.textContent));
+    check(options.includes('A – E'), 'fig1_b_first: the pair list has A – E (' + options.join(', ') + ')');
+    await p.selectOption('#pair', { label: 'A – E' });
+    check((await p.evaluate(() => cairn.chartPair())).sort().join() === 'A,E', 'fig1_b_first: choosing A – E plots it');
     await o.close();
   }
 
