@@ -9,8 +9,6 @@
 #include <map>
 #include <set>
 
-#include "cairn/report/words.h"
-#include "report/report_common.h"
 #include "viewer_bundle.h"
 
 namespace cairn {
@@ -92,7 +90,7 @@ json SceneData(const Assembly& a, const ReportOptions& options) {
 
 class CompactContacts {
  public:
-  CompactContacts(const Assembly& a, double force_scale) : a_(a), scale_(force_scale) {}
+  explicit CompactContacts(double force_scale) : scale_(force_scale) {}
   void Add(const ContactReport& c) {
     a_idx_.push_back(c.contact.part_a);
     b_idx_.push_back(c.contact.part_b >= 0 ? c.contact.part_b : -1);
@@ -110,14 +108,13 @@ class CompactContacts {
   }
 
  private:
-  const Assembly& a_;
   double scale_;
   std::vector<int> a_idx_, b_idx_, flags_;
   std::vector<double> p_, n_, fn_, ft_;
 };
 
-json Contacts(const Assembly& a, const std::vector<ContactReport>& contacts, double force_scale) {
-  CompactContacts c(a, force_scale);
+json Contacts(const std::vector<ContactReport>& contacts, double force_scale) {
+  CompactContacts c(force_scale);
   for (const ContactReport& r : contacts) c.Add(r);
   return c.ToJson();
 }
@@ -178,7 +175,7 @@ json Frames(const Assembly& a, const SimulationResult& result,
   // The timeline's rows of each (step, tick), in order.
   std::map<std::pair<int, int>, CompactContacts> contacts;
   for (const TimelineRow& row : result.timeline)
-    contacts.try_emplace({row.step, row.tick}, a, force_scale).first->second.Add(row.contact);
+    contacts.try_emplace({row.step, row.tick}, force_scale).first->second.Add(row.contact);
   json out = json::array();
   for (size_t k : PageFrameIndices(frames, result)) {
     const SimulationFrame& f = frames[k];
@@ -186,14 +183,14 @@ json Frames(const Assembly& a, const SimulationResult& result,
     for (size_t i = 0; i < f.present.size(); ++i)
       if (!f.present[i]) absent.push_back(static_cast<int>(i));
     const auto it = contacts.find({f.step, f.tick});
-    out.push_back({{"step", f.step},
-                   {"tick", f.tick},
-                   {"time", Short(f.time)},
-                   {"poses", MovedPoses(f.poses)},
-                   {"absent", absent},
-                   {"roles", Roles(a, f.roles)},
-                   {"contacts",
-                    it != contacts.end() ? it->second.ToJson() : CompactContacts(a, 1).ToJson()}});
+    out.push_back(
+        {{"step", f.step},
+         {"tick", f.tick},
+         {"time", Short(f.time)},
+         {"poses", MovedPoses(f.poses)},
+         {"absent", absent},
+         {"roles", Roles(a, f.roles)},
+         {"contacts", it != contacts.end() ? it->second.ToJson() : CompactContacts(1).ToJson()}});
   }
   return out;
 }
@@ -254,7 +251,7 @@ class PlanNodes {
     for (int i : Present(config)) key += (key.empty() ? "" : ",") + std::to_string(i);
     if (nodes_.contains(key)) return;
     const StabilityResult r = AnalyzeConfiguration(a_, config, {}, nullptr, &workspace_);
-    nodes_[key] = Contacts(a_, r.contacts, force_scale_);
+    nodes_[key] = Contacts(r.contacts, force_scale_);
   }
 
   const Assembly& a_;
