@@ -76,7 +76,8 @@ INSTANTIATE_TEST_SUITE_P(
         PlanCase{"Fig14BestFirstFriction", "paper_fig14.json",
                  "--max 2 --friction 0.4 --support both"},
         PlanCase{"Fig6BestFirst", "paper_fig6.json", "--max 3"},
-        PlanCase{"Fig4NothingStable", "paper_fig4.json", ""}));
+        PlanCase{"Fig4NothingStable", "paper_fig4.json", ""}),
+    [](const ::testing::TestParamInfo<PlanCase>& info) { return std::string(info.param.name); });
 
 TEST(MpiBatch, ThreeRanks_TheSameResultsAsThreads) {
   if (std::string(CAIRN_MPIRUN).empty()) GTEST_SKIP() << "built without MPI (CAIRN_MPI off)";
