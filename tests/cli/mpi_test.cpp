@@ -39,6 +39,8 @@ struct PlanCase {
   const char* options;
 };
 
+void PrintTo(const PlanCase& c, std::ostream* os) { *os << c.scene << ' ' << c.options; }
+
 class MpiPlan : public ::testing::TestWithParam<PlanCase> {};
 
 TEST_P(MpiPlan, OneTwoAndThreeRanks_TheSameDocument) {
@@ -77,7 +79,7 @@ INSTANTIATE_TEST_SUITE_P(
                  "--max 2 --friction 0.4 --support both"},
         PlanCase{"Fig6BestFirst", "paper_fig6.json", "--max 3"},
         PlanCase{"Fig4NothingStable", "paper_fig4.json", ""}),
-    [](const ::testing::TestParamInfo<PlanCase>& info) { return std::string(info.param.name); });
+    [](const ::testing::TestParamInfo<PlanCase>& p) { return std::string(p.param.name); });
 
 TEST(MpiBatch, ThreeRanks_TheSameResultsAsThreads) {
   if (std::string(CAIRN_MPIRUN).empty()) GTEST_SKIP() << "built without MPI (CAIRN_MPI off)";
