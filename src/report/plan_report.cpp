@@ -171,9 +171,13 @@ json PlannerToJson(const Assembly& assembly, const PlannerResult& r, const std::
                   {"sequences_total", s.sequences_total},
                   {"threads", s.threads},
                   {"time", s.seconds},
-                  {"ranks", s.ranks},
-                  {"rank_time", s.rank_seconds},
-                  {"communication_time", s.communication_seconds}};
+                  {"ranks", s.ranks}};
+  // Spread over MPI ranks: the seconds each spent on its tasks and on
+  // exchanging results (waiting for the others included).
+  if (s.ranks > 1) {
+    doc["stats"]["rank_time"] = s.rank_seconds;
+    doc["stats"]["communication_time"] = s.communication_seconds;
+  }
   return doc;
 }
 

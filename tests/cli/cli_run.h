@@ -58,6 +58,11 @@ inline CliRun RunCommand(const std::string& command) {
   return r;
 }
 
-inline CliRun Cairn(const std::string& args) { return RunCommand(CliPath() + " " + args); }
+inline CliRun Cairn(const std::string& args) {
+  std::string command = CliPath();  // appended, not `a + " " + b`: GCC 12's
+  command += ' ';                   // -Warray-bounds false positive (bug 105329)
+  command += args;
+  return RunCommand(command);
+}
 
 }  // namespace cairn::testing
