@@ -245,9 +245,13 @@ void MpiServeJobs(const std::vector<std::string>& jobs,
                   const std::function<void()>& on_wait) {
   constexpr auto kPoll = std::chrono::microseconds(500);
   size_t next = 0, outstanding = 0;
+  // When on_result throws (RESULTS cannot be written), no more jobs go out,
+  // but the results of the jobs still running are received (and dropped):
+  // a worker must never be left blocked in a send when rank 0 stops.
+  std::exception_ptr error;
   std::vector<int> idle;
   const auto hand_out = [&](int worker) {
-    if (next < jobs.size()) {
+    if (next < jobs.size() && !error) {
       std::string msg;
       PutU64(msg, next);
       msg += jobs[next++];
@@ -260,7 +264,7 @@ void MpiServeJobs(const std::vector<std::string>& jobs,
   // Every worker says it is ready once at the start.
   int ready = 0;
   auto sleep = std::chrono::microseconds(20);
-  while (ready < g_size - 1 || next < jobs.size() || outstanding > 0) {
+  while (ready < g_size - 1 || (next < jobs.size() && !error) || outstanding > 0) {
     int flag = 0;
     MPI_Status status;
     MPI_Iprobe(MPI_ANY_SOURCE, MPI_ANY_TAG, MPI_COMM_WORLD, &flag, &status);
@@ -276,13 +280,20 @@ void MpiServeJobs(const std::vector<std::string>& jobs,
       size_t at = 0;
       const uint64_t k = GetU64(msg, at);
       --outstanding;
-      if (k < jobs.size()) on_result(k, msg.substr(at));
+      if (k < jobs.size() && !error) {
+        try {
+          on_result(k, msg.substr(at));
+        } catch (...) {
+          error = std::current_exception();
+        }
+      }
     } else {
       ++ready;
     }
     hand_out(status.MPI_SOURCE);
   }
   MpiStopWorkers();
+  if (error) std::rethrow_exception(error);
 }
 
 void MpiStopWorkers() {
