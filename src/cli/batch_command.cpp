@@ -192,26 +192,24 @@ class Results {
   }
 
  private:
+  // Line by line (RESULTS may be large): the ids, and where a last line cut
+  // short starts.
   void ReadDone(std::set<std::string>& done) {
     std::ifstream in(path_, std::ios::binary);
     if (!in) return;  // a new file
-    std::stringstream ss;
-    ss << in.rdbuf();
-    const std::string text = ss.str();
-    size_t start = 0, n = 0;
-    while (start < text.size()) {
-      const size_t end = text.find('\n', start);
-      if (end == std::string::npos) {  // cut short: dropped
-        keep_ = static_cast<long long>(start);
+    long long at = 0;
+    std::string line;
+    for (size_t n = 1; std::getline(in, line); ++n) {
+      if (in.eof()) {  // no newline after it: cut short, dropped
+        keep_ = at;
         break;
       }
-      ++n;
-      const json j = json::parse(text.substr(start, end - start), nullptr, false);
+      at += static_cast<long long>(line.size()) + 1;
+      const json j = json::parse(line, nullptr, false);
       if (j.is_discarded() || !j.is_object() || !j.contains("id") || !j.contains("exit"))
         throw InputError(path_, "line " + std::to_string(n),
                          "not a result of cairn batch (give --fresh to start over)");
       done.insert(Dump(j["id"]));
-      start = end + 1;
     }
   }
 
@@ -282,14 +280,14 @@ void RunOnThreads(const std::vector<const Job*>& todo, int threads, const JobPar
                   double timeout, InOrder& order, BatchProgress& progress) {
   std::mutex mutex;
   std::condition_variable ready;
-  std::vector<std::optional<JobResult>> lines(todo.size());
+  std::vector<std::pair<size_t, JobResult>> finished;  // under `mutex`
   std::atomic<size_t> next{0};
   std::atomic<bool> stop{false};
   const auto work = [&] {
     for (size_t k = next++; k < todo.size() && !stop; k = next++) {
       JobResult line = RunJob(todo[k]->line, parse, timeout);
       const std::lock_guard<std::mutex> lock(mutex);
-      lines[k] = std::move(line);
+      finished.emplace_back(k, std::move(line));
       ready.notify_one();
     }
     ReleaseThreadSolverState();  // the LP solvers' per-thread state
@@ -309,13 +307,9 @@ void RunOnThreads(const std::vector<const Job*>& todo, int threads, const JobPar
   size_t taken = 0;
   while (taken < todo.size()) {
     std::unique_lock<std::mutex> lock(mutex);
-    ready.wait_for(lock, std::chrono::milliseconds(250));
+    ready.wait_for(lock, std::chrono::milliseconds(250), [&] { return !finished.empty(); });
     std::vector<std::pair<size_t, JobResult>> got;
-    for (size_t k = 0; k < todo.size(); ++k)
-      if (lines[k]) {
-        got.emplace_back(k, std::move(*lines[k]));
-        lines[k].reset();
-      }
+    got.swap(finished);
     lock.unlock();
     for (auto& [k, line] : got) order.Put(k, std::move(line));
     taken += got.size();
