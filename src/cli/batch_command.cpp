@@ -84,7 +84,7 @@ std::vector<Job> ReadJobs(const std::string& path) {
 // Options that write files of their own, or that `batch` sets itself.
 bool RefusedOption(const std::string& name) {
   return name == "json" || name == "timeline" || name == "dot" || name == "emit-plans" ||
-         name == "help" || name == "version";
+         name == "html" || name == "help" || name == "version";
 }
 
 // An option's value on the command line: numbers as JSON writes them, a list
