@@ -334,15 +334,18 @@ std::string Summary(size_t run, size_t skipped, const BatchProgress& progress) {
 }  // namespace
 
 JobResult RunJob(const std::string& line, const JobParser& parse, double job_timeout) {
-  // "id" first (ordered), then "exit", then "result" or "error".
-  nlohmann::ordered_json result;
-  const auto record = [&](int code, const std::string& error) {
-    result["exit"] = code;
-    result["error"] = error;
+  // The line: {"id":…,"exit":…,"result":…} or {"id":…,"exit":…,"error":…},
+  // written out directly (the document is dumped once, not copied).
+  std::string id = "null";
+  int exit = kExitInternalError;
+  std::string tail;  // ,"result":… or ,"error":…
+  const auto error = [&](int code, const std::string& message) {
+    exit = code;
+    tail = ",\"error\":" + Dump(json(message));
   };
   try {
     const json job = json::parse(line);
-    result["id"] = job.at("id");
+    id = Dump(job.at("id"));
     const auto start = Clock::now();
     const auto deadline =
         start + std::chrono::duration_cast<Clock::duration>(
@@ -354,24 +357,24 @@ JobResult RunJob(const std::string& line, const JobParser& parse, double job_tim
       if (job_timeout > 0 && Clock::now() > deadline) throw JobTimeout{};
     };
     const JobCommand command = parse(JobCommandLine(job));
-    CommandDocument doc = command(checkpoint);
+    const CommandDocument doc = command(checkpoint);
     checkpoint();
-    result["exit"] = doc.exit;
-    result["result"] = doc.json;
+    exit = doc.exit;
+    tail = ",\"result\":" + Dump(doc.json);
   } catch (const JobTimeout&) {
     std::ostringstream os;
     os << "exceeded --job-timeout " << job_timeout << " s";
-    record(kExitTimeout, os.str());
+    error(kExitTimeout, os.str());
   } catch (const InputError& e) {
-    record(kExitBadInput, e.what());
+    error(kExitBadInput, e.what());
   } catch (const std::bad_alloc&) {
-    record(kExitInternalError, "internal error: out of memory");
+    error(kExitInternalError, "internal error: out of memory");
   } catch (const std::exception& e) {
-    record(kExitInternalError, std::string("internal error: ") + e.what());
+    error(kExitInternalError, std::string("internal error: ") + e.what());
   } catch (...) {
-    record(kExitInternalError, "internal error: an unknown exception");
+    error(kExitInternalError, "internal error: an unknown exception");
   }
-  return {result.dump(-1, ' ', false, json::error_handler_t::replace), result["exit"].get<int>()};
+  return {"{\"id\":" + id + ",\"exit\":" + std::to_string(exit) + tail + "}", exit};
 }
 
 int RunBatch(const BatchArgs& args, const JobParser& parse, std::ostream& out, std::ostream& err) {
