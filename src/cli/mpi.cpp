@@ -236,20 +236,24 @@ int MpiRank() { return g_rank; }
 int MpiSize() { return g_size; }
 PlanExecutor* MpiPlanExecutor() { return g_size > 1 ? &g_executor : nullptr; }
 
-// Rank 0 answers each message: a worker that is ready (or returns a result)
-// gets the next job, or, when none is left, nothing until every job is back;
-// then every worker is told to stop. Messages are polled with a short sleep
-// (at most kPoll), so that rank 0 does not spin a core the workers need.
+// Rank 0 answers each message: a worker that is ready gets kInFlight jobs, one
+// that returns a result the next job (or, when none is left, nothing until
+// every job is back); then every worker is told to stop. With two jobs in
+// flight a worker starts its next job as soon as it sends a result, without
+// waiting for rank 0 to answer (on a busy machine that answer takes longer
+// than a small check); a job waits behind at most one other. Messages are
+// polled with a short sleep (at most kPoll), so that rank 0 does not spin a
+// core the workers need.
 void MpiServeJobs(const std::vector<std::string>& jobs,
                   const std::function<void(size_t, const std::string&)>& on_result,
                   const std::function<void()>& on_wait) {
-  constexpr auto kPoll = std::chrono::microseconds(500);
+  constexpr auto kPoll = std::chrono::microseconds(200);
+  constexpr int kInFlight = 2;
   size_t next = 0, outstanding = 0;
   // When on_result throws (RESULTS cannot be written), no more jobs go out,
   // but the results of the jobs still running are received (and dropped):
   // a worker must never be left blocked in a send when rank 0 stops.
   std::exception_ptr error;
-  std::vector<int> idle;
   const auto hand_out = [&](int worker) {
     if (next < jobs.size() && !error) {
       std::string msg;
@@ -257,8 +261,6 @@ void MpiServeJobs(const std::vector<std::string>& jobs,
       msg += jobs[next++];
       Send(msg, worker, kJob);
       ++outstanding;
-    } else {
-      idle.push_back(worker);
     }
   };
   // Every worker says it is ready once at the start.
@@ -287,10 +289,11 @@ void MpiServeJobs(const std::vector<std::string>& jobs,
           error = std::current_exception();
         }
       }
+      hand_out(status.MPI_SOURCE);
     } else {
       ++ready;
+      for (int k = 0; k < kInFlight; ++k) hand_out(status.MPI_SOURCE);
     }
-    hand_out(status.MPI_SOURCE);
   }
   MpiStopWorkers();
   if (error) std::rethrow_exception(error);
@@ -304,17 +307,26 @@ void MpiStopWorkers() {
 
 void MpiWorkJobs(const std::function<std::string(const std::string&)>& run) {
   Send("", 0, kReady);
+  // A result goes out without waiting for rank 0 to take it (MPI_Isend; a
+  // large message waits for its receiver): the next job starts at once. It
+  // is completed before the next result goes out, and before stopping.
+  std::string pending;
+  MPI_Request sent = MPI_REQUEST_NULL;
   while (true) {
     MPI_Status status;
     const std::string msg = Receive(0, MPI_ANY_TAG, status);
-    if (status.MPI_TAG == kStop) return;
+    if (status.MPI_TAG == kStop) break;
     size_t at = 0;
     const uint64_t k = GetU64(msg, at);
     std::string reply;
     PutU64(reply, k);
     reply += run(msg.substr(at));
-    Send(reply, 0, kResult);
+    MPI_Wait(&sent, MPI_STATUS_IGNORE);
+    pending = std::move(reply);
+    MPI_Isend(pending.data(), static_cast<int>(pending.size()), MPI_BYTE, 0, kResult,
+              MPI_COMM_WORLD, &sent);
   }
+  MPI_Wait(&sent, MPI_STATUS_IGNORE);
 }
 
 }  // namespace cairn::cli
