@@ -197,6 +197,9 @@ CLI::App* AddBatch(CLI::App& app, cairn::cli::BatchArgs& batch) {
 
 // A job's command line parsed as `cairn` parses it (the same subcommands,
 // options and checks), to run in-process: what RunBatch calls per job.
+// Building CLI11's options costs a sixth of a small check, so each thread
+// builds them once and, per job, resets the values to their defaults and the
+// parser to unparsed; the job keeps a copy of its values.
 cairn::cli::JobCommand ParseJob(const std::vector<std::string>& args) {
   namespace cli = cairn::cli;
   struct Parsed {
@@ -205,33 +208,38 @@ cairn::cli::JobCommand ParseJob(const std::vector<std::string>& args) {
     cli::BlockingArgs blocking;
     cli::PlanArgs plan;
   };
-  auto p = std::make_shared<Parsed>();
-  CLI::App app{"cairn"};
-  app.require_subcommand(1);
-  // Only the job's own subcommand is defined (building them all would cost a
-  // sixth of a small check): the others' names are then unknown words.
-  const std::string name = args.empty() ? std::string() : args.front();
-  const CLI::App* check_cmd = name == "check" ? AddCheck(app, p->check) : nullptr;
-  const CLI::App* sim_cmd = name == "simulate" ? AddSimulate(app, p->sim) : nullptr;
-  const CLI::App* blocking_cmd = name == "blocking" ? AddBlocking(app, p->blocking) : nullptr;
-  const CLI::App* plan_cmd = name == "plan" ? AddPlan(app, p->plan) : nullptr;
+  struct Parser {
+    Parsed values;  // bound to the options below: reset, never moved
+    CLI::App app{"cairn"};
+    CLI::App *check, *sim, *blocking, *plan;
+    Parser()
+        : check(AddCheck(app, values.check)),
+          sim(AddSimulate(app, values.sim)),
+          blocking(AddBlocking(app, values.blocking)),
+          plan(AddPlan(app, values.plan)) {
+      app.require_subcommand(1);
+    }
+  };
+  thread_local Parser parser;
+  parser.values = Parsed{};
+  parser.app.clear();
   std::vector<std::string> reversed(args.rbegin(), args.rend());  // CLI11 takes them so
   try {
-    app.parse(reversed);
+    parser.app.parse(reversed);
   } catch (const CLI::ParseError& e) {
     std::string what = e.what();
     for (char& c : what)
       if (c == '\n' || c == '\r') c = ' ';
     throw cairn::InputError("", "options", what);
   }
-  if (check_cmd && *check_cmd)
+  const auto p = std::make_shared<const Parsed>(parser.values);
+  if (*parser.check)
     return [p](const cli::Checkpoint& c) { return cli::CheckDocument(p->check, c); };
-  if (sim_cmd && *sim_cmd)
+  if (*parser.sim)
     return [p](const cli::Checkpoint& c) { return cli::SimulateDocument(p->sim, c); };
-  if (blocking_cmd && *blocking_cmd)
+  if (*parser.blocking)
     return [p](const cli::Checkpoint&) { return cli::BlockingDocument(p->blocking); };
-  if (plan_cmd && *plan_cmd)
-    return [p](const cli::Checkpoint& c) { return cli::PlanDocument(p->plan, c); };
+  if (*parser.plan) return [p](const cli::Checkpoint& c) { return cli::PlanDocument(p->plan, c); };
   throw cairn::InputError("", "command", "must be check, simulate, plan or blocking");
 }
 
