@@ -29,6 +29,9 @@ packages=(
   libassimp-dev          # mesh parts (OBJ, STL)
   libboost-dev           # Boost.Geometry: clipping coplanar faces of 3-D contacts
   libgtest-dev libgmock-dev  # tests
+  # `cairn batch` and `cairn plan` across MPI ranks (CAIRN_MPI, docs/batch.md):
+  # Debian's OpenMPI, its headers and mpirun.
+  libopenmpi-dev openmpi-bin
   # The Python module (python/, docs/python.md) and its tests: Debian's
   # interpreter, numpy, pybind11, pytest, matplotlib (cairn.plot), and venv,
   # pip, setuptools and wheel for `pip install .` offline.

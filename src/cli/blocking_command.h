@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "cli/command.h"
 #include "cli/model.h"
 
 namespace cairn::cli {
@@ -15,6 +16,9 @@ struct BlockingArgs {
   std::vector<std::string> without;  // part names
   ModelArgs model;
 };
+
+/// `cairn blocking --json`'s document (exit 0). @throws InputError on bad input.
+CommandDocument BlockingDocument(const BlockingArgs& args);
 
 /// `cairn blocking`: the NDBG of the scene (planning/blocking.h), per cell
 /// its directions and the parts that can leave. Exit 0, or 2 on bad input.

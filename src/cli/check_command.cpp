@@ -26,28 +26,55 @@
 #include "cli/scene_writer.h"
 
 namespace cairn::cli {
+namespace {
+
+// The check itself, for the document and for the summary.
+struct Checked {
+  Assembly assembly;
+  ReportOptions report;
+  Configuration config;
+  StabilityResult result;
+  int exit() const { return result.stable() ? kExitStable : kExitUnstable; }
+};
+
+Checked Check(const CheckArgs& args, const Checkpoint& checkpoint) {
+  Assembly assembly = LoadModel(args.scene, args.model).assembly;
+  ReportOptions report;
+  report.scene_file = args.scene;
+  report.normalize_part = ResolveNormalize(assembly, args.normalize, args.scene);
+  Configuration config = WithoutParts(assembly, args.without, args.scene, report.without);
+  if (checkpoint) checkpoint();
+  StabilityOptions analysis;
+  analysis.check_equilibrium = true;  // report jamming (weak stability) too
+  StabilityResult result = AnalyzeConfiguration(assembly, config, analysis);
+  return {std::move(assembly), std::move(report), std::move(config), std::move(result)};
+}
+
+nlohmann::json CheckJson(const Checked& c) {
+  return StabilityToJson(c.assembly, c.config, c.result, c.report);
+}
+
+}  // namespace
+
+CommandDocument CheckDocument(const CheckArgs& args, const Checkpoint& checkpoint) {
+  const Checked c = Check(args, checkpoint);
+  return {CheckJson(c), c.exit()};
+}
 
 int RunCheck(const CheckArgs& args, std::ostream& out, std::ostream& err) {
   return RunGuarded(err, [&]() -> int {
-    const Assembly assembly = LoadModel(args.scene, args.model).assembly;
-    ReportOptions report;
-    report.scene_file = args.scene;
-    report.normalize_part = ResolveNormalize(assembly, args.normalize, args.scene);
-    const Configuration config = WithoutParts(assembly, args.without, args.scene, report.without);
-    StabilityOptions analysis;
-    analysis.check_equilibrium = true;  // report jamming (weak stability) too
-    const StabilityResult result = AnalyzeConfiguration(assembly, config, analysis);
+    const Checked c = Check(args, {});
     // Everything is computed before anything is written.
-    const nlohmann::json doc = StabilityToJson(assembly, config, result, report);
+    const nlohmann::json doc = CheckJson(c);
     OutputFiles files;
     if (!args.html.empty())
-      files.Add(args.html, CheckPage(assembly, config, doc, report), "--html");
+      files.Add(args.html, CheckPage(c.assembly, c.config, doc, c.report), "--html");
     files.Commit();
     if (args.json)
       out << doc.dump(2) << '\n';
     else
-      out << StabilityToText(assembly, config, result, report);
-    return result.stable() ? kExitStable : kExitUnstable;
+      out << StabilityToText(c.assembly, c.config, c.result, c.report);
+    return c.exit();
   });
 }
 

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "cli/command.h"
 #include "cli/model.h"
 
 namespace cairn::cli {
@@ -17,6 +18,10 @@ struct CheckArgs {
   std::vector<std::string> without;  // part names
   ModelArgs model;
 };
+
+/// `cairn check --json`'s document; exit 0 stable, 1 not. @throws InputError
+/// on bad input. A check is one solve: `checkpoint` is called before it only.
+CommandDocument CheckDocument(const CheckArgs& args, const Checkpoint& checkpoint = {});
 
 /// `cairn check`: writes the report to `out`, errors to `err`.
 int RunCheck(const CheckArgs& args, std::ostream& out, std::ostream& err);

@@ -4,6 +4,7 @@
 
 #include <functional>
 #include <iosfwd>
+#include <nlohmann/json.hpp>
 
 namespace cairn::cli {
 
@@ -21,5 +22,18 @@ inline constexpr int kExitInternalError = 4;
 /// kExitBadInput, any other exception as "cairn: internal error: ..." with
 /// kExitInternalError.
 int RunGuarded(std::ostream& err, const std::function<int()>& body);
+
+/// A command's JSON document (what it prints with `--json`) and its exit
+/// code: what each command's `...Document` function returns, for the CLI and
+/// for `cairn batch`, which calls them in-process.
+struct CommandDocument {
+  nlohmann::json json;
+  int exit = kExitStable;
+};
+
+/// Called often while a command works (before each node check, at every
+/// time step of a simulation); it may throw to abandon the work (`cairn
+/// batch --job-timeout`: a cooperative deadline). Empty: never called.
+using Checkpoint = std::function<void()>;
 
 }  // namespace cairn::cli

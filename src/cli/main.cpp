@@ -3,12 +3,17 @@
 #include <CLI/CLI.hpp>
 #include <cmath>
 #include <iostream>
+#include <memory>
+#include <sstream>
 #include <string>
 
+#include "cairn/core/error.h"
+#include "cli/batch_command.h"
 #include "cli/blocking_command.h"
 #include "cli/check_command.h"
 #include "cli/command.h"
 #include "cli/convert_command.h"
+#include "cli/mpi.h"
 #include "cli/plan_command.h"
 #include "cli/simulate_command.h"
 
@@ -178,6 +183,76 @@ CLI::App* AddPlan(CLI::App& app, cairn::cli::PlanArgs& plan) {
   return cmd;
 }
 
+// ---- cairn batch (docs/batch.md) ----------------------------------------------
+
+CLI::App* AddBatch(CLI::App& app, cairn::cli::BatchArgs& batch) {
+  CLI::App* cmd = app.add_subcommand(
+      "batch", "Run many jobs (check, simulate, plan, blocking) from a JSON-lines file");
+  cmd->add_option("jobs", batch.jobs, "Jobs file (JSON lines: id, command, model, plan, options)")
+      ->required();
+  cmd->add_option("-o", batch.output, "Results file (JSON lines), appended job by job")
+      ->required()
+      ->check(kNotEmpty);
+  cmd->add_flag("--fresh", batch.fresh, "Start over: empty the results file first");
+  cmd->add_flag("--resume", batch.resume,
+                "Skip the jobs already in the results file (the default)");
+  cmd->add_option("--job-timeout", batch.job_timeout,
+                  "Seconds a job may take; one that takes longer is recorded as timed out")
+      ->check(kPositive);
+  cmd->add_option("--threads", batch.threads,
+                  "Jobs run at once without MPI ranks (default: every core)")
+      ->check(kNonNegativeInteger);
+  return cmd;
+}
+
+// A job's command line parsed as `cairn` parses it (the same subcommands,
+// options and checks), to run in-process: what RunBatch calls per job.
+// Building CLI11's options costs a sixth of a small check, so each thread
+// builds them once and, per job, resets the values to their defaults and the
+// parser to unparsed; the job keeps a copy of its values.
+cairn::cli::JobCommand ParseJob(const std::vector<std::string>& args) {
+  namespace cli = cairn::cli;
+  struct Parsed {
+    cli::CheckArgs check;
+    cli::SimulateArgs sim;
+    cli::BlockingArgs blocking;
+    cli::PlanArgs plan;
+  };
+  struct Parser {
+    Parsed values;  // bound to the options below: reset, never moved
+    CLI::App app{"cairn"};
+    CLI::App *check, *sim, *blocking, *plan;
+    Parser()
+        : check(AddCheck(app, values.check)),
+          sim(AddSimulate(app, values.sim)),
+          blocking(AddBlocking(app, values.blocking)),
+          plan(AddPlan(app, values.plan)) {
+      app.require_subcommand(1);
+    }
+  };
+  thread_local Parser parser;
+  parser.values = Parsed{};
+  parser.app.clear();
+  std::vector<std::string> reversed(args.rbegin(), args.rend());  // CLI11 takes them so
+  try {
+    parser.app.parse(reversed);
+  } catch (const CLI::ParseError& e) {
+    std::string what = e.what();
+    for (char& c : what)
+      if (c == '\n' || c == '\r') c = ' ';
+    throw cairn::InputError("", "options", what);
+  }
+  const auto p = std::make_shared<const Parsed>(parser.values);
+  if (*parser.check)
+    return [p](const cli::Checkpoint& c) { return cli::CheckDocument(p->check, c); };
+  if (*parser.sim)
+    return [p](const cli::Checkpoint& c) { return cli::SimulateDocument(p->sim, c); };
+  if (*parser.blocking)
+    return [p](const cli::Checkpoint&) { return cli::BlockingDocument(p->blocking); };
+  if (*parser.plan) return [p](const cli::Checkpoint& c) { return cli::PlanDocument(p->plan, c); };
+  throw cairn::InputError("", "command", "must be check, simulate, plan or blocking");
+}
+
 // The command line: its subcommands and their options, parsed; then the
 // chosen command runs. Returns the exit code.
 int Run(int argc, char** argv) {
@@ -195,6 +270,8 @@ int Run(int argc, char** argv) {
   const CLI::App* convert_cmd = AddConvert(app, convert);
   const CLI::App* blocking_cmd = AddBlocking(app, blocking);
   const CLI::App* plan_cmd = AddPlan(app, plan);
+  cli::BatchArgs batch;
+  const CLI::App* batch_cmd = AddBatch(app, batch);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -211,7 +288,16 @@ int Run(int argc, char** argv) {
   if (*sim_cmd) return cli::RunSimulate(sim, std::cout, std::cerr);
   if (*convert_cmd) return cli::RunConvert(convert, std::cout, std::cerr);
   if (*blocking_cmd) return cli::RunBlocking(blocking, std::cout, std::cerr);
-  if (*plan_cmd) return cli::RunPlan(plan, std::cout, std::cerr);
+  // Under mpirun, rank 0 alone speaks: the others' streams go nowhere.
+  std::ostringstream quiet_out, quiet_err;
+  std::ostream& out = cli::MpiRank() == 0 ? std::cout : quiet_out;
+  std::ostream& err = cli::MpiRank() == 0 ? std::cerr : quiet_err;
+  if (*plan_cmd) {
+    // A rank per core is MPI's way: --threads defaults to 1 per rank.
+    if (cli::MpiSize() > 1 && plan.threads == 0) plan.threads = 1;
+    return cli::RunPlan(plan, out, err);
+  }
+  if (*batch_cmd) return cli::RunBatch(batch, ParseJob, out, err);
   return cli::kExitBadInput;
 }
 
@@ -220,5 +306,7 @@ int Run(int argc, char** argv) {
 // Any exception that escapes a command (they catch their own) is a defect:
 // reported as an internal error with exit code 4, never a crash.
 int main(int argc, char** argv) {
+  // MPI, when started by mpirun (cli/mpi.h); ended after the command.
+  const cairn::cli::MpiSession mpi(argc, argv);
   return cairn::cli::RunGuarded(std::cerr, [&] { return Run(argc, argv); });
 }

@@ -16,6 +16,7 @@
 #include "cairn/report/plan_report.h"
 #include "cli/command.h"
 #include "cli/model.h"
+#include "cli/mpi.h"
 #include "cli/output_files.h"
 #include "cli/progress.h"
 #include "cli/scene_writer.h"
@@ -33,34 +34,67 @@ std::string Numbered(const std::string& stem, size_t k, const std::string& suffi
 
 }  // namespace
 
+namespace {
+
+// The search, for the document, the summary and the files.
+struct Planned {
+  Model model;
+  PlannerResult result;
+  int exit() const { return result.sequences.empty() ? kExitUnstable : kExitStable; }
+};
+
+Planned Search(const PlanArgs& args, const Checkpoint& checkpoint, PlanExecutor* executor,
+               const std::function<void(const PlannerStats&)>& on_progress) {
+  Model model = LoadModel(args.scene, args.model);
+  const Assembly& assembly = model.assembly;
+  RefuseGivenInterfaces(assembly, args.scene,
+                        "parts cannot be moved, so no removal can be planned");
+  PlannerOptions options;
+  options.max_sequences = args.max;
+  options.threads = args.threads;
+  options.subassemblies = !args.no_subassemblies;
+  options.dt = args.dt;
+  options.speed = args.speed;
+  options.allow_fixtures = args.allow_fixtures;
+  options.support = args.support == "none"   ? SupportChoice::kNone
+                    : args.support == "both" ? SupportChoice::kBoth
+                                             : SupportChoice::kFull;
+  for (const std::string& name : args.keep)
+    options.keep.push_back(ResolvePart(assembly, name, "--keep", args.scene));
+  if (!args.paths.empty()) options.given_paths = ReadCandidatePaths(args.paths, assembly);
+  options.on_progress = on_progress;
+  options.checkpoint = checkpoint;
+  options.executor = executor;
+  PlannerResult result = PlanDisassembly(model.def, assembly, options);
+  return {std::move(model), std::move(result)};
+}
+
+}  // namespace
+
+CommandDocument PlanDocument(const PlanArgs& args, const Checkpoint& checkpoint,
+                             PlanExecutor* executor) {
+  const Planned p = Search(args, checkpoint, executor, [&](const PlannerStats&) {
+    if (checkpoint) checkpoint();
+  });
+  return {PlannerToJson(p.model.assembly, p.result, args.scene), p.exit()};
+}
+
 int RunPlan(const PlanArgs& args, std::ostream& out, std::ostream& err) {
   return RunGuarded(err, [&]() -> int {
-    const Model model = LoadModel(args.scene, args.model);
-    const Assembly& assembly = model.assembly;
-    RefuseGivenInterfaces(assembly, args.scene,
-                          "parts cannot be moved, so no removal can be planned");
-    PlannerOptions options;
-    options.max_sequences = args.max;
-    options.threads = args.threads;
-    options.subassemblies = !args.no_subassemblies;
-    options.dt = args.dt;
-    options.speed = args.speed;
-    options.allow_fixtures = args.allow_fixtures;
-    options.support = args.support == "none"   ? SupportChoice::kNone
-                      : args.support == "both" ? SupportChoice::kBoth
-                                               : SupportChoice::kFull;
-    for (const std::string& name : args.keep)
-      options.keep.push_back(ResolvePart(assembly, name, "--keep", args.scene));
-    if (!args.paths.empty()) options.given_paths = ReadCandidatePaths(args.paths, assembly);
-
-    // A long search says where it is, on a terminal.
+    // A long search says where it is, on a terminal (rank 0's: the others'
+    // standard error is quiet under mpirun).
     Progress progress("cairn plan");
-    options.on_progress = [&](const PlannerStats& s) {
-      progress.Show(std::to_string(s.node_checks) + " nodes checked, " +
-                    std::to_string(s.path_simulations) + " paths simulated");
-    };
-    const PlannerResult result = PlanDisassembly(model.def, assembly, options);
+    const Planned planned = Search(args, {}, MpiPlanExecutor(), [&](const PlannerStats& s) {
+      if (MpiRank() == 0)
+        progress.Show(std::to_string(s.node_checks) + " nodes checked, " +
+                      std::to_string(s.path_simulations) + " paths simulated");
+    });
     progress.Done();
+    const Model& model = planned.model;
+    const Assembly& assembly = model.assembly;
+    const PlannerResult& result = planned.result;
+    // Under mpirun, every rank has the same result; rank 0 alone writes it.
+    if (MpiRank() != 0) return planned.exit();
 
     // Everything is computed before anything is written.
     const nlohmann::json doc = PlannerToJson(assembly, result, args.scene);
@@ -122,7 +156,7 @@ int RunPlan(const PlanArgs& args, std::ostream& out, std::ostream& err) {
       throw;
     }
     out << text;
-    return result.sequences.empty() ? kExitUnstable : kExitStable;
+    return planned.exit();
   });
 }
 

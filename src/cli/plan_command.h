@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 
+#include "cairn/planning/planner.h"
+#include "cli/command.h"
 #include "cli/model.h"
 
 namespace cairn::cli {
@@ -26,7 +28,17 @@ struct PlanArgs {
   ModelArgs model;
 };
 
-/// `cairn plan`: stable disassembly sequences (planning/planner.h). Exit 0
+/// `cairn plan --json`'s document (without --emit-plans and --dot, which
+/// write files); exit 0 when a stable sequence was found, 1 when none.
+/// `checkpoint` is called before each node check and at every simulated time
+/// step; `executor` (null: this process's threads) runs the node checks and
+/// edges. @throws InputError on bad input.
+CommandDocument PlanDocument(const PlanArgs& args, const Checkpoint& checkpoint = {},
+                             PlanExecutor* executor = nullptr);
+
+/// `cairn plan`: stable disassembly sequences (planning/planner.h). Under
+/// `mpirun` with more than one rank, the search is spread over the ranks
+/// (src/cli/mpi.h) and rank 0 alone writes. Exit 0
 /// when a stable sequence was found, 1 when none, 2 on bad input.
 int RunPlan(const PlanArgs& args, std::ostream& out, std::ostream& err);
 

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "cairn/geometry/plan.h"
+#include "cli/command.h"
 #include "cli/model.h"
 
 namespace cairn::cli {
@@ -26,6 +27,11 @@ struct SimulateArgs {
   long long max_ticks = Plan::kDefaultMaxTicks;
   ModelArgs model;
 };
+
+/// `cairn simulate --json`'s document (without --timeline, which writes a
+/// file); exit 0 stable, 1 unstable or unsupported, 3 infeasible.
+/// `checkpoint` is called at every time step. @throws InputError on bad input.
+CommandDocument SimulateDocument(const SimulateArgs& args, const Checkpoint& checkpoint = {});
 
 /// `cairn simulate`: exit 0 stable, 1 unstable or unsupported, 3 infeasible,
 /// 2 bad input.

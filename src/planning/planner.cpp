@@ -24,6 +24,7 @@
 #include "cairn/mechanics/rest_solution.h"
 #include "cairn/planning/blocking.h"
 #include "cairn/stability/analyze.h"
+#include "planning/task_codec.h"
 
 namespace cairn {
 
@@ -103,6 +104,33 @@ void ParallelFor(int n, int threads, const std::function<void(int)>& task) {
   if (error) std::rethrow_exception(error);
 }
 
+// The executor of a single process: every task here, on its threads.
+class LocalExecutor final : public PlanExecutor {
+ public:
+  int processes() const override { return 1; }
+  std::vector<std::string> Map(const std::vector<double>& cost, int threads,
+                               const std::function<std::string(int)>& task) override {
+    const auto start = std::chrono::steady_clock::now();
+    std::vector<std::string> out(cost.size());
+    ParallelFor(static_cast<int>(cost.size()), threads, [&](int i) { out[i] = task(i); });
+    work_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return out;
+  }
+  void Times(std::vector<double>& work, std::vector<double>& communication) override {
+    work = {work_};
+    communication = {0.0};
+  }
+
+ private:
+  double work_ = 0;
+};
+
+// Estimated costs of the tasks (PlanExecutor::Map balances by them), in
+// units of one part's share of a configuration check: a check grows about
+// with the square of the parts present (contacts, then the LCP), a simulated
+// path with that times its time steps.
+double NodeCheckCost(int parts) { return 1.0 + static_cast<double>(parts) * parts; }
+
 // A direction for people: "up", "down", "+x", or "(0.7071, 0.7071)".
 std::string DirectionLabel(const Vector3& d, const Vector3& up, int dimension) {
   if (d.dot(up) > 1 - numeric::kParameterSlack) return "up";
@@ -157,6 +185,7 @@ class Planner {
   void AddEdges(int node, std::vector<EdgeCandidate> candidates);
   void EvaluateEdges(const std::vector<int>& edges);
   EdgeWork EvaluateEdge(PlanEdge& edge, const std::vector<Contact>& contacts) const;
+  double EdgeCost(const PlanEdge& edge) const;
   PathTrial Trial(const Key& from_key, const std::vector<int>& s, const CandidatePath& c,
                   const std::vector<Contact>& contacts, EdgeWork& work) const;
   Plan OneStepPlan(const std::vector<int>& s, const CandidatePath& c, PlanMode mode) const;
@@ -201,6 +230,8 @@ class Planner {
   std::vector<bool> evaluated_;                      // edge index → trials done
   std::vector<char> dead_;                           // best-first: node has no stable completion
   std::vector<std::vector<Contact>> node_contacts_;  // contacts per node (friction scenes)
+  LocalExecutor local_;
+  PlanExecutor* executor_ = &local_;  // where node checks and edges run
   // Try every candidate path of an edge (full enumeration: the verdicts of
   // all paths, non-invertible ones included), rather than stopping at the
   // first straight removal stable both ways (best-first search).
@@ -306,24 +337,34 @@ void Planner::CheckNodes(std::vector<int> nodes) {
               nodes.end());
   std::sort(nodes.begin(), nodes.end());
   nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
-  std::vector<char> stable(nodes.size(), 0);
-  std::vector<std::vector<Contact>> contacts(nodes.size());
   const bool friction = !assembly_.IsFrictionless();
-  ParallelFor(static_cast<int>(nodes.size()), threads_, [&](int k) {
+  std::vector<double> cost;
+  for (int i : nodes) cost.push_back(NodeCheckCost(Count(keys_[i])));
+  // Each check's result travels as bytes (PlanExecutor): its verdict and,
+  // with friction, its contacts (kept for the edges out of the node: with
+  // friction, only contacts that open at once let node checks decide an
+  // edge).
+  const std::vector<std::string> results = executor_->Map(cost, threads_, [&](int k) {
+    if (opt_.checkpoint) opt_.checkpoint();
     const Configuration config = ConfigOf(keys_[nodes[k]]);
     const StabilityResult r = AnalyzeConfiguration(assembly_, config);
-    stable[k] = r.stable();
+    planning_codec::Writer w;
+    w.Put(static_cast<uint8_t>(r.stable()));
+    std::vector<Contact> contacts;
     if (friction) {
-      // Kept for the edges out of the node: with friction, only contacts that
-      // open at once let node checks decide an edge.
       const Tolerances tol = assembly_.MakeTolerances();
-      contacts[k] = DetectContacts(assembly_, config, tol.length, tol.angle);
+      contacts = DetectContacts(assembly_, config, tol.length, tol.angle);
     }
+    w.Put(contacts);
+    return w.Take();
   });
   for (size_t k = 0; k < nodes.size(); ++k) {
-    result_.nodes[nodes[k]].stable = stable[k];
+    planning_codec::Reader r(results[k]);
+    uint8_t stable = 0;
+    r.Get(stable);
+    r.Get(node_contacts_[nodes[k]]);
+    result_.nodes[nodes[k]].stable = stable != 0;
     checked_[nodes[k]] = true;
-    node_contacts_[nodes[k]] = std::move(contacts[k]);
   }
   result_.stats.node_checks += static_cast<int>(nodes.size());
   if (opt_.on_progress) opt_.on_progress(result_.stats);
@@ -489,6 +530,10 @@ Plan Planner::OneStepPlan(const std::vector<int>& s, const CandidatePath& c, Pla
 SimulationOptions Planner::NodeSimulation(const Key& from_key) const {
   SimulationOptions so;
   so.carry_when_unsupported = true;
+  if (opt_.checkpoint) {
+    const std::function<void()> checkpoint = opt_.checkpoint;
+    so.on_analysis = [checkpoint](const AnalysisInputs&) { checkpoint(); };
+  }
   for (size_t slot = 0; slot < movable_.size(); ++slot)
     if (!Has(from_key, static_cast<int>(slot))) so.absent.push_back(movable_[slot]);
   return so;
@@ -576,6 +621,28 @@ EdgeWork Planner::EvaluateEdge(PlanEdge& edge, const std::vector<Contact>& conta
   return work;
 }
 
+// An edge's estimated work: nothing much when Proposition 1 decides it or
+// node checks do (a straight, fully supported removal without friction),
+// else two simulations (disassembly and assembly) of its path's time steps
+// on the parts present. With friction, whether the contacts open at once is
+// not known before: such paths count as simulated (an upper bound).
+double Planner::EdgeCost(const PlanEdge& edge) const {
+  if (!result_.nodes[edge.to].stable) return 1.0;
+  const double parts = Count(keys_[edge.from]);
+  double cost = 1.0;
+  for (const PathTrial& t : edge.trials) {
+    const CandidatePath& c = t.candidate;
+    if (c.straight && c.support == SupportMode::kFull && c.grip.empty() &&
+        assembly_.IsFrictionless())
+      continue;
+    double length = 0;
+    for (size_t k = 1; k < c.path.size(); ++k) length += (c.path[k] - c.path[k - 1]).norm();
+    const double ticks = 1.0 + std::ceil(length / (result_.speed * result_.dt));
+    cost += 2 * ticks * NodeCheckCost(static_cast<int>(parts));
+  }
+  return cost;
+}
+
 void Planner::EvaluateEdges(const std::vector<int>& edges) {
   std::vector<int> todo;
   for (int e : edges)
@@ -583,16 +650,36 @@ void Planner::EvaluateEdges(const std::vector<int>& edges) {
   std::vector<int> targets;
   for (int e : todo) targets.push_back(result_.edges[e].to);
   CheckNodes(targets);
-  std::vector<EdgeWork> work(todo.size());
-  ParallelFor(static_cast<int>(todo.size()), threads_, [&](int k) {
-    PlanEdge& edge = result_.edges[todo[k]];
-    work[k] = EvaluateEdge(edge, node_contacts_[edge.from]);
+  // Each evaluation works on a copy of its edge and sends back what it found
+  // (PlanExecutor): the trials tried, their verdicts and failures, the
+  // chosen paths and the work done; the candidates are the same everywhere.
+  std::vector<double> cost;
+  for (int e : todo) cost.push_back(EdgeCost(result_.edges[e]));
+  const std::vector<std::string> results = executor_->Map(cost, threads_, [&](int k) {
+    PlanEdge edge = result_.edges[todo[k]];
+    const EdgeWork work = EvaluateEdge(edge, node_contacts_[edge.from]);
+    planning_codec::Writer w;
+    w.Put(work.simulations), w.Put(work.by_nodes), w.Put(work.pruned);
+    w.Put(edge.chosen), w.Put(edge.assembly_chosen);
+    w.Put(static_cast<uint64_t>(edge.trials.size()));
+    for (const PathTrial& t : edge.trials) w.Put(t);
+    return w.Take();
   });
   for (size_t k = 0; k < todo.size(); ++k) {
+    PlanEdge& edge = result_.edges[todo[k]];
+    planning_codec::Reader r(results[k]);
+    EdgeWork work;
+    r.Get(work.simulations), r.Get(work.by_nodes), r.Get(work.pruned);
+    r.Get(edge.chosen), r.Get(edge.assembly_chosen);
+    uint64_t tried = 0;
+    r.Get(tried);
+    CAIRN_THROW_UNLESS(tried <= edge.trials.size(), "planner: an edge came back with more trials");
+    edge.trials.resize(tried);
+    for (PathTrial& t : edge.trials) r.Get(t);
     evaluated_[todo[k]] = true;
-    result_.stats.path_simulations += work[k].simulations;
-    result_.stats.decided_by_nodes += work[k].by_nodes;
-    result_.stats.pruned_by_proposition_1 += work[k].pruned;
+    result_.stats.path_simulations += work.simulations;
+    result_.stats.decided_by_nodes += work.by_nodes;
+    result_.stats.pruned_by_proposition_1 += work.pruned;
   }
   if (opt_.on_progress) opt_.on_progress(result_.stats);
 }
@@ -901,6 +988,8 @@ PlannerResult Planner::Run() {
   threads_ = opt_.threads > 0 ? opt_.threads
                               : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
   result_.stats.threads = threads_;
+  if (opt_.executor) executor_ = opt_.executor;
+  result_.stats.ranks = executor_->processes();
   const double g = assembly_.gravity().norm();
   up_ = g > 0 ? Vector3(-assembly_.gravity() / g)
               : (assembly_.is_3d() ? Vector3(0, 0, 1) : Vector3(0, 1, 0));
@@ -937,6 +1026,7 @@ PlannerResult Planner::Run() {
     result_.message = "no stable disassembly sequence";
   result_.stats.nodes = static_cast<int>(result_.nodes.size());
   result_.stats.edges = static_cast<int>(result_.edges.size());
+  executor_->Times(result_.stats.rank_seconds, result_.stats.communication_seconds);
   result_.stats.seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (!opt_.keep_graph) {

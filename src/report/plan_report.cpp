@@ -170,7 +170,14 @@ json PlannerToJson(const Assembly& assembly, const PlannerResult& r, const std::
                   {"memo_hits", s.memo_hits},
                   {"sequences_total", s.sequences_total},
                   {"threads", s.threads},
-                  {"time", s.seconds}};
+                  {"time", s.seconds},
+                  {"ranks", s.ranks}};
+  // Spread over MPI ranks: the seconds each spent on its tasks and on
+  // exchanging results (waiting for the others included).
+  if (s.ranks > 1) {
+    doc["stats"]["rank_time"] = s.rank_seconds;
+    doc["stats"]["communication_time"] = s.communication_seconds;
+  }
   return doc;
 }
 
@@ -237,7 +244,8 @@ std::string PlannerToText(const Assembly& assembly, const PlannerResult& r,
      << " node checks, " << s.path_simulations << " path simulations; " << s.decided_by_nodes
      << " paths decided by node checks (Corollary 2), " << s.pruned_by_proposition_1
      << " edges pruned (Proposition 1); " << Num(s.seconds) << " s on " << s.threads << " thread"
-     << (s.threads == 1 ? "" : "s") << '\n';
+     << (s.threads == 1 ? "" : "s")
+     << (s.ranks > 1 ? " on each of " + std::to_string(s.ranks) + " ranks" : std::string()) << '\n';
   return os.str();
 }
 

@@ -296,5 +296,63 @@ TEST(PlannerDeterminism, SameOutputOnOneAndTwoThreads) {
   EXPECT_EQ(a.dump(), b.dump());
 }
 
+// An executor that plays several processes in one: it runs the tasks last
+// first (as another process might finish them), records the costs it is
+// given, and reports `ranks` processes. The planner's output must not depend
+// on where or in which order its tasks ran.
+class ReversedExecutor final : public PlanExecutor {
+ public:
+  explicit ReversedExecutor(int ranks) : ranks_(ranks) {}
+  int processes() const override { return ranks_; }
+  std::vector<std::string> Map(const std::vector<double>& cost, int,
+                               const std::function<std::string(int)>& task) override {
+    std::vector<std::string> out(cost.size());
+    for (int i = static_cast<int>(cost.size()) - 1; i >= 0; --i) out[i] = task(i);
+    costs.insert(costs.end(), cost.begin(), cost.end());
+    return out;
+  }
+  void Times(std::vector<double>& work, std::vector<double>& communication) override {
+    work.assign(ranks_, 1.0);
+    communication.assign(ranks_, 0.0);
+  }
+  std::vector<double> costs;
+
+ private:
+  int ranks_;
+};
+
+TEST(PlannerDeterminism, AnExecutorsOrderOfTasksChangesNothing) {
+  // With friction and both supports, paths are simulated (their results
+  // travel as bytes) as well as decided by node checks.
+  Scene scene("paper_fig6.json");
+  scene.def.friction = 0.4;
+  const Assembly assembly = Assembly::Create(scene.def, "paper_fig6.json");
+  for (int max : {0, 2}) {
+    PlannerOptions local, spread;
+    local.threads = spread.threads = 1;
+    local.support = spread.support = SupportChoice::kBoth;
+    local.max_sequences = spread.max_sequences = max;
+    ReversedExecutor executor(3);
+    spread.executor = &executor;
+    const PlannerResult a = PlanDisassembly(scene.def, assembly, local);
+    const PlannerResult b = PlanDisassembly(scene.def, assembly, spread);
+    EXPECT_EQ(a.stats.ranks, 1);
+    EXPECT_EQ(b.stats.ranks, 3);
+    EXPECT_EQ(b.stats.rank_seconds.size(), 3u);
+    EXPECT_GT(b.stats.path_simulations, 0);
+    nlohmann::json ja = PlannerToJson(assembly, a, "s"), jb = PlannerToJson(assembly, b, "s");
+    for (nlohmann::json* j : {&ja, &jb})
+      for (const char* k : {"time", "ranks", "rank_time", "communication_time"})
+        (*j)["stats"].erase(k);
+    EXPECT_EQ(ja.dump(), jb.dump()) << "--max " << max;
+    // Every task had a positive cost, and simulated edges cost more than
+    // node checks.
+    ASSERT_FALSE(executor.costs.empty());
+    EXPECT_GT(*std::min_element(executor.costs.begin(), executor.costs.end()), 0);
+    EXPECT_GT(*std::max_element(executor.costs.begin(), executor.costs.end()),
+              *std::min_element(executor.costs.begin(), executor.costs.end()));
+  }
+}
+
 }  // namespace
 }  // namespace cairn

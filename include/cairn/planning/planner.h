@@ -60,6 +60,33 @@ enum class SupportChoice { kFull, kNone, kBoth };
 
 struct PlannerStats;
 
+/// Where the planner's independent work runs: the node checks of a level and
+/// the evaluations of a batch of edges (each task is a pure function of the
+/// graph so far). By default, this process's threads; a distributed executor
+/// (the CLI's MPI one, src/cli/mpi.h) runs the same search on every process
+/// and spreads each batch's tasks over the processes. The planner encodes a
+/// task's result as bytes and decodes every task's result in index order, so
+/// every process continues with the same graph and the result does not
+/// depend on where a task ran.
+class PlanExecutor {
+ public:
+  virtual ~PlanExecutor() = default;
+  /// The processes the work is spread over (1: this one).
+  virtual int processes() const = 0;
+  /// Runs task(i) for the i this process is given (of [0, cost.size())), on
+  /// up to `threads` threads, and returns every task's result, in index
+  /// order, on every process. `cost[i]` estimates task i's work (arbitrary
+  /// units): the tasks are balanced by it, not by their count. Every process
+  /// calls Map with the same costs; a task that throws makes Map throw on
+  /// every process.
+  virtual std::vector<std::string> Map(const std::vector<double>& cost, int threads,
+                                       const std::function<std::string(int)>& task) = 0;
+  /// After the search, on every process: each process's seconds in tasks
+  /// (`work`) and in exchanging results, waiting for the others included
+  /// (`communication`), one entry per process.
+  virtual void Times(std::vector<double>& work, std::vector<double>& communication) = 0;
+};
+
 /// Options of PlanDisassembly.
 struct PlannerOptions {
   /// Stop after this many stable sequences (best-first search); 0: enumerate
@@ -88,6 +115,13 @@ struct PlannerOptions {
   /// Called on the calling thread after each batch of node checks and of
   /// edge evaluations, with the statistics so far (the CLI's progress line).
   std::function<void(const PlannerStats&)> on_progress;
+  /// Called often, on any worker thread (before each node check, at every
+  /// time step of a simulated path): it may throw to abandon the search (a
+  /// cooperative deadline: `cairn batch --job-timeout`). Empty: none.
+  std::function<void()> checkpoint;
+  /// Where node checks and edge evaluations run; null: this process's
+  /// `threads`. Not owned.
+  PlanExecutor* executor = nullptr;
 };
 
 /// One candidate path of an edge, as checked.
@@ -151,7 +185,10 @@ struct PlannerStats {
   int memo_hits = 0;                ///< node results reused
   double seconds = 0;               ///< wall clock
   int threads = 1;
-  double sequences_total = 0;  ///< with full enumeration: how many stable sequences exist
+  double sequences_total = 0;        ///< with full enumeration: how many stable sequences exist
+  int ranks = 1;                     ///< processes the work was spread over (PlanExecutor)
+  std::vector<double> rank_seconds;  ///< per process: seconds in node checks and edges
+  std::vector<double> communication_seconds;  ///< per process: seconds exchanging and waiting
 };
 
 /// Everything PlanDisassembly found.
