@@ -2,6 +2,7 @@
 // the parts that can be taken out along its directions.
 #include "cli/blocking_command.h"
 
+#include <cmath>
 #include <ostream>
 
 #include "cairn/core/error.h"
@@ -12,14 +13,35 @@
 
 namespace cairn::cli {
 
+namespace {
+
+// --direction: 3 finite numbers, not all zero (in 2-D, z = 0).
+Vector3 DirectionFlag(const std::vector<double>& xyz, const Assembly& assembly) {
+  if (xyz.size() != 3)
+    throw InputError("", "--direction",
+                     "must have 3 numbers X,Y,Z, not " + std::to_string(xyz.size()));
+  const Vector3 d(xyz[0], xyz[1], xyz[2]);
+  if (!d.allFinite()) throw InputError("", "--direction", "must have finite components");
+  if (!assembly.is_3d() && d.z() != 0)
+    throw InputError("", "--direction", "must have Z = 0 in a 2-D scene");
+  if (!(d.norm() > 0)) throw InputError("", "--direction", "must not be the zero vector");
+  return d;
+}
+
+}  // namespace
+
 int RunBlocking(const BlockingArgs& args, std::ostream& out, std::ostream& err) {
   return RunGuarded(err, [&]() -> int {
-    const Assembly assembly = LoadModel(args.scene, args.model).assembly;
+    const Assembly assembly = LoadModel(args.scene, args.model, &err).assembly;
     ReportOptions report;
     report.scene_file = args.scene;
     // Parts taken away first, by name, as `cairn check --without` does.
     const Configuration config = WithoutParts(assembly, args.without, args.scene, report.without);
-    const Ndbg ndbg = ComputeNdbg(assembly, config);
+    // One direction (the classic ±x, ±y, ±z questions), or every cell.
+    const Ndbg ndbg =
+        args.direction.empty()
+            ? ComputeNdbg(assembly, config)
+            : ComputeBlockingAt(assembly, config, DirectionFlag(args.direction, assembly));
     if (args.json)
       out << NdbgToJson(assembly, ndbg, report).dump(2) << '\n';
     else

@@ -27,7 +27,7 @@ namespace cairn::cli {
 
 int RunCheck(const CheckArgs& args, std::ostream& out, std::ostream& err) {
   return RunGuarded(err, [&]() -> int {
-    const Assembly assembly = LoadModel(args.scene, args.model).assembly;
+    const Assembly assembly = LoadModel(args.scene, args.model, &err).assembly;
     ReportOptions report;
     report.scene_file = args.scene;
     report.normalize_part = ResolveNormalize(assembly, args.normalize, args.scene);

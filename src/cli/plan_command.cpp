@@ -34,7 +34,7 @@ std::string Numbered(const std::string& stem, size_t k, const std::string& suffi
 
 int RunPlan(const PlanArgs& args, std::ostream& out, std::ostream& err) {
   return RunGuarded(err, [&]() -> int {
-    const Model model = LoadModel(args.scene, args.model);
+    const Model model = LoadModel(args.scene, args.model, &err);
     const Assembly& assembly = model.assembly;
     RefuseGivenInterfaces(assembly, args.scene,
                           "parts cannot be moved, so no removal can be planned");
@@ -45,6 +45,11 @@ int RunPlan(const PlanArgs& args, std::ostream& out, std::ostream& err) {
     options.dt = args.dt;
     options.speed = args.speed;
     options.allow_fixtures = args.allow_fixtures;
+    if (args.directions == "axes") {
+      // The classic six (four in 2-D) instead of the NDBG's cells.
+      for (int k = 0; k < assembly.dimension(); ++k)
+        for (const double sign : {1.0, -1.0}) options.directions.push_back(sign * Vector3::Unit(k));
+    }
     options.support = args.support == "none"   ? SupportChoice::kNone
                       : args.support == "both" ? SupportChoice::kBoth
                                                : SupportChoice::kFull;

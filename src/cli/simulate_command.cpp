@@ -29,7 +29,7 @@ namespace cairn::cli {
 int RunSimulate(const SimulateArgs& args, std::ostream& out, std::ostream& err) {
   return RunGuarded(err, [&]() -> int {
     // The definition too: a fixel suggestion adds fixtures to it.
-    const Model model = LoadModel(args.scene, args.model);
+    const Model model = LoadModel(args.scene, args.model, &err);
     const Assembly& assembly = model.assembly;
     RefuseGivenInterfaces(assembly, args.scene,
                           "parts cannot be moved along a plan (check it, with --without for "
