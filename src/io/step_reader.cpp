@@ -65,9 +65,10 @@ namespace cairn {
 
 namespace {
 
-// The coplanarity tolerances of the merge of tessellated triangles, as
-// ReadMesh's (MeshReadOptions): normals within 1e-5 rad, vertices within
-// ToleranceFactors::length × the part's size of the region's plane.
+// The coplanarity tolerances of the merge of tessellated triangles: normals
+// within 1e-5 rad, as ReadMesh's (MeshReadOptions); vertices within the
+// model's length tolerance of the region's plane (MergeTolerance), with which
+// Polyhedron::Check will judge the faces.
 constexpr double kMergeAngleTol = 1e-5;
 // Welding: positions closer than this fraction of the part's size are one
 // vertex (BRepMesh gives the faces of a shared edge the same nodes; this only
@@ -280,18 +281,23 @@ class Welder {
   std::map<std::array<long long, 3>, std::vector<int>> grid_;
 };
 
-// A planar face bounded by straight edges, without holes: taken exactly.
-bool IsExactPlanar(const TopoDS_Face& face) {
+// A planar face bounded by straight edges: its triangles are exact (no
+// chordal error).
+bool IsPlanarStraight(const TopoDS_Face& face) {
   if (BRepAdaptor_Surface(face).GetType() != GeomAbs_Plane) return false;
-  int wires = 0;
-  for (TopExp_Explorer w(face, TopAbs_WIRE); w.More(); w.Next()) ++wires;
-  if (wires != 1) return false;
   for (TopExp_Explorer e(face, TopAbs_EDGE); e.More(); e.Next()) {
     const TopoDS_Edge& edge = TopoDS::Edge(e.Current());
     if (BRep_Tool::Degenerated(edge) || !BRep_Tool::IsGeometric(edge)) return false;
     if (BRepAdaptor_Curve(edge).GetType() != GeomAbs_Line) return false;
   }
   return true;
+}
+
+// ... and without holes: one polygon, its outer wire.
+bool IsExactPlanar(const TopoDS_Face& face) {
+  int wires = 0;
+  for (TopExp_Explorer w(face, TopAbs_WIRE); w.More(); w.Next()) ++wires;
+  return wires == 1 && IsPlanarStraight(face);
 }
 
 // The outward unit normal of a planar face (the plane's normal, reversed
@@ -343,7 +349,7 @@ std::vector<Vector3> ExactPolygon(const TopoDS_Face& face, const Handle(Poly_Tri
 // 6. The polyhedron of one solid (placed, in metres), tessellated to
 // `deflection` (the file's unit).
 PolyhedronDef ToPolyhedron(const TopoDS_Solid& solid, double deflection, double unit, double size_m,
-                           const std::string& path, StepPartReport& report) {
+                           double merge_tol, const std::string& path, StepPartReport& report) {
   const BRepMesh_IncrementalMesh mesher(solid, deflection, false, kMeshAngularDeflection, false);
   if (!mesher.IsDone())
     throw InputError(path, "", "part '" + report.name + "' cannot be tessellated");
@@ -370,7 +376,8 @@ PolyhedronDef ToPolyhedron(const TopoDS_Solid& solid, double deflection, double 
       ++report.exact_faces;
       continue;
     }
-    // Tessellated: the face's triangles, turned outward for a reversed face.
+    // Tessellated: the face's triangles, turned outward for a reversed face
+    // (exact still for a planar face with holes and straight edges).
     const gp_Trsf to_world = tri_loc.Transformation();
     std::vector<int> index(static_cast<size_t>(tri->NbNodes()) + 1);
     for (int k = 1; k <= tri->NbNodes(); ++k)
@@ -382,15 +389,17 @@ PolyhedronDef ToPolyhedron(const TopoDS_Solid& solid, double deflection, double 
       if (reversed) std::swap(b, c);
       triangles.push_back({index[a], index[b], index[c]});
     }
-    ++report.tessellated_faces;
+    if (IsPlanarStraight(face))
+      ++report.exact_faces;
+    else
+      ++report.tessellated_faces;
   }
   report.approximated = report.tessellated_faces > 0;
   PolyhedronDef def;
   if (triangles.empty()) {
     def.vertices = welder.vertices();
   } else {
-    def = MergeCoplanarTriangles(welder.vertices(), triangles, kMergeAngleTol,
-                                 ToleranceFactors{}.length * size_m);
+    def = MergeCoplanarTriangles(welder.vertices(), triangles, kMergeAngleTol, merge_tol);
   }
   for (std::vector<int>& polygon : polygons) def.faces.push_back(std::move(polygon));
   return def;
@@ -446,14 +455,19 @@ StepModel ReadStepModel(const std::string& path, const StepReadOptions& options)
     GProp_GProps props;
     BRepGProp::VolumeProperties(solids[k], props);
     report.exact_volume = std::abs(props.Mass()) * unit * unit * unit;
+    GProp_GProps surface;
+    BRepGProp::SurfaceProperties(solids[k], surface);
+    report.exact_area = surface.Mass() * unit * unit;
     PartDef part;
     part.name = names[k];
-    part.polyhedron = ToPolyhedron(solids[k], deflection, unit, diagonals[k] * unit, path, report);
-    if (!Polyhedron::Check(*part.polyhedron, ToleranceFactors{}.length * diagonals[k] * unit))
-      report.volume =
-          Polyhedron::Create(*part.polyhedron, ToleranceFactors{}.length * diagonals[k] * unit)
-              .mass()
-              .volume;
+    // The length tolerance the model will have: the scene default, or for
+    // tessellated parts kStepLengthToleranceOfChord × the chord (below).
+    const double tol = std::max(ToleranceFactors{}.length * diagonals[k] * unit,
+                                kStepLengthToleranceOfChord * deflection * unit);
+    part.polyhedron =
+        ToPolyhedron(solids[k], deflection, unit, diagonals[k] * unit, tol, path, report);
+    if (!Polyhedron::Check(*part.polyhedron, tol))
+      report.volume = Polyhedron::Create(*part.polyhedron, tol).mass().volume;
     model.def.parts.push_back(std::move(part));
     model.parts.push_back(report);
   }

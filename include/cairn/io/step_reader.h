@@ -54,11 +54,12 @@ struct StepReadOptions {
 /// What reading did to one part.
 struct StepPartReport {
   std::string name;           ///< the part's name in the model
-  bool approximated = false;  ///< some face was tessellated (curved surface or curved edge)
-  int exact_faces = 0;        ///< planar faces taken exactly
-  int tessellated_faces = 0;  ///< faces tessellated
+  bool approximated = false;  ///< some face has a curved surface or edge (tessellated)
+  int exact_faces = 0;        ///< planar faces with straight edges (exact)
+  int tessellated_faces = 0;  ///< faces with a curved surface or edge (approximated)
   double mesh_tolerance = 0;  ///< m, the chordal tolerance used
   double exact_volume = 0;    ///< m³, of the exact solid (OCCT's BRepGProp)
+  double exact_area = 0;      ///< m², of the exact solid's surface (BRepGProp)
   double volume = 0;          ///< m³, of the polyhedron the model holds
 };
 
