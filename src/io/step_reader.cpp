@@ -53,7 +53,6 @@
 #include <filesystem>
 #include <map>
 #include <mutex>
-#include <unordered_map>
 
 #include "cairn/core/error.h"
 #include "cairn/core/format.h"

@@ -416,16 +416,19 @@ bool AnyIntervalOverlaps(std::vector<double>& events, double tol, const OverlapF
   return false;
 }
 
-// The times t at which the bounding box of a + t d overlaps b's by more than
-// tol on every axis, as [t_lo, t_hi] (empty: t_lo > t_hi).
+// The times t at which the bounding box of a + t d meets b's (grown by tol,
+// for roundoff), as [t_lo, t_hi] (empty: t_lo > t_hi). Every overlap
+// FindPolyhedronOverlap reports is at a point of both solids (a sample point
+// of one inside the other, or an edge of one through a face of the other),
+// so in both boxes: outside the window there is none.
 std::pair<double, double> BoxWindow(const Shape& a, const Shape& b, const Vector3& d, double tol) {
   double t_lo = -std::numeric_limits<double>::infinity();
   double t_hi = std::numeric_limits<double>::infinity();
   for (int k = 0; k < 3; ++k) {
-    // a.lo + t d < b.hi − tol and a.hi + t d > b.lo + tol.
-    const double upper = b.hi[k] - tol - a.lo[k], lower = b.lo[k] + tol - a.hi[k];
+    // a.lo + t d ≤ b.hi + tol and a.hi + t d ≥ b.lo − tol.
+    const double upper = b.hi[k] + tol - a.lo[k], lower = b.lo[k] - tol - a.hi[k];
     if (d[k] == 0) {
-      if (!(upper > 0 && lower < 0)) return {1, 0};
+      if (!(upper >= 0 && lower <= 0)) return {1, 0};
       continue;
     }
     double t0 = lower / d[k], t1 = upper / d[k];
