@@ -685,15 +685,42 @@ std::optional<Vector3> EdgeThroughFace(const Polyhedron& a, const Eigen::Isometr
   std::vector<Vector3> xa, xb;
   for (const Vector3& v : a.vertices()) xa.push_back(X_WA * v);
   for (const Vector3& v : b.vertices()) xb.push_back(X_WB * v);
+  // b's faces in the world: normals, plane offsets and boxes (grown by tol).
+  // The crossing point lies on the face, so an edge whose box misses a face's
+  // box does not cross it, and one that misses b's box crosses none.
+  const int nf = static_cast<int>(b.faces().size());
+  std::vector<Vector3> normal(nf), face_lo(nf), face_hi(nf);
+  std::vector<double> offset(nf);
+  Vector3 b_lo = xb[0], b_hi = xb[0];
+  for (int f = 0; f < nf; ++f) {
+    normal[f] = X_WB.linear() * b.face_normals()[f];
+    offset[f] = normal[f].dot(xb[b.faces()[f][0]]);
+    face_lo[f] = face_hi[f] = xb[b.faces()[f][0]];
+    for (const int v : b.faces()[f]) {
+      face_lo[f] = face_lo[f].cwiseMin(xb[v]);
+      face_hi[f] = face_hi[f].cwiseMax(xb[v]);
+    }
+    face_lo[f].array() -= tol;
+    face_hi[f].array() += tol;
+    b_lo = b_lo.cwiseMin(face_lo[f]);
+    b_hi = b_hi.cwiseMax(face_hi[f]);
+  }
+  const auto boxes_apart = [](const Vector3& lo1, const Vector3& hi1, const Vector3& lo2,
+                              const Vector3& hi2) {
+    return (lo1.array() > hi2.array()).any() || (lo2.array() > hi1.array()).any();
+  };
   for (const auto& face : a.faces()) {
     const int m = static_cast<int>(face.size());
     for (int i = 0; i < m; ++i) {
       const Vector3& p = xa[face[i]];
       const Vector3& q = xa[face[(i + 1) % m]];
       if (face[i] > face[(i + 1) % m]) continue;  // each edge once
-      for (int f = 0; f < static_cast<int>(b.faces().size()); ++f) {
-        const Vector3 n = X_WB.linear() * b.face_normals()[f];
-        const double c = n.dot(xb[b.faces()[f][0]]);
+      const Vector3 e_lo = p.cwiseMin(q), e_hi = p.cwiseMax(q);
+      if (boxes_apart(e_lo, e_hi, b_lo, b_hi)) continue;
+      for (int f = 0; f < nf; ++f) {
+        if (boxes_apart(e_lo, e_hi, face_lo[f], face_hi[f])) continue;
+        const Vector3& n = normal[f];
+        const double c = offset[f];
         const double dp = n.dot(p) - c, dq = n.dot(q) - c;
         if (!((dp > tol && dq < -tol) || (dp < -tol && dq > tol))) continue;
         const Vector3 hit = p + (q - p) * (dp / (dp - dq));

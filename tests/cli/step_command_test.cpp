@@ -178,22 +178,22 @@ TEST(StepCommand, BourjaultPenPlanFindsDisassemblySequences) {
   ASSERT_FALSE(doc["sequences"].empty()) << r.out.substr(0, 2000);
 }
 
-// ASAP's beams on their posts (README): the top beams leave straight up; each
-// post is held by the beam on it; the base by everything on it.
+// ASAP's beams on their posts (README): every mesh loads; a top beam leaves
+// straight up, and the post under it is held by it. (Beam 0 and its post 2
+// only: the full assembly, whose base beam has 24 606 triangles, takes 35 s
+// in Release and many minutes under the sanitizers; it gives 0, 1 leaving,
+// 2 by 0, 3 by 1 and 6 by 0, 1, 2, 3, docs/step-format.md.)
 TEST(StepCommand, AsapBeamAssemblyBlocking) {
   const std::string shared = testing::SharedDir();
   if (shared.empty()) GTEST_SKIP() << "shared/datasets not found: skipping the ASAP beam assembly";
   // The meshes interpenetrate by up to ~1e-4 (inches): that is the tolerance.
   const auto r = Cairn("blocking " + shared +
                        "/datasets/asap_beam_assembly --format asap --tolerance 1e-4 "
-                       "--direction 0,0,1 --json");
+                       "--without 1,3,6 --direction 0,0,1 --json");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const json cell = json::parse(r.out)["cells"][0];
-  EXPECT_EQ(cell["removable"], json::array({"0", "1"}));
-  const Arcs arcs = InfinityArcs(r.out);
-  EXPECT_TRUE(arcs.count({"2", "0"}));
-  EXPECT_TRUE(arcs.count({"3", "1"}));
-  EXPECT_TRUE(arcs.count({"6", "2"}));
+  EXPECT_EQ(cell["removable"], json::array({"0"}));
+  EXPECT_EQ(InfinityArcs(r.out), (Arcs{{"2", "0"}}));
 }
 
 }  // namespace
