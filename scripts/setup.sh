@@ -28,6 +28,10 @@ packages=(
   coinor-libclp-dev      # the static-equilibrium linear program
   libassimp-dev          # mesh parts (OBJ, STL)
   libboost-dev           # Boost.Geometry: clipping coplanar faces of 3-D contacts
+  # STEP assemblies (--format step, src/io/step_reader.cpp): OpenCASCADE 7.6's
+  # reader and XCAF document, B-rep tools and mesher; TBB, which it links.
+  libocct-foundation-dev libocct-modeling-data-dev libocct-modeling-algorithms-dev
+  libocct-ocaf-dev libocct-data-exchange-dev libtbb-dev
   libgtest-dev libgmock-dev  # tests
   # `cairn batch` and `cairn plan` across MPI ranks (CAIRN_MPI, docs/batch.md):
   # Debian's OpenMPI, its headers and mpirun.

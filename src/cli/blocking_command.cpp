@@ -14,19 +14,35 @@ namespace cairn::cli {
 
 namespace {
 
+// --direction: 3 finite numbers, not all zero (in 2-D, z = 0).
+Vector3 DirectionFlag(const std::vector<double>& xyz, const Assembly& assembly) {
+  if (xyz.size() != 3)
+    throw InputError("", "--direction",
+                     "must have 3 numbers X,Y,Z, not " + std::to_string(xyz.size()));
+  const Vector3 d(xyz[0], xyz[1], xyz[2]);
+  if (!d.allFinite()) throw InputError("", "--direction", "must have finite components");
+  if (!assembly.is_3d() && d.z() != 0)
+    throw InputError("", "--direction", "must have Z = 0 in a 2-D scene");
+  if (!(d.norm() > 0)) throw InputError("", "--direction", "must not be the zero vector");
+  return d;
+}
+
 struct Computed {
   Assembly assembly;
   ReportOptions report;
   Ndbg ndbg;
 };
 
-Computed Compute(const BlockingArgs& args) {
-  Assembly assembly = LoadModel(args.scene, args.model).assembly;
+Computed Compute(const BlockingArgs& args, std::ostream* notes = nullptr) {
+  Assembly assembly = LoadModel(args.scene, args.model, notes).assembly;
   ReportOptions report;
   report.scene_file = args.scene;
   // Parts taken away first, by name, as `cairn check --without` does.
   const Configuration config = WithoutParts(assembly, args.without, args.scene, report.without);
-  Ndbg ndbg = ComputeNdbg(assembly, config);
+  // One direction (the classic ±x, ±y, ±z questions), or every cell.
+  Ndbg ndbg = args.direction.empty()
+                  ? ComputeNdbg(assembly, config)
+                  : ComputeBlockingAt(assembly, config, DirectionFlag(args.direction, assembly));
   return {std::move(assembly), std::move(report), std::move(ndbg)};
 }
 
@@ -39,12 +55,11 @@ CommandDocument BlockingDocument(const BlockingArgs& args) {
 
 int RunBlocking(const BlockingArgs& args, std::ostream& out, std::ostream& err) {
   return RunGuarded(err, [&]() -> int {
-    if (args.json) {
-      out << BlockingDocument(args).json.dump(2) << '\n';
-      return kExitStable;
-    }
-    const Computed c = Compute(args);
-    out << NdbgToText(c.assembly, c.ndbg, c.report);
+    const Computed c = Compute(args, &err);
+    if (args.json)
+      out << NdbgToJson(c.assembly, c.ndbg, c.report).dump(2) << '\n';
+    else
+      out << NdbgToText(c.assembly, c.ndbg, c.report);
     return kExitStable;
   });
 }

@@ -14,6 +14,7 @@ struct BlockingArgs {
   std::string scene;
   bool json = false;
   std::vector<std::string> without;  // part names
+  std::vector<double> direction;     // --direction X,Y,Z: one direction only; empty: the NDBG
   ModelArgs model;
 };
 

@@ -37,8 +37,8 @@ struct Checked {
   int exit() const { return result.stable() ? kExitStable : kExitUnstable; }
 };
 
-Checked Check(const CheckArgs& args, const Checkpoint& checkpoint) {
-  Assembly assembly = LoadModel(args.scene, args.model).assembly;
+Checked Check(const CheckArgs& args, const Checkpoint& checkpoint, std::ostream* notes = nullptr) {
+  Assembly assembly = LoadModel(args.scene, args.model, notes).assembly;
   ReportOptions report;
   report.scene_file = args.scene;
   report.normalize_part = ResolveNormalize(assembly, args.normalize, args.scene);
@@ -63,7 +63,7 @@ CommandDocument CheckDocument(const CheckArgs& args, const Checkpoint& checkpoin
 
 int RunCheck(const CheckArgs& args, std::ostream& out, std::ostream& err) {
   return RunGuarded(err, [&]() -> int {
-    const Checked c = Check(args, {});
+    const Checked c = Check(args, {}, &err);
     // Everything is computed before anything is written.
     const nlohmann::json doc = CheckJson(c);
     OutputFiles files;

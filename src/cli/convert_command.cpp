@@ -28,7 +28,7 @@ int RunConvert(const ConvertArgs& args, std::ostream& out, std::ostream& err) {
   return RunGuarded(err, [&]() -> int {
     // The model is validated (Assembly::Create) before anything is written,
     // so a scene that convert writes is one `cairn check` reads.
-    const Model m = LoadModel(args.input, args.model);
+    const Model m = LoadModel(args.input, args.model, &err);
     const std::string text = WriteSceneJson(m.def);
     WriteAtomically(args.output, text, "");
     int fixed = 0;

@@ -47,15 +47,25 @@ const CLI::Validator kNotEmpty(
 // changes in its model: the same on check, simulate and convert.
 void AddModelOptions(CLI::App* cmd, cairn::cli::ModelArgs& model) {
   cmd->add_option("--format", model.format,
-                  "Input format: scene (Cairn scene format 1, default) or compas (a COMPAS "
-                  "assembly of compas_assembly or compas_cra)")
-      ->check(CLI::IsMember({"scene", "compas"}));
+                  "Input format: scene (Cairn scene format 1, default), compas (a COMPAS "
+                  "assembly of compas_assembly or compas_cra), step (a STEP assembly) or asap (an "
+                  "ASAP folder: meshes and config.json)")
+      ->check(CLI::IsMember({"scene", "compas", "step", "asap"}));
   cmd->add_option("--friction", model.friction,
                   "Coulomb friction coefficient of every contact (required with --format compas; "
                   "replaces the scene's default friction with --format scene)");
-  cmd->add_option("--supports", model.supports,
+  cmd->add_option("--supports,--fixed", model.supports,
                   "Also fix these parts (COMPAS blocks: node keys), comma-separated")
       ->delimiter(',');
+  // STEP and ASAP input (docs/step-format.md).
+  cmd->add_option("--mesh-tolerance", model.mesh_tolerance,
+                  "STEP: chordal tolerance of curved faces, metres (default: 1/1000 of the "
+                  "smallest part's bounding-box diagonal)")
+      ->check(kPositive);
+  cmd->add_option("--sidecar", model.sidecar,
+                  "STEP, ASAP: a JSON file with what the file does not carry (friction, "
+                  "densities, masses, fixed parts)")
+      ->check(kNotEmpty);
   cmd->add_option("--tolerance", model.tolerance,
                   "Length tolerance: contact distance, allowed overlap, planarity (default: the "
                   "scene's, or a fraction of the size of the assembly)");
@@ -142,6 +152,10 @@ CLI::App* AddBlocking(CLI::App& app, cairn::cli::BlockingArgs& blocking) {
       app, "blocking", "Which parts can be taken out, and along which directions? (the NDBG)",
       blocking.scene, blocking.json);
   AddWithout(cmd, blocking.without, "Compute it with these parts taken away (comma-separated)");
+  cmd->add_option("--direction", blocking.direction,
+                  "Only the blocking graphs at this direction X,Y,Z (one cell), e.g. 1,0,0")
+      ->delimiter(',')
+      ->expected(1, 3);
   AddModelOptions(cmd, blocking.model);
   return cmd;
 }
@@ -179,6 +193,11 @@ CLI::App* AddPlan(CLI::App& app, cairn::cli::PlanArgs& plan) {
   cmd->add_option("--allow-fixtures", plan.allow_fixtures,
                   "When nothing is stable, allow up to N fixels (fewest first)")
       ->check(CLI::Range(0, 20));
+  cmd->add_option(
+         "--directions", plan.directions,
+         "Straight removal directions: ndbg (every cell of the NDBG, default) or axes "
+         "(+-x, +-y, +-z only: for tessellated CAD models, whose NDBG has a cell per facet)")
+      ->check(CLI::IsMember({"ndbg", "axes"}));
   AddModelOptions(cmd, plan.model);
   return cmd;
 }

@@ -6,12 +6,16 @@
 #include <filesystem>
 #include <fstream>
 #include <optional>
+#include <ostream>
 #include <sstream>
 
 #include "cairn/core/error.h"
 #include "cairn/core/tolerances.h"
+#include "cairn/io/asap_reader.h"
 #include "cairn/io/compas_reader.h"
 #include "cairn/io/scene_reader.h"
+#include "cairn/io/sidecar_reader.h"
+#include "cairn/io/step_reader.h"
 #include "cli/output_files.h"
 
 namespace cairn::cli {
@@ -36,6 +40,15 @@ void CheckModelFlags(const ModelArgs& args) {
   if (args.tolerance && !(std::isfinite(*args.tolerance) && *args.tolerance > 0))
     throw InputError("", "--tolerance",
                      "must be a positive length (got " + FormatNumber(*args.tolerance) + ")");
+  if (args.mesh_tolerance && !(std::isfinite(*args.mesh_tolerance) && *args.mesh_tolerance > 0))
+    throw InputError(
+        "", "--mesh-tolerance",
+        "must be a positive length in metres (got " + FormatNumber(*args.mesh_tolerance) + ")");
+  if (args.mesh_tolerance && args.format != "step")
+    throw InputError("", "--mesh-tolerance", "applies to --format step only");
+  if (!args.sidecar.empty() && args.format != "step" && args.format != "asap")
+    throw InputError("", "--sidecar",
+                     "applies to --format step and asap (a scene file says it all itself)");
   for (double g : args.gravity) {
     if (!std::isfinite(g))
       throw InputError("", "--gravity",
@@ -78,9 +91,44 @@ void RequireCompasFriction(const ModelArgs& args) {
                      "coefficient; give 0 for frictionless contacts)");
 }
 
+// One line per part a STEP reading approximated: the chordal tolerance of
+// its tessellation and what it did to the volume.
+void NoteApproximations(const std::string& file, const StepModel& step, std::ostream& notes) {
+  for (const StepPartReport& r : step.parts) {
+    if (!r.approximated) continue;
+    const double change =
+        r.exact_volume > 0 ? 100.0 * (r.volume - r.exact_volume) / r.exact_volume : 0.0;
+    char percent[32];
+    std::snprintf(percent, sizeof percent, "%+.3g%%", change);
+    notes << "cairn: note: " << file << ": part '" << EscapedName(r.name)
+          << "' approximated: " << r.tessellated_faces << " face"
+          << (r.tessellated_faces == 1 ? "" : "s")
+          << " with curved surfaces or edges tessellated within " << FormatNumber(r.mesh_tolerance)
+          << " m (chordal), " << r.exact_faces << " planar face" << (r.exact_faces == 1 ? "" : "s")
+          << " exact; volume " << FormatNumber(r.volume) << " m^3 against "
+          << FormatNumber(r.exact_volume) << " m^3 exact (" << percent << ")\n";
+  }
+}
+
+// The definition of a STEP assembly or an ASAP folder, with its sidecar.
+AssemblyDef ReadCadDef(const std::string& file, const ModelArgs& args, std::ostream* notes) {
+  AssemblyDef def;
+  if (args.format == "step") {
+    StepReadOptions options;
+    options.mesh_tolerance = args.mesh_tolerance.value_or(0.0);
+    const StepModel step = ReadStepAssembly(file, options);
+    if (notes) NoteApproximations(file, step, *notes);
+    def = step.def;
+  } else {
+    def = ReadAsapAssembly(file);
+  }
+  if (!args.sidecar.empty()) ApplySidecar(args.sidecar, def);
+  return def;
+}
+
 }  // namespace
 
-Model LoadModel(const std::string& file, const ModelArgs& args) {
+Model LoadModel(const std::string& file, const ModelArgs& args, std::ostream* notes) {
   CheckModelFlags(args);
   if (args.format == "compas") {
     RequireCompasFriction(args);
@@ -92,7 +140,8 @@ Model LoadModel(const std::string& file, const ModelArgs& args) {
                      "`interfaces`)");
   Model m;
   try {
-    m.def = ReadSceneDef(file);
+    m.def = args.format == "step" || args.format == "asap" ? ReadCadDef(file, args, notes)
+                                                           : ReadSceneDef(file);
   } catch (const InputError& e) {
     // A COMPAS file read as a scene misses the version key first: say what
     // to do instead of only what is wrong.

@@ -2,6 +2,7 @@
 // What every command does first: read the model with the command line's
 // changes (docs/cli.md, "Reading the model"); and writing output files whole.
 
+#include <iosfwd>
 #include <optional>
 #include <string>
 #include <vector>
@@ -14,8 +15,16 @@ namespace cairn::cli {
 /// How the input file is read and what the command line changes in its model
 /// (shared by check, simulate and convert; docs/cli.md, "Reading the model").
 struct ModelArgs {
-  /// "scene" (scene format v1, the default) or "compas" (a COMPAS assembly).
+  /// "scene" (scene format v1, the default), "compas" (a COMPAS assembly),
+  /// "step" (a STEP assembly, docs/step-format.md) or "asap" (an ASAP
+  /// assembly folder: meshes and config.json).
   std::string format = "scene";
+  /// --mesh-tolerance (step): the chordal tolerance of curved faces, metres;
+  /// none: the reader's default (StepReadOptions).
+  std::optional<double> mesh_tolerance;
+  /// --sidecar (step, asap): what the file does not carry (friction,
+  /// densities, masses, fixed parts), io/sidecar_reader.h; empty: none.
+  std::string sidecar;
   /// --friction: μ of every contact. Required with compas (the files store
   /// none); with scene it replaces the scene's `friction` (friction pairs keep
   /// theirs).
@@ -42,10 +51,12 @@ struct Model {
   Assembly assembly;
 };
 
-/// Reads `file` in `args.format` and applies --friction, --supports,
-/// --tolerance and --gravity. @throws InputError: of the file (with its JSON
-/// path), or of a flag (the flag as path).
-Model LoadModel(const std::string& file, const ModelArgs& args);
+/// Reads `file` in `args.format` and applies --sidecar, --friction,
+/// --supports, --tolerance and --gravity. `notes`, when given, gets one line
+/// per part the reader approximated (STEP: curved faces tessellated) and by
+/// how much. @throws InputError: of the file (with its JSON path), or of a
+/// flag (the flag as path).
+Model LoadModel(const std::string& file, const ModelArgs& args, std::ostream* notes = nullptr);
 
 /// LoadModel for a COMPAS assembly already parsed (ParseCompasAssembly: the
 /// Python module's `cairn.from_compas` of a dict): the model options applied

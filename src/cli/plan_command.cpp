@@ -44,8 +44,9 @@ struct Planned {
 };
 
 Planned Search(const PlanArgs& args, const Checkpoint& checkpoint, PlanExecutor* executor,
-               const std::function<void(const PlannerStats&)>& on_progress) {
-  Model model = LoadModel(args.scene, args.model);
+               const std::function<void(const PlannerStats&)>& on_progress,
+               std::ostream* notes = nullptr) {
+  Model model = LoadModel(args.scene, args.model, notes);
   const Assembly& assembly = model.assembly;
   RefuseGivenInterfaces(assembly, args.scene,
                         "parts cannot be moved, so no removal can be planned");
@@ -56,6 +57,11 @@ Planned Search(const PlanArgs& args, const Checkpoint& checkpoint, PlanExecutor*
   options.dt = args.dt;
   options.speed = args.speed;
   options.allow_fixtures = args.allow_fixtures;
+  if (args.directions == "axes") {
+    // The classic six (four in 2-D) instead of the NDBG's cells.
+    for (int k = 0; k < assembly.dimension(); ++k)
+      for (const double sign : {1.0, -1.0}) options.directions.push_back(sign * Vector3::Unit(k));
+  }
   options.support = args.support == "none"   ? SupportChoice::kNone
                     : args.support == "both" ? SupportChoice::kBoth
                                              : SupportChoice::kFull;
@@ -84,11 +90,14 @@ int RunPlan(const PlanArgs& args, std::ostream& out, std::ostream& err) {
     // A long search says where it is, on a terminal (rank 0's: the others'
     // standard error is quiet under mpirun).
     Progress progress("cairn plan");
-    const Planned planned = Search(args, {}, MpiPlanExecutor(), [&](const PlannerStats& s) {
-      if (MpiRank() == 0)
-        progress.Show(std::to_string(s.node_checks) + " nodes checked, " +
-                      std::to_string(s.path_simulations) + " paths simulated");
-    });
+    const Planned planned = Search(
+        args, {}, MpiPlanExecutor(),
+        [&](const PlannerStats& s) {
+          if (MpiRank() == 0)
+            progress.Show(std::to_string(s.node_checks) + " nodes checked, " +
+                          std::to_string(s.path_simulations) + " paths simulated");
+        },
+        MpiRank() == 0 ? &err : nullptr);
     progress.Done();
     const Model& model = planned.model;
     const Assembly& assembly = model.assembly;

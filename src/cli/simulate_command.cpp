@@ -65,9 +65,9 @@ struct Simulated {
 // `on_tick` is called at every time step, with the plan (the progress line,
 // a deadline).
 using OnTick = std::function<void(const Plan&, const AnalysisInputs&)>;
-Simulated Simulate(const SimulateArgs& args, const OnTick& on_tick) {
+Simulated Simulate(const SimulateArgs& args, const OnTick& on_tick, std::ostream* notes = nullptr) {
   // The definition too: a fixel suggestion adds fixtures to it.
-  Model model = LoadModel(args.scene, args.model);
+  Model model = LoadModel(args.scene, args.model, notes);
   const Assembly& assembly = model.assembly;
   RefuseGivenInterfaces(assembly, args.scene,
                         "parts cannot be moved along a plan (check it, with --without for "
@@ -128,15 +128,18 @@ int RunSimulate(const SimulateArgs& args, std::ostream& out, std::ostream& err) 
     // time steps computed at the first tick).
     Progress progress("cairn simulate");
     std::vector<long long> ticks;
-    const Simulated s = Simulate(args, [&](const Plan& plan, const AnalysisInputs& in) {
-      if (ticks.empty())
-        for (const PlanStep& step : plan.steps)
-          ticks.push_back(
-              static_cast<long long>(std::ceil(step.Length() / (plan.speed * plan.dt))));
-      progress.Show("step " + std::to_string(in.step + 1) + "/" +
-                    std::to_string(plan.steps.size()) + ", time step " + std::to_string(in.tick) +
-                    "/" + std::to_string(ticks[in.step]));
-    });
+    const Simulated s = Simulate(
+        args,
+        [&](const Plan& plan, const AnalysisInputs& in) {
+          if (ticks.empty())
+            for (const PlanStep& step : plan.steps)
+              ticks.push_back(
+                  static_cast<long long>(std::ceil(step.Length() / (plan.speed * plan.dt))));
+          progress.Show("step " + std::to_string(in.step + 1) + "/" +
+                        std::to_string(plan.steps.size()) + ", time step " +
+                        std::to_string(in.tick) + "/" + std::to_string(ticks[in.step]));
+        },
+        &err);
     progress.Done();
     // Everything is computed before anything is written.
     const nlohmann::json doc = SimulationDocumentJson(s, args);

@@ -8,6 +8,8 @@
 #include <unordered_map>
 #include <utility>
 
+#include "cairn/geometry/polygon.h"
+
 namespace cairn {
 
 namespace {
@@ -48,6 +50,18 @@ std::vector<int> BoundaryLoop(const std::vector<std::array<int, 3>>& triangles,
   }
   if (v != loop.front() || static_cast<int>(loop.size()) != boundary_edges) return {};  // holes
   return loop;
+}
+
+// True when the loop, seen in its plane (normal n), is a simple polygon to
+// within length_tol: a single loop of edges can still touch itself in the
+// plane, where many thin triangles meet at a point (a cone's apex
+// tessellated finely), and Polyhedron::Check would refuse the face.
+bool LoopIsSimple(const std::vector<Vector3>& vertices, const std::vector<int>& loop,
+                  const Vector3& n, double length_tol) {
+  const Vector3 u = n.unitOrthogonal(), v = n.cross(u);
+  Polygon flat;
+  for (const int i : loop) flat.push_back(Vector2(u.dot(vertices[i]), v.dot(vertices[i])));
+  return !FindSelfIntersection(flat, length_tol).has_value();
 }
 
 }  // namespace
@@ -111,6 +125,12 @@ PolyhedronDef MergeCoplanarTriangles(const std::vector<Vector3>& vertices,
     }
     std::vector<int> loop =
         region.size() > 1 ? BoundaryLoop(triangles, region) : std::vector<int>{};
+    if (loop.size() >= 3 && !LoopIsSimple(vertices, loop, n0, length_tol)) {
+      loop.clear();
+      ++st.regions_kept_as_triangles;
+      for (int t : region) out.faces.push_back({triangles[t][0], triangles[t][1], triangles[t][2]});
+      continue;
+    }
     if (loop.size() >= 3) {
       out.faces.push_back(std::move(loop));
     } else {

@@ -62,14 +62,19 @@ Vector3 Centroid(const std::vector<Vector3>& vertices, const std::vector<int>& f
 // Ear clipping of a simple counter-clockwise polygon; returns triangles of
 // local indices, counter-clockwise. An ear's tip must be strictly convex and no
 // other vertex may lie inside or on its triangle, so straight-angle vertices
-// never end up on a diagonal and every triangle has positive area. O(n³),
-// fine for faces of tens of vertices.
-std::vector<Triangle> EarClip(const std::vector<Vector2>& p) {
+// never end up on a diagonal and every triangle has positive area. A tip
+// within `tol` (length) of the line through its neighbours is straight: mesh
+// files print coordinates to 7–9 digits, so a vertex splitting an edge is off
+// its line by far more than roundoff, and clipping it would leave the
+// diagonal through (almost) a vertex of the face. O(n³), fine for faces of
+// tens of vertices.
+std::vector<Triangle> EarClip(const std::vector<Vector2>& p, double tol) {
   std::vector<int> idx(p.size());
   std::iota(idx.begin(), idx.end(), 0);
   double scale = 0;
   for (const Vector2& q : p) scale = std::max(scale, (q - p[0]).norm());
-  const double eps_len = kRelEps * scale;
+  // A vertex within tol of an ear's triangle blocks it, as one inside does.
+  const double eps_len = std::max(kRelEps * scale, tol);
   const double eps_area = kRelEps * scale * scale;
   std::vector<Triangle> out;
   while (idx.size() > 3) {
@@ -87,7 +92,7 @@ std::vector<Triangle> EarClip(const std::vector<Vector2>& p) {
         best_cross = cross;
         most_convex = k;
       }
-      if (cross <= eps_area) continue;
+      if (cross <= std::max(eps_area, tol * (c - a).norm())) continue;
       bool blocked = false;
       for (int j = 0; j < m && !blocked; ++j) {
         if (j == k || j == prev || j == next) continue;
@@ -354,7 +359,7 @@ std::optional<PolyhedronFault> CheckFace(const PolyhedronDef& def, int f, double
                         VertexPair(face[b], face[(b + 1) % m]) + " cross or touch");
   }
   out.normals[f] = n;
-  for (const Triangle& t : EarClip(poly)) {
+  for (const Triangle& t : EarClip(poly, tol)) {
     out.triangles[f].push_back({face[t[0]], face[t[1]], face[t[2]]});
   }
   return std::nullopt;
@@ -628,6 +633,24 @@ double SignedDistance(const Polyhedron& poly, const Eigen::Isometry3d& X_WB, con
 
 namespace {
 
+// SignedDistance(poly, p) < −tol for a point p in poly's own frame, cheapest
+// test first: outside the bounding box grown by tol it cannot be; then the
+// winding number (inside at all?); only then the distance to the surface,
+// stopping at the first triangle within tol.
+bool DeeperInside(const Polyhedron& poly, const Vector3& lo, const Vector3& hi, const Vector3& p,
+                  double tol) {
+  if ((p.array() < lo.array() - tol).any() || (p.array() > hi.array() + tol).any()) return false;
+  const auto& x = poly.vertices();
+  double winding = 0;
+  for (const auto& face : poly.face_triangles())
+    for (const auto& t : face) winding += SolidAngle(x[t[0]] - p, x[t[1]] - p, x[t[2]] - p);
+  if (!(winding > 2 * M_PI)) return false;
+  for (const auto& face : poly.face_triangles())
+    for (const auto& t : face)
+      if ((ClosestPointOnTriangle(p, x[t[0]], x[t[1]], x[t[2]]) - p).norm() <= tol) return false;
+  return true;
+}
+
 // A point of `a` deeper than tol inside `b`, among a's sample points.
 std::optional<Vector3> SampleInside(const Polyhedron& a, const Eigen::Isometry3d& X_WA,
                                     const Polyhedron& b, const Eigen::Isometry3d& X_WB,
@@ -645,10 +668,12 @@ std::optional<Vector3> SampleInside(const Polyhedron& a, const Eigen::Isometry3d
       samples.push_back((x[t[0]] + x[t[1]] + x[t[2]]) / 3);
       for (int k = 0; k < 3; ++k) samples.push_back((x[t[k]] + x[t[(k + 1) % 3]]) / 2);
     }
-  for (const Vector3& s : samples) {
-    const Vector3 s_W = X_WA * s;
-    if (SignedDistance(b, X_WB, s_W) < -tol) return s_W;
-  }
+  // b's bounding box in its own frame, where the samples are tested.
+  Vector3 lo = b.vertices()[0], hi = lo;
+  for (const Vector3& v : b.vertices()) lo = lo.cwiseMin(v), hi = hi.cwiseMax(v);
+  const Eigen::Isometry3d X_BA = X_WB.inverse() * X_WA;
+  for (const Vector3& s : samples)
+    if (DeeperInside(b, lo, hi, X_BA * s, tol)) return X_WA * s;
   return std::nullopt;
 }
 
@@ -660,15 +685,42 @@ std::optional<Vector3> EdgeThroughFace(const Polyhedron& a, const Eigen::Isometr
   std::vector<Vector3> xa, xb;
   for (const Vector3& v : a.vertices()) xa.push_back(X_WA * v);
   for (const Vector3& v : b.vertices()) xb.push_back(X_WB * v);
+  // b's faces in the world: normals, plane offsets and boxes (grown by tol).
+  // The crossing point lies on the face, so an edge whose box misses a face's
+  // box does not cross it, and one that misses b's box crosses none.
+  const int nf = static_cast<int>(b.faces().size());
+  std::vector<Vector3> normal(nf), face_lo(nf), face_hi(nf);
+  std::vector<double> offset(nf);
+  Vector3 b_lo = xb[0], b_hi = xb[0];
+  for (int f = 0; f < nf; ++f) {
+    normal[f] = X_WB.linear() * b.face_normals()[f];
+    offset[f] = normal[f].dot(xb[b.faces()[f][0]]);
+    face_lo[f] = face_hi[f] = xb[b.faces()[f][0]];
+    for (const int v : b.faces()[f]) {
+      face_lo[f] = face_lo[f].cwiseMin(xb[v]);
+      face_hi[f] = face_hi[f].cwiseMax(xb[v]);
+    }
+    face_lo[f].array() -= tol;
+    face_hi[f].array() += tol;
+    b_lo = b_lo.cwiseMin(face_lo[f]);
+    b_hi = b_hi.cwiseMax(face_hi[f]);
+  }
+  const auto boxes_apart = [](const Vector3& lo1, const Vector3& hi1, const Vector3& lo2,
+                              const Vector3& hi2) {
+    return (lo1.array() > hi2.array()).any() || (lo2.array() > hi1.array()).any();
+  };
   for (const auto& face : a.faces()) {
     const int m = static_cast<int>(face.size());
     for (int i = 0; i < m; ++i) {
       const Vector3& p = xa[face[i]];
       const Vector3& q = xa[face[(i + 1) % m]];
       if (face[i] > face[(i + 1) % m]) continue;  // each edge once
-      for (int f = 0; f < static_cast<int>(b.faces().size()); ++f) {
-        const Vector3 n = X_WB.linear() * b.face_normals()[f];
-        const double c = n.dot(xb[b.faces()[f][0]]);
+      const Vector3 e_lo = p.cwiseMin(q), e_hi = p.cwiseMax(q);
+      if (boxes_apart(e_lo, e_hi, b_lo, b_hi)) continue;
+      for (int f = 0; f < nf; ++f) {
+        if (boxes_apart(e_lo, e_hi, face_lo[f], face_hi[f])) continue;
+        const Vector3& n = normal[f];
+        const double c = offset[f];
         const double dp = n.dot(p) - c, dq = n.dot(q) - c;
         if (!((dp > tol && dq < -tol) || (dp < -tol && dq > tol))) continue;
         const Vector3 hit = p + (q - p) * (dp / (dp - dq));

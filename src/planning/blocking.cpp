@@ -398,17 +398,45 @@ bool ConvexSweptOverlap(const Shape& a, const Shape& b, const Vector3& d, double
 }
 
 // Sorts event times, merges those within tol, and tests the middle of each
-// interval between 0 and the last with `overlaps(t)`.
+// interval between 0 and the last with `overlaps(t)`. The overlap is the same
+// all along an interval, so an interval whose middle is outside the window
+// [t_lo, t_hi] (where the moving bounding box meets the other's) has none.
 template <class OverlapFn>
-bool AnyIntervalOverlaps(std::vector<double>& events, double tol, const OverlapFn& overlaps) {
+bool AnyIntervalOverlaps(std::vector<double>& events, double tol, const OverlapFn& overlaps,
+                         double t_lo = -std::numeric_limits<double>::infinity(),
+                         double t_hi = std::numeric_limits<double>::infinity()) {
   std::sort(events.begin(), events.end());
   double prev = 0;
   for (const double t : events) {
     if (t - prev <= tol) continue;
-    if (overlaps(0.5 * (prev + t))) return true;
+    const double mid = 0.5 * (prev + t);
+    if (mid >= t_lo && mid <= t_hi && overlaps(mid)) return true;
     prev = t;
   }
   return false;
+}
+
+// The times t at which the bounding box of a + t d meets b's (grown by tol,
+// for roundoff), as [t_lo, t_hi] (empty: t_lo > t_hi). Every overlap
+// FindPolyhedronOverlap reports is at a point of both solids (a sample point
+// of one inside the other, or an edge of one through a face of the other),
+// so in both boxes: outside the window there is none.
+std::pair<double, double> BoxWindow(const Shape& a, const Shape& b, const Vector3& d, double tol) {
+  double t_lo = -std::numeric_limits<double>::infinity();
+  double t_hi = std::numeric_limits<double>::infinity();
+  for (int k = 0; k < 3; ++k) {
+    // a.lo + t d ≤ b.hi + tol and a.hi + t d ≥ b.lo − tol.
+    const double upper = b.hi[k] + tol - a.lo[k], lower = b.lo[k] - tol - a.hi[k];
+    if (d[k] == 0) {
+      if (!(upper >= 0 && lower <= 0)) return {1, 0};
+      continue;
+    }
+    double t0 = lower / d[k], t1 = upper / d[k];
+    if (t0 > t1) std::swap(t0, t1);
+    t_lo = std::max(t_lo, t0);
+    t_hi = std::min(t_hi, t1);
+  }
+  return {t_lo, t_hi};
 }
 
 // Times t > tol at which vertex p moving along d crosses the segment [q0, q1].
@@ -491,11 +519,15 @@ bool EventSweptOverlap3(const Shape& a, const Shape& b, const Vector3& d, double
         events.push_back(x[0]);
     }
   }
-  return AnyIntervalOverlaps(events, tol, [&](double t) {
-    Eigen::Isometry3d X = a.X_WB;
-    X.pretranslate(t * d);
-    return FindPolyhedronOverlap(*a.solid, X, *b.solid, b.X_WB, tol).has_value();
-  });
+  const auto [t_lo, t_hi] = BoxWindow(a, b, d, tol);
+  return AnyIntervalOverlaps(
+      events, tol,
+      [&](double t) {
+        Eigen::Isometry3d X = a.X_WB;
+        X.pretranslate(t * d);
+        return FindPolyhedronOverlap(*a.solid, X, *b.solid, b.X_WB, tol).has_value();
+      },
+      t_lo, t_hi);
 }
 
 // Step 3: does part a, translated along the unit d to infinity, run into b?
@@ -987,6 +1019,48 @@ BlockingGraph ComputeBlockingGraph(const Assembly& assembly, const Configuration
       AddArcs(pair, PairBits(sc, pair, d, inf), kFarIJ, kFarJI, g);
   }
   return g;
+}
+
+Ndbg ComputeBlockingAt(const Assembly& assembly, const Configuration& config,
+                       const Vector3& direction) {
+  Vector3 d = direction;
+  if (!assembly.is_3d()) d.z() = 0;
+  CAIRN_THROW_UNLESS(d.allFinite() && d.norm() > 0,
+                     "ComputeBlockingAt: the direction must be finite and nonzero");
+  d.normalize();
+  const Scene sc = BuildScene(assembly, config);
+  Ndbg out;
+  out.dimension = sc.dim;
+  out.normals = sc.normals;
+  // The cell of the arrangement that holds d: its signs s_k = sign(d · n_k);
+  // on no great circle a face, on one an arc, on two or more a vertex. In
+  // 2-D the cell is the direction itself, [θ, θ].
+  std::vector<int> signs;
+  int zeros = 0;
+  for (const Vector3& n : sc.normals) {
+    signs.push_back(SignOf(d.dot(n), sc.tol_angle));
+    zeros += signs.back() == 0 ? 1 : 0;
+  }
+  NdbgCell cell;
+  cell.direction = d;
+  if (sc.dim == 3) {
+    cell.signs = signs;
+    cell.cell_dimension = zeros == 0 ? 2 : (zeros == 1 ? 1 : 0);
+  } else {
+    cell.cell_dimension = 0;
+    cell.angle_from = cell.angle_to = AngleOf(d);
+  }
+  cell.infinitesimal = EmptyGraph(sc, d, BlockingKind::kInfinitesimal);
+  cell.infinity = EmptyGraph(sc, d, BlockingKind::kInfinity);
+  for (const PartPair& pair : sc.pairs) {
+    const std::uint8_t inf = InfinitesimalBits(pair, [&](int k) { return signs[k]; });
+    const std::uint8_t bits = PairBits(sc, pair, d, inf);
+    AddArcs(pair, bits, kInfIJ, kInfJI, cell.infinitesimal);
+    AddArcs(pair, bits, kFarIJ, kFarJI, cell.infinity);
+  }
+  FinishCell(sc, cell);
+  out.cells.push_back(std::move(cell));
+  return out;
 }
 
 Ndbg ComputeNdbg(const Assembly& assembly, const Configuration& config) {

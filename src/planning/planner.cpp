@@ -276,7 +276,14 @@ void Planner::ChooseParts() {
 // path-dependent instability).
 void Planner::ComputeDirections() {
   const Configuration config = Configuration::Assembled(assembly_);
-  const Ndbg ndbg = ComputeNdbg(assembly_, config);
+  Ndbg ndbg;
+  if (opt_.directions.empty()) {
+    ndbg = ComputeNdbg(assembly_, config);
+  } else {
+    // The given directions alone, one cell each.
+    for (const Vector3& d : opt_.directions)
+      ndbg.cells.push_back(ComputeBlockingAt(assembly_, config, d).cells[0]);
+  }
   std::vector<const NdbgCell*> cells;
   for (const NdbgCell& c : ndbg.cells) cells.push_back(&c);
   std::stable_sort(cells.begin(), cells.end(), [&](const NdbgCell* a, const NdbgCell* b) {

@@ -401,6 +401,37 @@ TEST(Ndbg3d, JengaTopLayerLeavesUpward) {
   EXPECT_EQ(up.infinitesimal.blockers[l1].size(), 3u);  // layer 2 only
 }
 
+// One direction (cairn blocking --direction): the NDBG's cell that holds it,
+// found by the full arrangement, has the same graphs, signs and dimension;
+// in 2-D, the direction itself, with the graphs of ComputeBlockingGraph.
+TEST(ComputeBlockingAt, AgreesWithTheNdbgCellThatHoldsTheDirection) {
+  for (const char* name : {"jenga.json", "paper_fig1.json", "l_shapes.json", "peg_in_slot.json"}) {
+    SCOPED_TRACE(name);
+    const Assembly assembly = Example(name);
+    const Configuration config = Configuration::Assembled(assembly);
+    const Ndbg ndbg = ComputeNdbg(assembly, config);
+    for (const NdbgCell& cell : ndbg.cells) {
+      const Ndbg one = ComputeBlockingAt(assembly, config, 2.5 * cell.direction);
+      ASSERT_EQ(one.cells.size(), 1u);
+      const NdbgCell& got = one.cells[0];
+      EXPECT_EQ(one.normals, ndbg.normals);
+      EXPECT_LT((got.direction - cell.direction).norm(), 1e-12);
+      EXPECT_EQ(got.infinity.blockers, cell.infinity.blockers);
+      EXPECT_EQ(got.removable, cell.removable);
+      if (assembly.is_3d()) {
+        EXPECT_EQ(got.signs, cell.signs);
+        EXPECT_EQ(got.cell_dimension, cell.cell_dimension);
+        EXPECT_EQ(got.infinitesimal.blockers, cell.infinitesimal.blockers);
+      } else {
+        EXPECT_EQ(got.cell_dimension, 0);
+        EXPECT_EQ(got.infinitesimal.blockers, ComputeBlockingGraph(assembly, config, cell.direction,
+                                                                   BlockingKind::kInfinitesimal)
+                                                  .blockers);
+      }
+    }
+  }
+}
+
 // Nothing to run into: one cell, the whole circle (2-D) or sphere (3-D),
 // represented by "up".
 TEST(Ndbg, LonePartIsOneCell) {

@@ -9,8 +9,9 @@
 /// planes agree (normals within `angle_tol`, every vertex within `length_tol`
 /// of the region's first plane) are grown into one region, and a region whose
 /// boundary is a single closed loop becomes one polygonal face (convex or
-/// not). A region with holes or a pinched boundary keeps its triangles as
-/// faces: still planar and exact, only in more pieces.
+/// not). A region with holes, a pinched boundary or a boundary that touches
+/// itself in its plane (within `length_tol`) keeps its triangles as faces:
+/// still planar and exact, only in more pieces.
 
 #include <array>
 #include <vector>

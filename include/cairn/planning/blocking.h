@@ -138,6 +138,17 @@ BlockingGraph ComputeBlockingGraph(const Assembly& assembly, const Configuration
 /// same cells in the same order on every run and thread count).
 Ndbg ComputeNdbg(const Assembly& assembly, const Configuration& config);
 
+/// The NDBG restricted to one direction (`cairn blocking --direction`): one
+/// cell, `direction` normalised, with both graphs at it and the parts that can
+/// leave. 3-D: the cell's `signs` and `cell_dimension` are those of the
+/// arrangement cell that holds the direction (2 when it is on no great circle
+/// of the normals, 1 on one, 0 on two or more); 2-D: the direction itself,
+/// dimension 0, `angle_from` = `angle_to`. `normals` as ComputeNdbg's. In 2-D
+/// the direction's z is ignored.
+/// @throws std::invalid_argument when the direction is zero or not finite.
+Ndbg ComputeBlockingAt(const Assembly& assembly, const Configuration& config,
+                       const Vector3& direction);
+
 /// True when the set `in_s` (num_parts flags) can leave along the graph's
 /// direction: it holds no fixed part (BlockingGraph::fixed) and no part of S
 /// has an arc to a part that is present and outside S. Parts of S that are

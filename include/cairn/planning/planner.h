@@ -103,6 +103,12 @@ struct PlannerOptions {
   SupportChoice support = SupportChoice::kFull;
   /// Consider subassemblies of more than one part (NDBG closures).
   bool subassemblies = true;
+  /// The candidate directions of straight removals; empty: every cell of the
+  /// NDBG of the assembled configuration. Given (e.g. ±x, ±y, ±z), the
+  /// blocking graphs are computed at these alone (ComputeBlockingAt): for
+  /// models whose NDBG has too many cells to try, such as tessellated CAD
+  /// parts (a cell per facet of each cylinder).
+  std::vector<Vector3> directions;
   /// Time step (s) and gripper speed (length/s) of simulated paths and of
   /// the plans written; 0: the scene's size / 100 and 1.
   double dt = 0, speed = 0;

@@ -1,0 +1,60 @@
+#include "cairn/io/sidecar_reader.h"
+
+#include <algorithm>
+#include <nlohmann/json.hpp>
+
+#include "cairn/core/error.h"
+#include "cairn/core/tolerances.h"
+#include "io/json_checks.h"
+
+namespace cairn {
+
+namespace {
+
+using io_internal::Child;
+using io_internal::JsonChecker;
+using nlohmann::json;
+
+// A density or mass: positive and finite.
+double Positive(const JsonChecker& check, const json& j, const std::string& path) {
+  const double x = check.Number(j, path);
+  if (!(x > 0)) check.Fail(path, "must be positive (got " + FormatNumber(x) + ")");
+  return x;
+}
+
+}  // namespace
+
+void ApplySidecar(const std::string& path, AssemblyDef& def) {
+  const json doc = io_internal::ReadJsonFile(path);
+  const JsonChecker check(path);
+  check.Object(doc, "");
+  check.CheckVersion(doc, "cairn_sidecar", "sidecar");
+  check.CheckKeys(doc, "", {"cairn_sidecar", "friction", "density", "parts"});
+  if (doc.contains("friction")) {
+    const double mu = check.Number(doc["friction"], "friction");
+    if (mu < 0 || mu > limits::kMaxFriction)
+      check.Fail("friction", "must be in [0, " + FormatNumber(limits::kMaxFriction) + "] (got " +
+                                 FormatNumber(mu) + ")");
+    def.friction = mu;
+  }
+  if (doc.contains("density")) {
+    const double rho = Positive(check, doc["density"], "density");
+    for (PartDef& p : def.parts) p.density = rho;
+  }
+  if (!doc.contains("parts")) return;
+  const json& parts = check.Object(doc["parts"], "parts");
+  for (const auto& item : parts.items()) {
+    const std::string part_path = Child("parts", item.key());
+    const auto it = std::find_if(def.parts.begin(), def.parts.end(),
+                                 [&](const PartDef& p) { return p.name == item.key(); });
+    if (it == def.parts.end()) check.Fail(part_path, "the model has no part of this name");
+    const json& part = check.Object(item.value(), part_path);
+    check.CheckKeys(part, part_path, {"fixed", "density", "mass"});
+    if (part.contains("fixed")) it->fixed = check.Bool(part["fixed"], Child(part_path, "fixed"));
+    if (part.contains("density"))
+      it->density = Positive(check, part["density"], Child(part_path, "density"));
+    if (part.contains("mass")) it->mass = Positive(check, part["mass"], Child(part_path, "mass"));
+  }
+}
+
+}  // namespace cairn

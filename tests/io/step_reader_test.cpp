@@ -1,0 +1,205 @@
+// STEP assemblies (ReadStepAssembly): a model OpenCASCADE writes here (names,
+// instances, composed placements, millimetres to metres, exact planar faces)
+// against the same model written by hand as a scene; the Bourjault pen of
+// FreeCAD-APLAN (../shared, LGPL: read there, never copied) against its exact
+// solids; bad files. And ASAP's folder layout (ReadAsapAssembly).
+#include "cairn/io/step_reader.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <map>
+
+#include "cairn/core/error.h"
+#include "cairn/io/asap_reader.h"
+#include "cairn/io/scene_reader.h"
+#include "step_writer.h"
+#include "test_paths.h"
+
+namespace cairn {
+namespace {
+
+std::string TempPath(const std::string& name) {
+  return (std::filesystem::temp_directory_path() /
+          (name + "_" + std::to_string(::getpid()) + "_" + std::to_string(std::rand())))
+      .string();
+}
+
+// The message of the InputError that `read` throws ("" when none).
+template <class Fn>
+std::string InputErrorOf(Fn read) {
+  try {
+    read();
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+const PartDef& Part(const AssemblyDef& def, const std::string& name) {
+  for (const PartDef& p : def.parts)
+    if (p.name == name) return p;
+  throw std::runtime_error("no part " + name);
+}
+
+TEST(ReadStepAssembly, ReadsWhatOpenCascadeWrote) {
+  const std::string path = TempPath("pegs") + ".step";
+  ASSERT_TRUE(testing::WritePegAssembly(path));
+  const StepModel step = ReadStepAssembly(path);
+  std::filesystem::remove(path);
+  // Millimetres converted; product names, the product used twice numbered.
+  EXPECT_DOUBLE_EQ(step.length_unit, 0.001);
+  std::vector<std::string> names;
+  for (const PartDef& p : step.def.parts) names.push_back(p.name);
+  EXPECT_EQ(names, (std::vector<std::string>{"table", "block", "peg", "peg_2"}));
+  // Every face planar with straight edges: nothing approximated, and the
+  // model keeps the scene default tolerance.
+  for (const StepPartReport& r : step.parts) {
+    EXPECT_FALSE(r.approximated) << r.name;
+    EXPECT_EQ(r.tessellated_faces, 0) << r.name;
+    EXPECT_NEAR(r.volume, r.exact_volume, 1e-12) << r.name;
+  }
+  EXPECT_EQ(step.def.tolerance, 0.0);
+  // The same solids where the hand-written scene puts them: vertex for vertex
+  // (positions, in metres) and volume for volume.
+  const std::string scene = TempPath("pegs") + ".json";
+  std::ofstream(scene) << testing::PegSceneJson();
+  const AssemblyDef expected_def = ReadSceneDef(scene);
+  const Assembly expected = Assembly::Create(expected_def, scene);
+  std::filesystem::remove(scene);
+  const Assembly got = Assembly::Create(step.def, path);
+  ASSERT_EQ(got.num_parts(), expected.num_parts());
+  for (int i = 0; i < got.num_parts(); ++i) {
+    SCOPED_TRACE(got.part(i).name);
+    EXPECT_EQ(got.part(i).name, expected.part(i).name);
+    EXPECT_NEAR(got.part(i).mass, expected.part(i).mass, 1e-12);  // density 1: the volume
+    EXPECT_LT((got.part(i).centroid - expected.part(i).centroid).norm(), 1e-12);
+    std::vector<std::array<double, 3>> a, b;
+    for (const Vector3& v : Part(step.def, got.part(i).name).polyhedron->vertices)
+      a.push_back({std::round(v.x() * 1e9), std::round(v.y() * 1e9), std::round(v.z() * 1e9)});
+    const PartDef& e = expected_def.parts[static_cast<size_t>(i)];
+    for (const Vector3& v : e.polyhedron->vertices)
+      b.push_back({std::round(v.x() * 1e9), std::round(v.y() * 1e9), std::round(v.z() * 1e9)});
+    std::sort(a.begin(), a.end());
+    std::sort(b.begin(), b.end());
+    a.erase(std::unique(a.begin(), a.end()), a.end());
+    b.erase(std::unique(b.begin(), b.end()), b.end());
+    EXPECT_EQ(a, b);
+  }
+}
+
+TEST(ReadStepAssembly, RefusesWhatIsNotASolidModel) {
+  // Not STEP at all.
+  const std::string text = TempPath("not_step") + ".stp";
+  std::ofstream(text) << "solid cube\nendsolid\n";
+  EXPECT_NE(InputErrorOf([&] { ReadStepAssembly(text); }).find("not a STEP file"),
+            std::string::npos);
+  std::filesystem::remove(text);
+  EXPECT_NE(InputErrorOf([&] { ReadStepAssembly(text); }).find("no such file"), std::string::npos);
+  // A surface model: a box's faces but one, as an open shell.
+  const std::string open = TempPath("open_shell") + ".stp";
+  TopoDS_Shell shell;
+  BRep_Builder builder;
+  builder.MakeShell(shell);
+  int faces = 0;
+  for (TopExp_Explorer e(testing::Box(0, 0, 0, 10, 10, 10), TopAbs_FACE); e.More(); e.Next())
+    if (faces++ < 5) builder.Add(shell, e.Current());
+  ASSERT_TRUE(testing::WriteStepShape(open, shell));
+  const std::string why = InputErrorOf([&] { ReadStepAssembly(open); });
+  EXPECT_TRUE(why.find("no solid") != std::string::npos ||
+              why.find("not closed") != std::string::npos)
+      << why;
+  std::filesystem::remove(open);
+}
+
+TEST(ReadStepAssembly, NamesEveryInstanceOfAProduct) {
+  const std::string path = TempPath("bolts") + ".step";
+  const TopoDS_Shape bolt = testing::Box(0, 0, 0, 5, 5, 20);
+  ASSERT_TRUE(testing::WriteStepAssembly(path, "bolts",
+                                         {{"bolt", bolt, testing::Translation(0, 0, 0)},
+                                          {"bolt", bolt, testing::Translation(10, 0, 0)},
+                                          {"bolt", bolt, testing::Translation(20, 0, 0)}}));
+  const StepModel step = ReadStepAssembly(path);
+  std::filesystem::remove(path);
+  std::vector<std::string> names;
+  for (const PartDef& p : step.def.parts) names.push_back(p.name);
+  EXPECT_EQ(names, (std::vector<std::string>{"bolt", "bolt_2", "bolt_3"}));
+  // Each instance where its location puts it (x 0, 10, 20 mm).
+  for (size_t k = 0; k < 3; ++k) {
+    double lo = 1e9;
+    for (const Vector3& v : step.def.parts[k].polyhedron->vertices) lo = std::min(lo, v.x());
+    EXPECT_NEAR(lo, 0.01 * static_cast<double>(k), 1e-12);
+  }
+}
+
+// The pen: six parts of cylinders and cones. Each tessellated solid's volume
+// is within its chordal tolerance of the exact solid's (OCCT's BRepGProp): the
+// facets lie between the surface and at most the tolerance inside it, so the
+// volumes differ by at most area × tolerance.
+TEST(ReadStepAssembly, BourjaultPenVolumesWithinTheTessellationTolerance) {
+  const std::string shared = testing::SharedDir();
+  if (shared.empty())
+    GTEST_SKIP() << "shared/datasets not found: skipping the Bourjault pen (FreeCAD-APLAN)";
+  const std::string pen =
+      shared + "/datasets/aplan_bourjault_pen_simple/asm_bourjault_ballpoint.stp";
+  const StepModel step = ReadStepAssembly(pen);
+  std::vector<std::string> names;
+  for (const StepPartReport& r : step.parts) names.push_back(r.name);
+  std::sort(names.begin(), names.end());
+  EXPECT_EQ(names, (std::vector<std::string>{"body_001", "button_001", "cap_001", "cartridge_001",
+                                             "head_001", "ink_001"}));
+  EXPECT_DOUBLE_EQ(step.length_unit, 0.001);  // the file is in millimetres
+  for (const StepPartReport& r : step.parts) {
+    SCOPED_TRACE(r.name);
+    EXPECT_TRUE(r.approximated);
+    EXPECT_GT(r.volume, 0);
+    EXPECT_LE(r.volume, r.exact_volume * (1 + 1e-9));  // facets inside a convex-ish surface
+    EXPECT_LE(std::abs(r.volume - r.exact_volume), r.exact_area * r.mesh_tolerance);
+  }
+  // The same file read twice gives the same model.
+  const StepModel again = ReadStepAssembly(pen);
+  for (size_t k = 0; k < step.def.parts.size(); ++k)
+    EXPECT_EQ(again.def.parts[k].polyhedron->vertices, step.def.parts[k].polyhedron->vertices);
+}
+
+// ASAP's folder: the meshes placed by config.json's final_state.
+TEST(ReadAsapAssembly, PlacesTheBeamAssemblyMeshes) {
+  const std::string shared = testing::SharedDir();
+  if (shared.empty()) GTEST_SKIP() << "shared/datasets not found: skipping the ASAP beam assembly";
+  const AssemblyDef def = ReadAsapAssembly(shared + "/datasets/asap_beam_assembly");
+  std::vector<std::string> names;
+  for (const PartDef& p : def.parts) names.push_back(p.name);
+  EXPECT_EQ(names, (std::vector<std::string>{"0", "1", "2", "3", "6"}));
+  // The README's layout: the top beams' centres at z ≈ 7.09, the base beam's
+  // at z ≈ 0.63 along x, the posts at x ≈ 12.24 and 21.14.
+  const auto centre = [&](const std::string& name) {
+    Vector3 lo = Part(def, name).polyhedron->vertices[0], hi = lo;
+    for (const Vector3& v : Part(def, name).polyhedron->vertices)
+      lo = lo.cwiseMin(v), hi = hi.cwiseMax(v);
+    return Vector3((lo + hi) / 2);
+  };
+  EXPECT_NEAR(centre("0").z(), 7.09, 0.1);
+  EXPECT_NEAR(centre("6").z(), 0.63, 0.1);
+  EXPECT_NEAR(centre("2").x(), 12.24, 0.1);
+  EXPECT_NEAR(centre("3").x(), 21.14, 0.1);
+  // Every mesh a valid solid (its faces ear-clipped despite the collinear
+  // vertices the CAD export leaves along its edges).
+  for (const PartDef& p : def.parts) {
+    Vector3 lo = p.polyhedron->vertices[0], hi = lo;
+    for (const Vector3& v : p.polyhedron->vertices) lo = lo.cwiseMin(v), hi = hi.cwiseMax(v);
+    const auto fault = Polyhedron::Check(*p.polyhedron, 1e-6 * (hi - lo).norm());
+    EXPECT_FALSE(fault.has_value()) << p.name << ": " << (fault ? fault->message : "");
+  }
+  // A config without final_state is refused with its path.
+  const std::string dir = TempPath("asap");
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir + "/config.json") << R"({"0": {"initial_state": [0, 0, 0, 0, 0, 0]}})";
+  EXPECT_NE(InputErrorOf([&] { ReadAsapAssembly(dir); }).find("0.final_state: required key"),
+            std::string::npos);
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace cairn
