@@ -9,6 +9,7 @@
 #include "cli/check_command.h"
 #include "cli/command.h"
 #include "cli/convert_command.h"
+#include "cli/margin_command.h"  // cairn margin (issue 20)
 #include "cli/plan_command.h"
 #include "cli/simulate_command.h"
 
@@ -178,6 +179,38 @@ CLI::App* AddPlan(CLI::App& app, cairn::cli::PlanArgs& plan) {
   return cmd;
 }
 
+// ---- cairn margin (issue 20) ----
+// `--friction [MU]` replaces the model option of the same name: alone it asks
+// for the friction margin (MU, if given, is still the model's μ).
+CLI::App* AddMargin(CLI::App& app, cairn::cli::MarginArgs& margin) {
+  CLI::App* cmd = AddSceneCommand(
+      app, "margin",
+      "How far from failing? The critical friction, tilt about an axis, or largest load",
+      margin.scene, margin.json);
+  AddWithout(cmd, margin.without, "Compute it with these parts taken away (comma-separated)");
+  AddModelOptions(cmd, margin.model);
+  cmd->remove_option(cmd->get_option("--friction"));
+  CLI::Option* friction =
+      cmd->add_option("--friction", margin.friction_value,
+                      "The critical friction: the least mu (or factor on every friction pair) "
+                      "at which the assembly stands; with a value, also the model's mu")
+          ->expected(0, 1);
+  cmd->callback([&margin, friction] { margin.friction_given = friction->count() > 0; });
+  cmd->add_option("--tilt", margin.query.tilt,
+                  "The critical tilt about this axis X,Y,Z (the assembly turned with its fixed "
+                  "parts), each sense")
+      ->delimiter(',');
+  cmd->add_option("--load", margin.query.load,
+                  "The largest force on this part (at --point, along --direction) carried at rest")
+      ->check(kNotEmpty);
+  cmd->add_option("--point", margin.query.point, "Where the load acts (world frame), X,Y[,Z]")
+      ->delimiter(',');
+  cmd->add_option("--direction", margin.query.direction, "The load's direction, X,Y[,Z]")
+      ->delimiter(',');
+  return cmd;
+}
+// ---- end cairn margin ----
+
 // The command line: its subcommands and their options, parsed; then the
 // chosen command runs. Returns the exit code.
 int Run(int argc, char** argv) {
@@ -195,6 +228,8 @@ int Run(int argc, char** argv) {
   const CLI::App* convert_cmd = AddConvert(app, convert);
   const CLI::App* blocking_cmd = AddBlocking(app, blocking);
   const CLI::App* plan_cmd = AddPlan(app, plan);
+  cli::MarginArgs margin;                               // cairn margin (issue 20)
+  const CLI::App* margin_cmd = AddMargin(app, margin);  // cairn margin (issue 20)
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -212,6 +247,7 @@ int Run(int argc, char** argv) {
   if (*convert_cmd) return cli::RunConvert(convert, std::cout, std::cerr);
   if (*blocking_cmd) return cli::RunBlocking(blocking, std::cout, std::cerr);
   if (*plan_cmd) return cli::RunPlan(plan, std::cout, std::cerr);
+  if (*margin_cmd) return cli::RunMargin(margin, std::cout, std::cerr);  // issue 20
   return cli::kExitBadInput;
 }
 
