@@ -28,12 +28,12 @@
 #include "cairn/report/blocking_report.h"
 #include "cairn/report/check_report.h"
 #include "cairn/report/fixture_report.h"
+#include "cairn/report/margin_report.h"  // cairn.margin (issue 20)
 #include "cairn/report/plan_report.h"
 #include "cairn/report/simulation_report.h"
 #include "cairn/stability/analyze.h"
+#include "cli/margin_command.h"  // cairn.margin (issue 20)
 #include "cli/model.h"
-#include "cairn/report/margin_report.h"  // cairn.margin (issue 20)
-#include "cli/margin_command.h"            // cairn.margin (issue 20)
 
 namespace py = pybind11;
 

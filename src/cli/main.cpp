@@ -209,6 +209,15 @@ CLI::App* AddMargin(CLI::App& app, cairn::cli::MarginArgs& margin) {
       ->delimiter(',');
   return cmd;
 }
+
+// `cairn simulate --margin friction`.
+void AddSimulateMargin(CLI::App& app, cairn::cli::SimulateArgs& sim) {
+  app.get_subcommand("simulate")
+      ->add_option("--margin", sim.margin,
+                   "Also find the least friction (factor) for which every tick is stable, and "
+                   "the tick that decides it")
+      ->check(CLI::IsMember({"friction"}));
+}
 // ---- end cairn margin ----
 
 // The command line: its subcommands and their options, parsed; then the
@@ -230,6 +239,7 @@ int Run(int argc, char** argv) {
   const CLI::App* plan_cmd = AddPlan(app, plan);
   cli::MarginArgs margin;                               // cairn margin (issue 20)
   const CLI::App* margin_cmd = AddMargin(app, margin);  // cairn margin (issue 20)
+  AddSimulateMargin(app, sim);                          // cairn margin (issue 20)
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -85,8 +85,8 @@ int RunMargin(const MarginArgs& args, std::ostream& out, std::ostream& err) {
     }
     // Without a value --friction asks for the friction margin (and
     // ResolveMarginQuery refuses it beside --tilt or --load).
-    if (args.friction_given && (args.friction_value.empty() ||
-                                (query.tilt.empty() && query.load.empty())))
+    if (args.friction_given &&
+        (args.friction_value.empty() || (query.tilt.empty() && query.load.empty())))
       query.friction = true;
     const Model m = LoadModel(args.scene, model);
     const Assembly& assembly = m.assembly;

@@ -14,10 +14,12 @@
 #include "cairn/io/compas_reader.h"
 #include "cairn/io/plan_reader.h"
 #include "cairn/io/scene_reader.h"
+#include "cairn/motion/plan_margin.h"  // --margin (issue 20)
 #include "cairn/motion/simulate.h"
 #include "cairn/planning/fixtures.h"
 #include "cairn/report/fixture_report.h"
 #include "cairn/report/html_report.h"
+#include "cairn/report/margin_report.h"  // --margin (issue 20)
 #include "cairn/report/simulation_report.h"
 #include "cairn/stability/analyze.h"
 #include "cli/command.h"
@@ -87,12 +89,20 @@ int RunSimulate(const SimulateArgs& args, std::ostream& out, std::ostream& err) 
     if (args.suggest_fixtures)
       doc["fixtures"] = suggestion ? FixtureSuggestionToJson(assembly, *suggestion, search, report)
                                    : nlohmann::json(nullptr);
+    // --margin friction (issue 20): the least friction factor for which the
+    // plan is stable, by bisection over simulations.
+    std::optional<PlanMargin> margin;
+    if (args.margin == "friction") {
+      margin = PlanFrictionMargin(model.def, plan, options);
+      doc["margin"] = PlanMarginToJson(assembly, *margin);
+    }
     std::string text;
     if (args.json) {
       text = doc.dump(2) + "\n";
     } else {
       text = SimulationToText(assembly, plan, result, report);
       if (suggestion) text += FixtureSuggestionToText(assembly, *suggestion, search, report);
+      if (margin) text += PlanMarginToText(assembly, *margin);  // issue 20
     }
     // Every file, or none (OutputFiles).
     OutputFiles files;

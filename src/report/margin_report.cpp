@@ -3,6 +3,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "cairn/report/words.h"
 #include "report/report_common.h"
 
 namespace cairn {
@@ -214,6 +215,43 @@ std::string MarginToText(const Assembly& assembly, const MarginRequest& req, con
   }
   os << "  method: " << r.method << "; " << r.lps << " LPs; tolerance " << Num(r.tolerance)
      << "; weak stability (rest possible)\n";
+  return os.str();
+}
+
+// ---- simulate --margin friction ----
+
+json PlanMarginToJson(const Assembly& assembly, const PlanMargin& pm) {
+  json m;
+  m["quantity"] = "friction";
+  m["critical"] = Optional(pm.critical);
+  m["of"] = pm.factor ? "factor" : "mu";
+  m["nominal"] = pm.nominal;
+  m["failing_at"] = Optional(pm.failing_at);
+  if (pm.failure) {
+    const MotionFailure& f = *pm.failure;
+    m["deciding"] = {{"step", f.step},
+                     {"tick", f.tick},
+                     {"time", Clean(f.time)},
+                     {"verdict", to_string(f.verdict)},
+                     {"parts", Names(assembly, f.parts)},
+                     {"description", DescribeFailure(assembly, f)}};
+  } else {
+    m["deciding"] = nullptr;
+  }
+  m["method"] = "bisection over simulations of the whole plan";
+  m["tolerance"] = pm.tolerance;
+  m["simulations"] = pm.simulations;
+  return m;
+}
+
+std::string PlanMarginToText(const Assembly& assembly, const PlanMargin& pm) {
+  std::ostringstream os;
+  os << "  friction margin: " << (pm.factor ? "k* = " : "mu* = ")
+     << (pm.critical ? Num(*pm.critical) : std::string("none (no friction makes it stable)"))
+     << " (nominal " << Num(pm.nominal) << "; " << pm.simulations << " simulations)\n";
+  if (pm.failure)
+    os << "    below it (at " << Num(*pm.failing_at) << "), step " << pm.failure->step + 1
+       << " tick " << pm.failure->tick << ": " << DescribeFailure(assembly, *pm.failure) << '\n';
   return os.str();
 }
 

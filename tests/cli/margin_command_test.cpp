@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <nlohmann/json.hpp>
 #include <string>
 
@@ -96,6 +97,42 @@ TEST(CliMargin, BadInput) {
     EXPECT_EQ(r.err.rfind("cairn: error: ", 0), 0u) << args << ": " << r.err;
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
   }
+}
+
+// simulate --margin friction: the least μ for which the plan (Fig. 4, A
+// lifted) is stable at every tick. The check of it by the command itself:
+// simulate with --friction just above is stable (exit 0), just below fails
+// (exit 1) at the deciding tick.
+TEST(CliMargin, SimulateMarginFriction) {
+  const std::string scene = ExamplePath("paper_fig4.json");
+  const std::string plan = ExamplePath("plans/paper_fig4_lift_a.plan.json");
+  const CliRun r = Cairn("simulate " + scene + " " + plan + " --margin friction --json");
+  ASSERT_TRUE(r.exit_code == 0 || r.exit_code == 1) << r.err;
+  const nlohmann::json m = nlohmann::json::parse(r.out)["margin"];
+  EXPECT_EQ(m["quantity"], "friction");
+  ASSERT_TRUE(m["critical"].is_number()) << m.dump();
+  const double mu = m["critical"].get<double>();
+  EXPECT_GT(mu, 0);
+  EXPECT_LE(m["tolerance"].get<double>(), 1e-4 * mu);
+  const nlohmann::json& deciding = m["deciding"];
+  EXPECT_EQ(deciding["step"], 0);
+  const auto run = [&](double f) {
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%.9g", f);
+    return Cairn("simulate " + scene + " " + plan + " --friction " + buf + " --json");
+  };
+  EXPECT_EQ(run(mu * 1.001).exit_code, 0);
+  const CliRun below = run(mu * 0.999);
+  EXPECT_EQ(below.exit_code, 1);
+  EXPECT_EQ(nlohmann::json::parse(below.out)["failure"]["tick"], deciding["tick"]);
+  // A plan stable without friction: 0, and no deciding tick.
+  const CliRun dcba =
+      Cairn("simulate " + ExamplePath("paper_fig1.json") + " " +
+            ExamplePath("plans/paper_fig1_dcba.plan.json") + " --margin friction --json");
+  ASSERT_EQ(dcba.exit_code, 0) << dcba.err;
+  const nlohmann::json m0 = nlohmann::json::parse(dcba.out)["margin"];
+  EXPECT_EQ(m0["critical"], 0.0);
+  EXPECT_TRUE(m0["deciding"].is_null());
 }
 
 }  // namespace
