@@ -15,7 +15,8 @@ namespace cairn {
 namespace {
 
 // The friction bisection stops when its bracket [lo, hi] is narrower than
-// this fraction of hi (dimensionless): about 20 LPs from [0, μ].
+// this fraction of hi (dimensionless): about 20 LPs from [0, μ] (large
+// components: FrictionOracle::tolerance()).
 constexpr double kFrictionTolerance = 1e-6;
 constexpr int kMaxBisections = 100;
 
@@ -387,6 +388,8 @@ class FrictionOracle {
       *bound = std::min(k, FrictionUse(lcp_, *at));
       return true;
     }
+    // Large: the equilibrium LP's own policy (interior point; the
+    // mechanism LP when it fails, whose κ tightens the lower end).
     const ContactLcp lcp_k = WithFrictionFactor(lcp_, k);
     StaticEquilibrium e = FindStaticEquilibrium(lcp_k);
     if (!e.solved)
@@ -398,10 +401,13 @@ class FrictionOracle {
       return true;
     }
     *bound = k;
-    Mechanism m = e.mechanism ? *e.mechanism : FindMechanism(lcp_k);
+    const Mechanism m = e.mechanism ? *e.mechanism : FindMechanism(lcp_k);
     if (m.found) *bound = std::max(k, MechanismFrictionBound(lcp_, m));
     return false;
   }
+  // The bisection's relative bracket: 1e-6 on small components, 1e-4 on
+  // large ones (each probe near k* costs seconds there).
+  double tolerance() const { return large_ ? 1e-4 : 1e-6; }
   int lps() const { return lps_; }
 
  private:
@@ -445,7 +451,7 @@ FrictionBracket BisectFriction(const ContactLcp& lcp, double start, double k_max
   }
   // 3. Bisection on [lo, hi], each end tightened by its certificate. (The
   // iteration cap is a guard: the bracket at least halves each time.)
-  for (int i = 0; i < kMaxBisections && hi - out.lo > kFrictionTolerance * hi; ++i) {
+  for (int i = 0; i < kMaxBisections && hi - out.lo > oracle.tolerance() * hi; ++i) {
     const double mid = 0.5 * (out.lo + hi);
     if (oracle.Ask(mid, &bound, &at)) {
       hi = std::max(bound, out.lo);
@@ -471,7 +477,9 @@ void FrictionMargin(const AssemblyDef& def, const Configuration& config, MarginR
   const double k_max = limits::kMaxFriction / std::max(largest_mu, 1e-300);
   const Assembly assembly = Assembly::Create(base);
   const std::vector<ContactLcp> lcps = BuildComponentLcps(assembly, config);
-  r.method = "bisection over warm-started equilibrium LPs";
+  r.method =
+      "bisection over equilibrium LPs (warm-started dual simplex; interior point on large "
+      "components)";
   r.sides.resize(1);
   MarginSide& side = r.sides[0];
   bool any_friction_needed = false, unbounded = false;
