@@ -74,11 +74,7 @@ json StrongToJson(const MarginResult& r) {
       break;
     case MarginQuantity::kTilt: {
       json deg = json::array();
-      bool computed = true;
-      for (const MarginSide& s : r.sides) {
-        deg.push_back(s.strong ? Optional(*s.strong) : json(0.0));
-        computed = computed && s.strong.has_value();
-      }
+      for (const MarginSide& s : r.sides) deg.push_back(s.strong ? Optional(*s.strong) : json(0.0));
       out["certified_deg"] = deg;
       out["computed"] = r.method.find("exact") != std::string::npos;
       break;
@@ -131,8 +127,7 @@ json MarginToJson(const Assembly& assembly, const MarginRequest& req, const Marg
       m["point"] = Vec(req.point, dim);
       m["direction"] = Vec(req.direction.normalized(), dim);
       m["critical"] = Optional(f);
-      m["critical_weights"] =
-          f && r.part_weight > 0 ? json(*f / r.part_weight) : Optional(f ? f : std::nullopt);
+      m["critical_weights"] = f && r.part_weight > 0 ? json(*f / r.part_weight) : json(nullptr);
       m["part_weight"] = r.part_weight;
       break;
     }
