@@ -107,7 +107,7 @@ double CheckCriticalTilt(const AssemblyDef& def, const Vector3& g, const Vector3
 // A block on an incline of angle θ slides when μ < tan θ (its weight's
 // tangential part m g sin θ against μ m g cos θ); it is short enough (1 ×
 // 0.5) not to tip first. examples/incline.json: θ = 20°; incline_slides: 30°.
-TEST(Margin, IncineCriticalFrictionIsTanTheta) {
+TEST(Margin, InclineCriticalFrictionIsTanTheta) {
   for (const auto& [file, theta] :
        {std::pair{"incline.json", 20.0}, {"incline_slides.json", 30.0}}) {
     const Scene s = Example(file);
@@ -155,6 +155,29 @@ TEST(Margin, BoxOnTableTipsAtAtanHalfWidthOverCentroidHeight) {
   const MarginResult f = Scene(def).Margin(Tilt({0, 0, 1}));
   EXPECT_NEAR(*f.sides[0].critical, 0, 1e-9);
   EXPECT_NEAR(*f.sides[1].critical, 0, 1e-9);
+}
+
+// The same in 3-D: a 1 × 1 × 0.5 box on a table, μ 3, turned about x: it
+// tips at atan(0.5 / 0.25). About the oblique axis (1, 0, 1) (not ⟂ g: the
+// scan-and-bisection method), against bisection over the check with
+// gravity turned by Rodrigues' formula.
+TEST(Margin, Box3dTiltExactAndOblique) {
+  AssemblyDef def;
+  def.friction = 3.0;
+  def.parts = {testing::Box3("table", {-2, -2, -1}, {2, 2, 0}, true),
+               testing::Box3("box", {-0.5, -0.5, 0}, {0.5, 0.5, 0.5})};
+  const Scene s(def);
+  const MarginResult x = s.Margin(Tilt({1, 0, 0}));
+  ASSERT_TRUE(x.solved) << x.message;
+  EXPECT_NEAR(*x.sides[1].critical, std::atan(2.0) * kDeg, 1e-5);
+  EXPECT_NEAR(*x.sides[0].critical, -std::atan(2.0) * kDeg, 1e-5);
+  const Vector3 oblique(1, 0, 1);
+  const MarginResult o = s.Margin(Tilt(oblique));
+  ASSERT_TRUE(o.solved) << o.message;
+  EXPECT_EQ(o.method.find("exact"), std::string::npos);
+  ASSERT_TRUE(o.sides[1].critical);
+  EXPECT_NEAR(*o.sides[1].critical, CheckCriticalTilt(def, s.assembly.gravity(), oblique, 120),
+              1e-3);
 }
 
 // The leaning ladder (examples/ladder.json: 60°, floor μ 0.35, frictionless
