@@ -34,6 +34,7 @@ __all__ = [
     "simulate",
     "plan",
     "blocking",
+    "margin",
     "compas_forces",
     "read_timeline",
     "plot",
@@ -251,6 +252,34 @@ def blocking(m, direction=None, without=None):
     if direction is not None:
         doc["cells"] = [_cell_of(doc, np.asarray(direction, dtype=float))]
     return doc
+
+
+def margin(m, friction=False, tilt=None, load=None, point=None, direction=None, without=None):
+    """``cairn margin --json``: how far from failing the assembly (with the
+    parts ``without`` taken away) is, one quantity at a time:
+    ``friction=True``, the least friction (μ*, or the factor k* on every
+    friction pair) at which it stands; ``tilt=(x, y, z)``, the critical tilts
+    about that axis in each sense (``critical_deg``); ``load="PART"`` with
+    ``point`` and ``direction`` (2 or 3 numbers each), the largest force
+    along the direction at the point that the part carries. The model's own
+    μ is the one it was loaded with (``cairn.load(..., friction=...)``). The
+    dict has the CLI's keys (docs/margin.md); its ``margin`` holds the answer.
+    Raises InputError for no quantity or two, an unknown or fixed part, or a
+    wrong count of numbers."""
+    _check_model(m)
+
+    def numbers(value, what):
+        if value is None:
+            return []
+        try:
+            return [float(x) for x in value]
+        except (TypeError, ValueError):
+            raise _input_error(what, f"must be a sequence of numbers, not {value!r}") from None
+
+    return json.loads(_cairn.margin(m, bool(friction), numbers(tilt, "tilt"),
+                                    "" if load is None else str(load), numbers(point, "point"),
+                                    numbers(direction, "direction"),
+                                    _names(without, "without")))
 
 
 def _cell_of(doc, d):

@@ -28,9 +28,11 @@
 #include "cairn/report/blocking_report.h"
 #include "cairn/report/check_report.h"
 #include "cairn/report/fixture_report.h"
+#include "cairn/report/margin_report.h"  // cairn.margin (issue 20)
 #include "cairn/report/plan_report.h"
 #include "cairn/report/simulation_report.h"
 #include "cairn/stability/analyze.h"
+#include "cli/margin_command.h"  // cairn.margin (issue 20)
 #include "cli/model.h"
 
 namespace py = pybind11;
@@ -181,6 +183,24 @@ std::string Blocking(const PyModel& m, const std::vector<std::string>& without) 
   return NdbgToJson(assembly, ComputeNdbg(assembly, config), report).dump(2);
 }
 
+// ---- cairn.margin (issue 20) ----
+// `cairn margin --json`: friction (a flag), tilt (an axis) or load (a part,
+// a point, a direction), as the CLI's --friction, --tilt, --load.
+std::string Margin(const PyModel& m, bool friction, const std::vector<double>& tilt,
+                   const std::string& load, const std::vector<double>& point,
+                   const std::vector<double>& direction, const std::vector<std::string>& without) {
+  py::gil_scoped_release release;
+  const Assembly& assembly = m.model.assembly;
+  ReportOptions report;
+  report.scene_file = m.file;
+  const Configuration config = cli::WithoutParts(assembly, without, m.file, report.without);
+  const cli::MarginQuery query{friction, tilt, load, point, direction};
+  const MarginRequest request = cli::ResolveMarginQuery(assembly, query, m.file);
+  const MarginResult result = ComputeMargin(m.model.def, assembly, config, request);
+  return MarginToJson(assembly, request, result, report).dump(2);
+}
+// ---- end cairn.margin ----
+
 }  // namespace
 }  // namespace cairn::python
 
@@ -265,4 +285,6 @@ PYBIND11_MODULE(_cairn, m) {
         py::arg("paths"), py::arg("allow_fixtures"), py::arg("keep"), py::arg("support"),
         py::arg("threads"));
   m.def("blocking", &Blocking, py::arg("model"), py::arg("without"));
+  m.def("margin", &Margin, py::arg("model"), py::arg("friction"), py::arg("tilt"),  // issue 20
+        py::arg("load"), py::arg("point"), py::arg("direction"), py::arg("without"));
 }

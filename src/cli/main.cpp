@@ -14,6 +14,7 @@
 #include "cli/command.h"
 #include "cli/convert_command.h"
 #include "cli/mpi.h"
+#include "cli/margin_command.h"
 #include "cli/plan_command.h"
 #include "cli/simulate_command.h"
 
@@ -121,6 +122,10 @@ CLI::App* AddSimulate(CLI::App& app, cairn::cli::SimulateArgs& sim) {
                   "Write one CSV row per time step and contact to this file")
       ->check(kNotEmpty);
   AddHtml(cmd, sim.html);
+  cmd->add_option("--margin", sim.margin,
+                  "Also find the least friction (factor) for which every tick is stable, and the "
+                  "tick that decides it")
+      ->check(CLI::IsMember({"friction"}));
   cmd->add_option("--normalize", sim.normalize, "Divide forces by the weight of this part")
       ->check(kNotEmpty);
   cmd->add_flag("--continue", sim.continue_after_failure,
@@ -272,6 +277,36 @@ cairn::cli::JobCommand ParseJob(const std::vector<std::string>& args) {
   throw cairn::InputError("", "command", "must be check, simulate, plan or blocking");
 }
 
+// `--friction [MU]` replaces the model option of the same name: alone it asks
+// for the friction margin (MU, if given, is still the model's μ).
+CLI::App* AddMargin(CLI::App& app, cairn::cli::MarginArgs& margin) {
+  CLI::App* cmd = AddSceneCommand(
+      app, "margin",
+      "How far from failing? The critical friction, tilt about an axis, or largest load",
+      margin.scene, margin.json);
+  AddWithout(cmd, margin.without, "Compute it with these parts taken away (comma-separated)");
+  AddModelOptions(cmd, margin.model);
+  cmd->remove_option(cmd->get_option("--friction"));
+  CLI::Option* friction =
+      cmd->add_option("--friction", margin.friction_value,
+                      "The critical friction: the least mu (or factor on every friction pair) "
+                      "at which the assembly stands; with a value, also the model's mu")
+          ->expected(0, 1);
+  cmd->callback([&margin, friction] { margin.friction_given = friction->count() > 0; });
+  cmd->add_option("--tilt", margin.query.tilt,
+                  "The critical tilt about this axis X,Y,Z (the assembly turned with its fixed "
+                  "parts), each sense")
+      ->delimiter(',');
+  cmd->add_option("--load", margin.query.load,
+                  "The largest force on this part (at --point, along --direction) carried at rest")
+      ->check(kNotEmpty);
+  cmd->add_option("--point", margin.query.point, "Where the load acts (world frame), X,Y[,Z]")
+      ->delimiter(',');
+  cmd->add_option("--direction", margin.query.direction, "The load's direction, X,Y[,Z]")
+      ->delimiter(',');
+  return cmd;
+}
+
 // The command line: its subcommands and their options, parsed; then the
 // chosen command runs. Returns the exit code.
 int Run(int argc, char** argv) {
@@ -291,6 +326,8 @@ int Run(int argc, char** argv) {
   const CLI::App* plan_cmd = AddPlan(app, plan);
   cli::BatchArgs batch;
   const CLI::App* batch_cmd = AddBatch(app, batch);
+  cli::MarginArgs margin;
+  const CLI::App* margin_cmd = AddMargin(app, margin);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -317,6 +354,7 @@ int Run(int argc, char** argv) {
     return cli::RunPlan(plan, out, err);
   }
   if (*batch_cmd) return cli::RunBatch(batch, ParseJob, out, err);
+  if (*margin_cmd) return cli::RunMargin(margin, out, err);
   return cli::kExitBadInput;
 }
 

@@ -14,10 +14,12 @@
 #include "cairn/io/compas_reader.h"
 #include "cairn/io/plan_reader.h"
 #include "cairn/io/scene_reader.h"
+#include "cairn/motion/plan_margin.h"
 #include "cairn/motion/simulate.h"
 #include "cairn/planning/fixtures.h"
 #include "cairn/report/fixture_report.h"
 #include "cairn/report/html_report.h"
+#include "cairn/report/margin_report.h"
 #include "cairn/report/simulation_report.h"
 #include "cairn/stability/analyze.h"
 #include "cli/command.h"
@@ -50,6 +52,7 @@ struct Simulated {
   FixtureSearchOptions search;
   std::optional<FixtureSuggestion> suggestion;
   std::vector<SimulationFrame> frames;  ///< with --html: every analysed tick of the plan's run
+  std::optional<PlanMargin> margin;     ///< with --margin friction
   int exit() const {
     switch (result.verdict) {
       case MotionVerdict::kStable:
@@ -99,8 +102,18 @@ Simulated Simulate(const SimulateArgs& args, const OnTick& on_tick, std::ostream
   if (args.suggest_fixtures && !result.stable())
     suggestion = SuggestFixtures(model.def, assembly, plan, result, search);
   search.simulation.on_analysis = nullptr;
+  // --margin friction: the least friction factor for which the plan is
+  // stable, by bisection over simulations (motion/plan_margin.h); those runs
+  // record no frames.
+  std::optional<PlanMargin> margin;
+  if (args.margin == "friction") {
+    SimulationOptions bisection = options;
+    bisection.record_timeline = false;
+    bisection.on_analysis = on_analysis;
+    margin = PlanFrictionMargin(model.def, plan, bisection);
+  }
   return {std::move(model),  std::move(plan),       std::move(report), std::move(result),
-          std::move(search), std::move(suggestion), std::move(frames)};
+          std::move(search), std::move(suggestion), std::move(frames), std::move(margin)};
 }
 
 nlohmann::json SimulationDocumentJson(const Simulated& s, const SimulateArgs& args) {
@@ -110,6 +123,7 @@ nlohmann::json SimulationDocumentJson(const Simulated& s, const SimulateArgs& ar
     doc["fixtures"] =
         s.suggestion ? FixtureSuggestionToJson(s.model.assembly, *s.suggestion, s.search, s.report)
                      : nlohmann::json(nullptr);
+  if (s.margin) doc["margin"] = PlanMarginToJson(s.model.assembly, *s.margin);
   return doc;
 }
 
@@ -150,6 +164,7 @@ int RunSimulate(const SimulateArgs& args, std::ostream& out, std::ostream& err) 
       text = SimulationToText(s.model.assembly, s.plan, s.result, s.report);
       if (s.suggestion)
         text += FixtureSuggestionToText(s.model.assembly, *s.suggestion, s.search, s.report);
+      if (s.margin) text += PlanMarginToText(s.model.assembly, *s.margin);
     }
     // Every file, or none (OutputFiles).
     OutputFiles files;

@@ -9,58 +9,11 @@
 #include <coin/CoinPackedMatrix.hpp>
 #include <vector>
 
+#include "mechanics/equilibrium_lp.h"
+
 namespace cairn {
 
-namespace {
-
-// Rounding leaves coefficients of ~1e-17 where the geometry says 0 (a rotated
-// face's normal, a moment arm along an axis). Kept, they make the simplex's
-// bases near-singular (GLPK failed on them with GLP_EFAIL); coefficients below
-// this fraction of the largest are dropped (dimensionless).
-constexpr double kDropRelative = 1e-13;
-
-// From this many generator columns on, the equilibrium LP goes to the
-// interior-point method first: below it the dual simplex is as fast and its
-// answer exact (measured: docs/benchmarks.md, "The equilibrium LP").
-constexpr int kBarrierColumns = 2000;
-
-// The interior-point method's iteration budget on the equilibrium LP: a
-// feasible one converges in 12–20 (Jenga, the vaults); an infeasible one
-// wanders for hundreds (9 s on the cross vault at μ 0.3) before it says so,
-// and the elastic LP decides it faster.
-constexpr int kBarrierIterations = 60;
-
-// The simplex's primal feasibility tolerance (Clp's default is 1e-7 of the
-// scaled rows): the forces at rest must balance tightly enough for the LCP
-// check, which divides the unbalanced load by the parts' masses.
-constexpr double kSimplexPrimalTolerance = 1e-10;
-
-// Refinement of the LP's equilibrium (RefineEquilibrium): Newton steps, and
-// the regularisation of A_S A_Sᵀ relative to its largest diagonal entry
-// (dimensionless; a planar body's empty rows make it singular).
-constexpr int kRefinementSteps = 2;
-constexpr double kRefinementRegularisation = 1e-12;
-
-// The largest equilibrium residual accepted, relative to the largest external
-// wrench entry (dimensionless; the LP solvers' own feasibility tolerance is
-// 1e-7 of the row scale).
-constexpr double kEquilibriumResidual = 1e-7;
-
-// The largest negative generator power a mechanism may show and still count
-// as admissible, relative to the largest wrench entry for a unit-speed motion
-// (dimensionless): Clp's primal feasibility tolerance is 1e-7 on each row.
-constexpr double kMechanismSlack = 1e-6;
-
-// A body of a mechanism whose motion is below this fraction of the fastest
-// one's is at rest (dimensionless; interior-point duals leave ~1e-9 there).
-constexpr double kMechanismRest = 1e-6;
-
-// One column of the equilibrium LP: the normal of a contact (direction −1) or
-// the pyramid edge n + μ d_k of a frictional one.
-struct Generator {
-  int contact = -1;
-  int direction = -1;
-};
+namespace equilibrium_internal {
 
 // The generators of every contact: D pyramid edges where the LCP has friction
 // directions (and friction is wanted), else the normal alone.
@@ -86,51 +39,6 @@ Vector6 GeneratorWrench(const ContactLcp& lcp, const Generator& g, int s) {
   }
   return w;
 }
-
-// Sparse triplets (row, column, value), 0-based, with the dust dropped.
-struct Triplets {
-  std::vector<int> rows, cols;
-  std::vector<double> values;
-  void Add(int r, int c, double v) {
-    if (v == 0.0) return;
-    rows.push_back(r);
-    cols.push_back(c);
-    values.push_back(v);
-  }
-  void DropDust() {
-    double largest = 0;
-    for (double v : values) largest = std::max(largest, std::abs(v));
-    size_t kept = 0;
-    for (size_t k = 0; k < values.size(); ++k) {
-      if (std::abs(values[k]) <= kDropRelative * largest) continue;
-      rows[kept] = rows[k], cols[kept] = cols[k], values[kept] = values[k];
-      ++kept;
-    }
-    rows.resize(kept), cols.resize(kept), values.resize(kept);
-  }
-  CoinPackedMatrix Matrix(int nrows, int ncols) const {
-    CoinPackedMatrix m(/*colordered=*/true, rows.data(), cols.data(), values.data(),
-                       static_cast<CoinBigIndex>(values.size()));
-    // Empty trailing rows or columns (all dust) need the sizes given.
-    m.setDimensions(nrows, ncols);
-    return m;
-  }
-};
-
-// The equilibrium LP's data: body b's equation k is row 6 b + k, projected on
-// the body's free directions (a planar body's other three rows are empty).
-struct EquilibriumLp {
-  std::vector<Generator> generators;
-  std::vector<Matrix6> P;  // (nb) free projectors
-  Triplets a;
-  std::vector<double> rhs;  // (6 nb) −P F_ext / load_scale
-  int nrows = 0;
-  // The unit of the LP's forces: the largest load entry (force units; 1
-  // without loads). The LP solvers' tolerances are absolute (Clp: 1e-7 of a
-  // row), so a part of mass 1e-15 would sit below them in force units; in
-  // these units every problem's loads are O(1).
-  double load_scale = 1.0;
-};
 
 EquilibriumLp MakeEquilibriumLp(const ContactLcp& lcp, bool frictionless) {
   EquilibriumLp lp;
@@ -159,6 +67,32 @@ EquilibriumLp MakeEquilibriumLp(const ContactLcp& lcp, bool frictionless) {
   }
   return lp;
 }
+
+// The interior-point method's iteration budget on the equilibrium LP: a
+// feasible one converges in 12–20 (Jenga, the vaults); an infeasible one
+// wanders for hundreds (9 s on the cross vault at μ 0.3) before it says so,
+// and the elastic LP decides it faster.
+constexpr int kBarrierIterations = 60;
+
+// Refinement of the LP's equilibrium (RefineEquilibrium): Newton steps, and
+// the regularisation of A_S A_Sᵀ relative to its largest diagonal entry
+// (dimensionless; a planar body's empty rows make it singular).
+constexpr int kRefinementSteps = 2;
+constexpr double kRefinementRegularisation = 1e-12;
+
+// The largest equilibrium residual accepted, relative to the largest external
+// wrench entry (dimensionless; the LP solvers' own feasibility tolerance is
+// 1e-7 of the row scale).
+constexpr double kEquilibriumResidual = 1e-7;
+
+// The largest negative generator power a mechanism may show and still count
+// as admissible, relative to the largest wrench entry for a unit-speed motion
+// (dimensionless): Clp's primal feasibility tolerance is 1e-7 on each row.
+constexpr double kMechanismSlack = 1e-6;
+
+// A body of a mechanism whose motion is below this fraction of the fastest
+// one's is at rest (dimensionless; interior-point duals leave ~1e-9 there).
+constexpr double kMechanismRest = 1e-6;
 
 // Loads the feasibility problem {A x = rhs, x ≥ 0} into a fresh Clp model.
 void Load(const EquilibriumLp& e, ClpSimplex& lp) {
@@ -256,7 +190,20 @@ bool ReadEquilibrium(const ContactLcp& lcp, const EquilibriumLp& e, const double
   return out.residual <= kEquilibriumResidual * scale;
 }
 
-}  // namespace
+}  // namespace equilibrium_internal
+
+using equilibrium_internal::EquilibriumLp;
+using equilibrium_internal::Generator;
+using equilibrium_internal::GeneratorWrench;
+using equilibrium_internal::kBarrierColumns;
+using equilibrium_internal::kBarrierIterations;
+using equilibrium_internal::kMechanismRest;
+using equilibrium_internal::kMechanismSlack;
+using equilibrium_internal::kSimplexPrimalTolerance;
+using equilibrium_internal::Load;
+using equilibrium_internal::MakeEquilibriumLp;
+using equilibrium_internal::ReadEquilibrium;
+using equilibrium_internal::Triplets;
 
 StaticEquilibrium FindStaticEquilibrium(const ContactLcp& lcp, const EquilibriumOptions& options) {
   StaticEquilibrium out;

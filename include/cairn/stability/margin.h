@@ -1,0 +1,139 @@
+#pragma once
+/// @file
+/// How far from failing is a configuration? The critical friction, the
+/// critical tilt about an axis, or the largest load along a line that the
+/// assembly carries at rest (`cairn margin`; the mathematics is in
+/// mechanics/margin_lp.h and docs/margin.md).
+///
+/// ComputeMargin reads as its steps: build each contact-graph component's
+/// LCP (BuildComponentLcps) → each component's margin (one or a few LPs, or
+/// a verified bisection) → the assembly's margin, the worst component's →
+/// the certificates: the equilibrium at the critical value, re-checked from
+/// its forces, and the mechanism just past it (FindMechanism, checked), and
+/// for friction the check (AnalyzeConfiguration) just below μ*: which parts
+/// move and how.
+///
+/// Every margin here is the *weak* one: the LP's, "an equilibrium exists"
+/// (rest is possible). The strong margin (every solution of the LCP at rest)
+/// is bounded from within by the frictionless-equilibrium certificate
+/// (mechanics/static_equilibrium.h): where a frictionless equilibrium exists
+/// the assembly is strongly stable, so the same parametric LP with normal
+/// forces only gives a range of loads or tilts certified strong. It is a
+/// sufficient condition: beyond it strong stability is not decided.
+
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "cairn/contact/contact.h"
+#include "cairn/geometry/assembly.h"
+#include "cairn/stability/analyze.h"
+
+namespace cairn {
+
+/// What the margin measures.
+enum class MarginQuantity { kFriction, kTilt, kLoad };
+
+/// "friction", "tilt", "load".
+const char* to_string(MarginQuantity q);
+
+/// What to compute.
+struct MarginRequest {
+  MarginQuantity quantity = MarginQuantity::kFriction;
+  /// kTilt: the axis (world frame of the assembled pose; normalised here).
+  /// 2-D scenes turn in their plane: the axis must be ±z.
+  Vector3 axis{0, 0, 1};
+  /// kLoad: the part, the point of application (world frame, assembled
+  /// pose) and the direction of the force (normalised here).
+  int part = -1;
+  Vector3 point{0, 0, 0};
+  Vector3 direction{0, 0, 0};
+};
+
+/// The equilibrium at a critical value: the contact forces, re-checked.
+struct MarginEquilibrium {
+  double at = 0;  ///< the value (μ or factor, degrees, force units)
+  std::vector<Contact> contacts;
+  VectorX normal_force;                 ///< (nc) force units
+  std::vector<Vector3> friction_force;  ///< (nc) on a, world frame
+  double residual = 0;                  ///< max |Σ J f + F_ext| (force units)
+};
+
+/// The mechanism just past a critical value (mechanics/static_equilibrium.h,
+/// FindMechanism): a virtual motion no contact resists, along which the
+/// loads do positive work.
+struct MarginMechanism {
+  double at = 0;            ///< the value it was found at
+  bool found = false;       ///< verified (false: see message)
+  std::vector<int> parts;   ///< part indices that move
+  std::vector<Vector6> nu;  ///< their (v, ω), in the order of `parts` (a direction)
+  double power = 0;         ///< the loads' power along it (force · length/s)
+  std::string message;
+};
+
+/// One end of the margin (tilt: each sense; friction and load: one).
+struct MarginSide {
+  /// The critical value (μ* or k*; degrees, signed; F* in force units);
+  /// empty: no end (tilt: holds all the way round; load: carries any load;
+  /// friction: no friction makes it stand).
+  std::optional<double> critical;
+  int component = -1;  ///< the component that decides it (index into components)
+  std::optional<MarginEquilibrium> equilibrium;
+  std::optional<MarginMechanism> mechanism;
+  /// The range certified strong (a frictionless equilibrium: the same
+  /// parametric LP with normal forces only), when computed; empty critical
+  /// inside: holds all the way.
+  std::optional<std::optional<double>> strong;
+};
+
+/// One component's margin.
+struct ComponentMargin {
+  std::vector<int> parts;
+  bool holds_at_nominal = true;
+  std::vector<std::optional<double>> critical;  ///< one per side
+  int lps = 0;
+};
+
+/// Everything ComputeMargin found.
+struct MarginResult {
+  MarginQuantity quantity = MarginQuantity::kFriction;
+  bool solved = true;  ///< false: an LP failed (message); nothing else is meaningful
+  std::string message;
+  /// The configuration as given stands (weakly): friction at its own μ,
+  /// no tilt, no load.
+  bool holds_at_nominal = true;
+  /// kFriction: whether `critical` is μ itself (every contact the same μ) or
+  /// a factor k scaling every μ (the scene has friction_pairs).
+  bool factor = false;
+  double nominal = 0;             ///< kFriction: the configuration's own μ, or 1 (factor)
+  Vector3 axis{0, 0, 1};          ///< kTilt: the unit axis
+  double part_weight = 0;         ///< kLoad: m |g| of the loaded part (force units)
+  std::vector<MarginSide> sides;  ///< tilt: {negative sense, positive sense}; else one
+  std::vector<ComponentMargin> components;
+  std::string method;
+  /// The numerical tolerance of `critical` (its unit): a bisection's final
+  /// bracket, or the LP's relative feasibility tolerance times the value.
+  double tolerance = 0;
+  int lps = 0;  ///< linear programs solved (all components, certificates excluded)
+  /// kFriction: the check just below μ*: its μ (or factor), and the moving
+  /// parts with how they move.
+  std::optional<double> failing_at;
+  std::vector<PartMotion> failing_below;
+  /// kFriction: every component has a frictionless equilibrium (strongly
+  /// stable at every μ); false: the certificate holds at no μ.
+  std::optional<bool> strong_all;
+};
+
+/// Computes the margin of `config` (see the file comment). `def` is the
+/// model's definition (the friction margin rebuilds the assembly with scaled
+/// friction). @throws InputError for a request that makes no sense (a fixed
+/// or absent part, a zero axis or direction, a 2-D tilt off z).
+MarginResult ComputeMargin(const AssemblyDef& def, const Assembly& assembly,
+                           const Configuration& config, const MarginRequest& request);
+
+/// The model with every friction coefficient multiplied by `factor` (the
+/// default μ and every friction pair's): what the friction margin scales.
+AssemblyDef ScaleFriction(const AssemblyDef& def, double factor);
+
+}  // namespace cairn

@@ -1,0 +1,253 @@
+#include "cairn/report/margin_report.h"
+
+#include <cmath>
+#include <sstream>
+
+#include "cairn/report/words.h"
+#include "report/report_common.h"
+
+namespace cairn {
+
+namespace {
+
+using nlohmann::json;
+using report_internal::Angular;
+using report_internal::Clean;
+using report_internal::Names;
+using report_internal::Num;
+using report_internal::Tangential;
+using report_internal::Vec;
+
+json Optional(const std::optional<double>& x) { return x ? json(*x) : json(nullptr); }
+
+// The equilibrium at the critical value: each contact's forces.
+json EquilibriumToJson(const Assembly& assembly, const MarginEquilibrium& e) {
+  const int dim = assembly.dimension();
+  const double forces = report_internal::ForceRoundoffScale(assembly, 1.0);
+  json contacts = json::array();
+  for (size_t c = 0; c < e.contacts.size(); ++c) {
+    const Contact& k = e.contacts[c];
+    contacts.push_back(
+        {{"a", report_internal::PartName(assembly, k.part_a, "world")},
+         {"b", report_internal::PartName(assembly, k.part_b, "world")},
+         {"point", Vec(k.p_WC, dim)},
+         {"normal", Vec(k.n_W, dim)},
+         {"normal_force", Clean(e.normal_force[static_cast<Eigen::Index>(c)], forces)},
+         {"friction_force", Tangential(e.friction_force[c], k, dim, forces)}});
+  }
+  return {{"at", e.at}, {"residual", e.residual}, {"contacts", contacts}};
+}
+
+// The mechanism just past it: the parts that move and how (a direction).
+json MechanismToJson(const Assembly& assembly, const MarginMechanism& m) {
+  const int dim = assembly.dimension();
+  json parts = json::array();
+  for (size_t i = 0; i < m.parts.size(); ++i) {
+    const Vector3 v = m.nu[i].head<3>(), w = m.nu[i].tail<3>();
+    parts.push_back({{"part", assembly.part(m.parts[i]).name},
+                     {"linear", Vec(v, dim, 1e-6)},
+                     {"angular", Angular(w, dim, 1e-6)},
+                     {"motion", w.norm() > 1e-6 * std::max(1.0, v.norm()) ? "turns" : "slides"}});
+  }
+  json out = {{"at", m.at}, {"found", m.found}, {"power", m.power}, {"parts", parts}};
+  if (!m.found) out["message"] = m.message;
+  return out;
+}
+
+json SideToJson(const Assembly& assembly, const MarginResult& r, const MarginSide& s,
+                const char* sense) {
+  json out = {{"sense", sense}, {"critical", Optional(s.critical)}};
+  out["component"] = s.component >= 0 ? json(s.component) : json(nullptr);
+  out["parts"] =
+      s.component >= 0 ? Names(assembly, r.components[s.component].parts) : json::array();
+  out["equilibrium"] = s.equilibrium ? EquilibriumToJson(assembly, *s.equilibrium) : json(nullptr);
+  out["mechanism"] = s.mechanism ? MechanismToJson(assembly, *s.mechanism) : json(nullptr);
+  return out;
+}
+
+// How strong stability is handled: the frictionless-equilibrium certificate.
+json StrongToJson(const MarginResult& r) {
+  json out = {{"certificate", "frictionless equilibrium (sufficient, not necessary)"}};
+  switch (r.quantity) {
+    case MarginQuantity::kFriction:
+      out["every_mu"] = r.strong_all ? json(*r.strong_all) : json(nullptr);
+      break;
+    case MarginQuantity::kTilt: {
+      json deg = json::array();
+      for (const MarginSide& s : r.sides) deg.push_back(s.strong ? Optional(*s.strong) : json(0.0));
+      out["certified_deg"] = deg;
+      out["computed"] = r.method.find("exact") != std::string::npos;
+      break;
+    }
+    case MarginQuantity::kLoad:
+      out["certified_up_to"] =
+          !r.sides.empty() && r.sides[0].strong ? Optional(*r.sides[0].strong) : json(0.0);
+      break;
+  }
+  return out;
+}
+
+}  // namespace
+
+json MarginToJson(const Assembly& assembly, const MarginRequest& req, const MarginResult& r,
+                  const ReportOptions& options) {
+  const int dim = assembly.dimension();
+  json doc;
+  doc["scene"] = assembly.name();
+  if (!options.scene_file.empty()) doc["scene_file"] = options.scene_file;
+  doc["dimension"] = dim;
+  doc["without"] = Names(assembly, options.without);
+  json m;
+  m["quantity"] = to_string(r.quantity);
+  m["solved"] = r.solved;
+  if (!r.solved) m["message"] = r.message;
+  m["holds_at_nominal"] = r.holds_at_nominal;
+  switch (r.quantity) {
+    case MarginQuantity::kFriction: {
+      m["critical"] = r.sides.empty() ? json(nullptr) : Optional(r.sides[0].critical);
+      m["of"] = r.factor ? "factor" : "mu";
+      m["nominal"] = r.nominal;
+      m["failing_at"] = Optional(r.failing_at);
+      json failing = json::array();
+      for (const PartMotion& p : r.failing_below)
+        failing.push_back({{"part", assembly.part(p.part).name}, {"motion", to_string(p.kind)}});
+      m["failing_below"] = failing;
+      break;
+    }
+    case MarginQuantity::kTilt: {
+      m["axis"] = Vec(r.axis, 3);
+      json deg = json::array();
+      for (const MarginSide& s : r.sides) deg.push_back(Optional(s.critical));
+      m["critical_deg"] = deg;
+      break;
+    }
+    case MarginQuantity::kLoad: {
+      const std::optional<double> f = r.sides.empty() ? std::nullopt : r.sides[0].critical;
+      m["part"] = assembly.part(req.part).name;
+      m["point"] = Vec(req.point, dim);
+      m["direction"] = Vec(req.direction.normalized(), dim);
+      m["critical"] = Optional(f);
+      m["critical_weights"] = f && r.part_weight > 0 ? json(*f / r.part_weight) : json(nullptr);
+      m["part_weight"] = r.part_weight;
+      break;
+    }
+  }
+  m["method"] = r.method;
+  m["tolerance"] = r.tolerance;
+  m["lps"] = r.lps;
+  m["stability"] = "weak";
+  m["strong"] = StrongToJson(r);
+  json sides = json::array();
+  const char* senses[2] = {"negative", "positive"};
+  for (size_t i = 0; i < r.sides.size(); ++i)
+    sides.push_back(SideToJson(assembly, r, r.sides[i],
+                               r.quantity == MarginQuantity::kTilt ? senses[i] : "critical"));
+  m["certificates"] = sides;
+  json comps = json::array();
+  for (const ComponentMargin& c : r.components) {
+    json crit = json::array();
+    for (const std::optional<double>& x : c.critical) crit.push_back(Optional(x));
+    comps.push_back(
+        {{"parts", Names(assembly, c.parts)},
+         {"holds_at_nominal", c.holds_at_nominal},
+         {"critical", r.quantity == MarginQuantity::kTilt || crit.empty() ? crit : crit[0]},
+         {"lps", c.lps}});
+  }
+  m["components"] = comps;
+  doc["margin"] = m;
+  return doc;
+}
+
+namespace {
+
+std::string Deg(const std::optional<double>& x) {
+  return x ? Num(*x) + "°" : std::string("none (holds all the way round)");
+}
+
+}  // namespace
+
+std::string MarginToText(const Assembly& assembly, const MarginRequest& req, const MarginResult& r,
+                         const ReportOptions& options) {
+  std::ostringstream os;
+  os << (assembly.name().empty() ? options.scene_file : assembly.name()) << ": ";
+  if (!r.solved) {
+    os << "margin UNDECIDED (" << r.message << ")\n";
+    return os.str();
+  }
+  const MarginSide* side = r.sides.empty() ? nullptr : &r.sides[0];
+  switch (r.quantity) {
+    case MarginQuantity::kFriction:
+      os << "critical friction " << (r.factor ? "factor k* = " : "mu* = ")
+         << (side && side->critical ? Num(*side->critical) : std::string("none (no friction)"))
+         << "  (nominal " << Num(r.nominal) << ")\n";
+      if (!r.failing_below.empty()) {
+        os << "  below it (at " << Num(*r.failing_at) << "):";
+        for (const PartMotion& p : r.failing_below)
+          os << ' ' << assembly.part(p.part).name << ' ' << to_string(p.kind) << ';';
+        os << '\n';
+      }
+      break;
+    case MarginQuantity::kTilt:
+      os << "critical tilt about [" << Num(r.axis.x()) << ", " << Num(r.axis.y()) << ", "
+         << Num(r.axis.z()) << "]: " << Deg(r.sides[0].critical) << " / "
+         << Deg(r.sides[1].critical) << '\n';
+      break;
+    case MarginQuantity::kLoad:
+      os << "largest load on " << assembly.part(req.part).name << ": "
+         << (side && side->critical ? Num(*side->critical) + " force units (" +
+                                          Num(*side->critical / r.part_weight) + " of its weight)"
+                                    : std::string("any (the load alone is carried)"))
+         << '\n';
+      break;
+  }
+  if (!r.holds_at_nominal) os << "  the assembly does not stand as given\n";
+  for (size_t i = 0; i < r.sides.size(); ++i) {
+    const MarginSide& s = r.sides[i];
+    if (s.component < 0 || !s.mechanism || !s.mechanism->found) continue;
+    os << "  past it, these move:";
+    for (int p : s.mechanism->parts) os << ' ' << assembly.part(p).name;
+    os << '\n';
+  }
+  os << "  method: " << r.method << "; " << r.lps << " LPs; tolerance " << Num(r.tolerance)
+     << "; weak stability (rest possible)\n";
+  return os.str();
+}
+
+// ---- simulate --margin friction ----
+
+json PlanMarginToJson(const Assembly& assembly, const PlanMargin& pm) {
+  json m;
+  m["quantity"] = "friction";
+  m["critical"] = Optional(pm.critical);
+  m["of"] = pm.factor ? "factor" : "mu";
+  m["nominal"] = pm.nominal;
+  m["failing_at"] = Optional(pm.failing_at);
+  if (pm.failure) {
+    const MotionFailure& f = *pm.failure;
+    m["deciding"] = {{"step", f.step},
+                     {"tick", f.tick},
+                     {"time", Clean(f.time)},
+                     {"verdict", to_string(f.verdict)},
+                     {"parts", Names(assembly, f.parts)},
+                     {"description", DescribeFailure(assembly, f)}};
+  } else {
+    m["deciding"] = nullptr;
+  }
+  m["method"] = "bisection over simulations of the whole plan";
+  m["tolerance"] = pm.tolerance;
+  m["simulations"] = pm.simulations;
+  return m;
+}
+
+std::string PlanMarginToText(const Assembly& assembly, const PlanMargin& pm) {
+  std::ostringstream os;
+  os << "  friction margin: " << (pm.factor ? "k* = " : "mu* = ")
+     << (pm.critical ? Num(*pm.critical) : std::string("none (no friction makes it stable)"))
+     << " (nominal " << Num(pm.nominal) << "; " << pm.simulations << " simulations)\n";
+  if (pm.failure)
+    os << "    below it (at " << Num(*pm.failing_at) << "), step " << pm.failure->step + 1
+       << " tick " << pm.failure->tick << ": " << DescribeFailure(assembly, *pm.failure) << '\n';
+  return os.str();
+}
+
+}  // namespace cairn

@@ -1,0 +1,618 @@
+#include "cairn/stability/margin.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <utility>
+
+#include "cairn/core/error.h"
+#include "cairn/core/tolerances.h"
+#include "cairn/mechanics/margin_lp.h"
+#include "cairn/mechanics/static_equilibrium.h"
+
+namespace cairn {
+
+namespace {
+
+// The friction bisection stops when its bracket [lo, hi] is narrower than
+// this fraction of hi (dimensionless): about 20 LPs from [0, μ] (large
+// components: FrictionOracle::tolerance()).
+constexpr double kFrictionTolerance = 1e-6;
+constexpr int kMaxBisections = 100;
+
+// Where the certificates of failure are taken: this fraction of the
+// critical value past it (dimensionless; a mechanism exactly at the critical
+// value does no work, and one at 1e-6 past it does too little to pass the
+// mechanism's check), and at least kPastAngle past a critical tilt.
+constexpr double kPastStep = 1e-3;
+constexpr double kPastAngle = 0.01 * M_PI / 180.0;  // rad
+
+// The relative accuracy of a critical value read from an LP's optimum
+// (dimensionless): the equilibrium re-check's residual bound.
+constexpr double kLpRelative = 1e-7;
+
+// The general tilt (the axis not ⟂ gravity): the scan's step before the
+// bisection, and the bisection's final bracket (rad).
+constexpr double kTiltScanStep = 5.0 * M_PI / 180.0;
+constexpr double kTiltTolerance = 1e-7;
+
+// The axis counts as perpendicular to gravity below this |a·ĝ|
+// (dimensionless).
+constexpr double kPerpendicular = 1e-12;
+
+constexpr double kDeg = 180.0 / M_PI;
+
+using Loads = std::vector<Vector6>;
+
+Loads GravityLoads(const ContactLcp& lcp) {
+  Loads out;
+  for (const BodyDynamics& b : lcp.bodies) out.push_back(b.F_ext);
+  return out;
+}
+
+Loads Scaled(const Loads& a, double s) {
+  Loads out = a;
+  for (Vector6& w : out) w *= s;
+  return out;
+}
+
+Loads Sum(const Loads& a, const Loads& b) {
+  Loads out = a;
+  for (size_t i = 0; i < out.size(); ++i) out[i] += b[i];
+  return out;
+}
+
+// Does the component stand under `load` (one equilibrium LP)?
+bool Carried(const ContactLcp& lcp, const Loads& load, bool frictionless, int* lps) {
+  EquilibriumOptions options;
+  options.frictionless = frictionless;
+  const StaticEquilibrium e = FindStaticEquilibrium(WithLoads(lcp, load), options);
+  ++*lps;
+  if (!e.solved) throw std::runtime_error("equilibrium LP failed: " + e.message);
+  return e.exists;
+}
+
+MarginEquilibrium ToCertificate(const ContactLcp& lcp, const StaticEquilibrium& e, double at,
+                                double scale = 1.0) {
+  MarginEquilibrium out;
+  out.at = at;
+  out.contacts = lcp.contacts;
+  out.normal_force = e.normal_force * scale;
+  for (const Vector3& f : e.friction_force) out.friction_force.push_back(f * scale);
+  out.residual = e.residual * scale;
+  return out;
+}
+
+MarginMechanism ToCertificate(const ContactLcp& lcp, const Mechanism& m, double at) {
+  MarginMechanism out;
+  out.at = at;
+  out.found = m.found;
+  out.message = m.message;
+  out.power = m.power;
+  for (int b : m.moving) {
+    out.parts.push_back(lcp.bodies[b].part);
+    out.nu.push_back(m.nu[b]);
+  }
+  return out;
+}
+
+// ---------------------------------------------------------------------------
+// The load margin: max s ≥ 0 with F_ext + s F₁ carried, F₁ the wrench of a
+// unit force along d at P on the loaded body: (d, (P − c) × d).
+
+struct Interval {
+  std::optional<double> end;  // empty: unbounded
+  bool empty = false;         // no s on this side holds
+  LoadParameterResult lp;     // the optimum's LP (when bounded)
+};
+
+// The end of S = {s : F0 + s F1 carried} on one side (max or min), with the
+// exact unboundedness test of mechanics/margin_lp.h first.
+Interval End(const ContactLcp& lcp, const Loads& F0, const Loads& F1, bool maximize,
+             double lower_bound, bool frictionless, int* lps) {
+  Interval out;
+  if (Carried(lcp, maximize ? F1 : Scaled(F1, -1.0), frictionless, lps)) {
+    // Unbounded on this side, provided S is not empty.
+    if (Carried(lcp, F0, frictionless, lps)) return out;
+  }
+  const ContactLcp with = WithLoads(lcp, F0);
+  out.lp = OptimizeLoadParameter(with, F1, maximize, lower_bound, frictionless);
+  ++*lps;
+  using S = LoadParameterResult::Status;
+  if (out.lp.status == S::kInfeasible) {
+    out.empty = true;
+    return out;
+  }
+  if (out.lp.status != S::kOptimal)
+    throw std::runtime_error("margin LP: " + (out.lp.status == S::kUnbounded
+                                                  ? std::string("unbounded although the load "
+                                                                "alone is not carried")
+                                                  : out.lp.message));
+  out.end = out.lp.value;
+  return out;
+}
+
+void LoadMargin(const Assembly& assembly, const std::vector<ContactLcp>& lcps,
+                const MarginRequest& req, MarginResult& r) {
+  r.method = "parametric equilibrium LP (max F)";
+  r.sides.resize(1);
+  MarginSide& side = r.sides[0];
+  const Part& part = assembly.part(req.part);
+  r.part_weight = part.mass * assembly.gravity().norm();
+  for (size_t c = 0; c < lcps.size(); ++c) {
+    const ContactLcp& lcp = lcps[c];
+    ComponentMargin& cm = r.components[c];
+    int body = -1;
+    for (size_t b = 0; b < lcp.bodies.size(); ++b)
+      if (lcp.bodies[b].part == req.part) body = static_cast<int>(b);
+    const Loads F0 = GravityLoads(lcp);
+    if (body < 0) {  // not loaded: it only has to stand
+      cm.holds_at_nominal = Carried(lcp, F0, false, &cm.lps);
+      cm.critical.push_back(std::nullopt);
+      continue;
+    }
+    side.component = static_cast<int>(c);
+    Loads F1(lcp.bodies.size(), Vector6::Zero());
+    F1[body].head<3>() = req.direction;
+    F1[body].tail<3>() = (req.point - lcp.bodies[body].p_WBcm).cross(req.direction);
+    Interval s = End(lcp, F0, F1, true, 0.0, false, &cm.lps);
+    cm.holds_at_nominal = !s.empty;
+    cm.critical.push_back(s.empty ? std::optional<double>(0.0) : s.end);
+    if (s.end && !s.empty) {
+      side.equilibrium = ToCertificate(lcp, s.lp.equilibrium, *s.end);
+      const double past = *s.end * (1 + kPastStep) + kPastStep * r.part_weight;
+      side.mechanism =
+          ToCertificate(lcp, FindMechanism(WithLoads(lcp, Sum(F0, Scaled(F1, past)))), past);
+    }
+    if (s.empty) side.mechanism = ToCertificate(lcp, FindMechanism(lcp), 0.0);
+    // The strong range: the same LP with normal forces only (left empty when
+    // not even the unloaded assembly has a frictionless equilibrium).
+    int strong_lps = 0;
+    const Interval strong = End(lcp, F0, F1, true, 0.0, true, &strong_lps);
+    if (!strong.empty) side.strong = strong.end;
+    side.critical = cm.critical.back();
+  }
+  r.tolerance = side.critical ? kLpRelative * std::max(*side.critical, r.part_weight) : 0.0;
+}
+
+// ---------------------------------------------------------------------------
+// The tilt margin (mechanics/margin_lp.h): with F0 = m g and F1 = −m (a × g),
+// the load at angle θ is cos θ F0 + sin θ F1 (a ⟂ g). Per unit |cos θ|:
+//   L⁺(t) = F0 + t F1, θ = atan t ∈ (−90°, 90°);
+//   L⁻(t) = −F0 − t F1, θ = 180° + atan t ∈ (90°, 270°)
+// (θ = ±90°: ±F1). Going up from 0: L⁺ up to its max t, unless F1 is carried
+// (then θ = 90° holds and L⁺ is unbounded above); then L⁻ from t = −∞ up to
+// its max, unless −F1 is carried (θ = 270° holds); then L⁺ from −∞ back to 0,
+// which holds. Going down: the mirror image.
+
+// The angle of the first failure in one sense (rad, signed), empty: none.
+struct TiltEnd {
+  std::optional<double> theta;
+  LoadParameterResult lp;  // the deciding LP
+  double cos_scale = 1;    // |cos θ| (the LP's loads are per unit of it)
+};
+
+TiltEnd TiltSense(const ContactLcp& lcp, const Loads& F0, const Loads& F1, bool positive,
+                  bool frictionless, int* lps) {
+  TiltEnd out;
+  const double inf = -std::numeric_limits<double>::infinity();
+  const Interval near = End(lcp, F0, F1, positive, inf, frictionless, lps);
+  if (near.empty) return out;  // caller checks nominal first
+  if (near.end) {
+    out.theta = std::atan(*near.end);
+    out.lp = near.lp;
+    out.cos_scale = std::cos(*out.theta);
+    return out;
+  }
+  // Past ±90°: L⁻ = −F0 − t F1, entered from t = ∓∞.
+  const Interval far = End(lcp, Scaled(F0, -1), Scaled(F1, -1), positive, inf, frictionless, lps);
+  if (far.empty) {
+    out.theta = positive ? M_PI / 2 : -M_PI / 2;
+    out.cos_scale = 0;
+    return out;
+  }
+  if (!far.end) return out;  // all the way round
+  out.theta = positive ? M_PI + std::atan(*far.end) : -M_PI + std::atan(*far.end);
+  out.lp = far.lp;
+  out.cos_scale = std::abs(std::cos(*out.theta));
+  return out;
+}
+
+// Gravity turned by θ about a in the assembly's frame (Rodrigues with −θ).
+Vector3 TurnedGravity(const Vector3& g, const Vector3& a, double theta) {
+  return std::cos(theta) * g - std::sin(theta) * a.cross(g) + (1 - std::cos(theta)) * a.dot(g) * a;
+}
+
+Loads TiltLoads(const ContactLcp& lcp, const Vector3& g) {
+  Loads out;
+  for (const BodyDynamics& b : lcp.bodies) {
+    Vector6 w = Vector6::Zero();
+    w.head<3>() = b.mass * g;
+    out.push_back(w);
+  }
+  return out;
+}
+
+// The general axis (a·g ≠ 0): a scan by kTiltScanStep, then a bisection on
+// the first step that fails; every probe one equilibrium LP.
+std::optional<double> TiltBisect(const ContactLcp& lcp, const Vector3& g, const Vector3& a,
+                                 bool positive, int* lps) {
+  const double sign = positive ? 1.0 : -1.0;
+  const auto holds = [&](double theta) {
+    return Carried(lcp, TiltLoads(lcp, TurnedGravity(g, a, sign * theta)), false, lps);
+  };
+  double lo = 0, hi = -1;
+  for (double theta = kTiltScanStep; theta < 2 * M_PI + 0.5 * kTiltScanStep;
+       theta += kTiltScanStep) {
+    if (!holds(std::min(theta, 2 * M_PI))) {
+      hi = std::min(theta, 2 * M_PI);
+      break;
+    }
+    lo = theta;
+  }
+  if (hi < 0) return std::nullopt;
+  while (hi - lo > kTiltTolerance) {
+    const double mid = 0.5 * (lo + hi);
+    (holds(mid) ? lo : hi) = mid;
+  }
+  return sign * lo;
+}
+
+void TiltMargin(const Assembly& assembly, const std::vector<ContactLcp>& lcps,
+                const MarginRequest& req, MarginResult& r) {
+  const Vector3 g = assembly.gravity();
+  const Vector3 a = req.axis.normalized();
+  r.axis = a;
+  const bool exact = std::abs(a.dot(g.normalized())) <= kPerpendicular;
+  r.method = exact ? "parametric equilibrium LP in tan θ (exact)"
+                   : "scan by 5° and bisection over equilibrium LPs";
+  r.tolerance = exact ? 0 : kTiltTolerance * kDeg;
+  r.sides.resize(2);
+  for (size_t c = 0; c < lcps.size(); ++c) {
+    const ContactLcp& lcp = lcps[c];
+    ComponentMargin& cm = r.components[c];
+    const Loads F0 = GravityLoads(lcp);
+    cm.holds_at_nominal = Carried(lcp, F0, false, &cm.lps);
+    cm.critical.assign(2, std::nullopt);
+    for (int s = 0; s < 2; ++s) {
+      const bool positive = s == 1;
+      if (!cm.holds_at_nominal) {
+        // It fails as it stands: 0 in both senses, the mechanism at 0.
+        cm.critical[s] = 0.0;
+        MarginSide& side = r.sides[s];
+        if (side.critical && *side.critical == 0.0) continue;
+        side.critical = 0.0;
+        side.component = static_cast<int>(c);
+        side.equilibrium.reset();
+        side.mechanism = ToCertificate(lcp, FindMechanism(lcp), 0.0);
+        continue;
+      }
+      std::optional<double> theta;
+      TiltEnd end;
+      if (exact) {
+        const Loads F1 = TiltLoads(lcp, -a.cross(g));
+        end = TiltSense(lcp, F0, F1, positive, false, &cm.lps);
+        theta = end.theta;
+      } else {
+        theta = TiltBisect(lcp, g, a, positive, &cm.lps);
+      }
+      if (theta) cm.critical[s] = *theta * kDeg;
+      // This component decides the sense when it fails first.
+      MarginSide& side = r.sides[s];
+      const bool first =
+          theta && (!side.critical || std::abs(*theta * kDeg) < std::abs(*side.critical));
+      if (!first) continue;
+      side.critical = *theta * kDeg;
+      side.component = static_cast<int>(c);
+      const Loads at = TiltLoads(lcp, TurnedGravity(g, a, *theta));
+      if (exact && end.lp.status == LoadParameterResult::Status::kOptimal) {
+        side.equilibrium = ToCertificate(lcp, end.lp.equilibrium, *side.critical, end.cos_scale);
+      } else {
+        const StaticEquilibrium e = FindStaticEquilibrium(WithLoads(lcp, at));
+        if (e.exists) side.equilibrium = ToCertificate(lcp, e, *side.critical);
+      }
+      const double step = std::max(kPastStep * std::abs(*theta), kPastAngle);
+      const double past = *theta + (positive ? step : -step);
+      side.mechanism = ToCertificate(
+          lcp, FindMechanism(WithLoads(lcp, TiltLoads(lcp, TurnedGravity(g, a, past)))),
+          past * kDeg);
+      if (exact && end.lp.status == LoadParameterResult::Status::kOptimal)
+        r.tolerance = std::max(r.tolerance, kLpRelative * std::abs(*side.critical));
+    }
+  }
+  // The strong range per sense: the frictionless LP's tilt margin (exact axis
+  // only), the least over components.
+  bool nominal = true;
+  for (const ComponentMargin& cm : r.components) nominal = nominal && cm.holds_at_nominal;
+  if (!exact || !nominal) return;
+  for (int s = 0; s < 2; ++s) {
+    std::optional<double> strong;
+    bool all = true, never = false;
+    for (const ContactLcp& lcp : lcps) {
+      int lps = 0;
+      if (!Carried(lcp, GravityLoads(lcp), true, &lps)) {
+        never = true;
+        break;
+      }
+      const TiltEnd e =
+          TiltSense(lcp, GravityLoads(lcp), TiltLoads(lcp, -a.cross(g)), s == 1, true, &lps);
+      if (!e.theta) continue;
+      all = false;
+      const double deg = *e.theta * kDeg;
+      if (!strong || std::abs(deg) < std::abs(*strong)) strong = deg;
+    }
+    if (never) continue;  // not certified at any angle: left empty
+    r.sides[s].strong = all ? std::optional<double>() : strong;
+  }
+}
+
+// ---------------------------------------------------------------------------
+// The friction margin: per component a bisection on the factor k, each probe
+// a warm-started equilibrium LP (FrictionProbe). Feasibility is monotone in
+// k (mechanics/margin_lp.h); the component's k* is the least feasible k to
+// kFrictionTolerance, the assembly's the largest over components.
+
+struct FrictionBracket {
+  std::optional<double> hi;  // least k found feasible (verified); empty: none up to k_max
+  double lo = 0;             // greatest k proved infeasible (0 when none was)
+  bool lo_proved = false;    // some probe at lo > 0 was infeasible
+  StaticEquilibrium at_hi;
+};
+
+// One probe at factor k: whether the component stands, tightening the
+// bracket with the certificates' own bounds: a feasible probe's forces are
+// admissible from their friction use ρ ≤ k on (FrictionUse), an infeasible
+// probe's mechanism stays admissible up to κ ≥ k (MechanismFrictionBound).
+// Small components: the warm-started FrictionProbe (no mechanism: κ = k);
+// large ones: FindStaticEquilibrium (interior point, and the mechanism LP
+// when it fails).
+class FrictionOracle {
+ public:
+  explicit FrictionOracle(const ContactLcp& lcp) : lcp_(lcp), probe_(lcp) {
+    int columns = 0;
+    for (int f : lcp.friction_of) columns += f < 0 ? 1 : lcp.num_directions;
+    large_ = columns >= kLargeColumns;
+  }
+  // True: stands at k (`bound` = ρ, `at` the forces); false: `bound` = κ.
+  bool Ask(double k, double* bound, StaticEquilibrium* at) {
+    ++lps_;
+    if (!large_) {
+      const FrictionProbe::Answer a = probe_.Probe(k);
+      if (!a.solved)
+        throw std::runtime_error("equilibrium LP failed at friction factor " + std::to_string(k));
+      if (!a.exists) {
+        *bound = k;
+        return false;
+      }
+      *at = probe_.last();
+      *bound = std::min(k, FrictionUse(lcp_, *at));
+      return true;
+    }
+    // Large: the equilibrium LP's own policy (interior point; the
+    // mechanism LP when it fails, whose κ tightens the lower end).
+    const ContactLcp lcp_k = WithFrictionFactor(lcp_, k);
+    StaticEquilibrium e = FindStaticEquilibrium(lcp_k);
+    if (!e.solved)
+      throw std::runtime_error("equilibrium LP failed at friction factor " + std::to_string(k) +
+                               ": " + e.message);
+    if (e.exists) {
+      *bound = std::min(k, FrictionUse(lcp_, e));
+      *at = std::move(e);
+      return true;
+    }
+    *bound = k;
+    const Mechanism m = e.mechanism ? *e.mechanism : FindMechanism(lcp_k);
+    if (m.found) *bound = std::max(k, MechanismFrictionBound(lcp_, m));
+    return false;
+  }
+  // The bisection's relative bracket: 1e-6 on small components, 1e-4 on
+  // large ones (each probe near k* costs seconds there).
+  double tolerance() const { return large_ ? 1e-4 : 1e-6; }
+  int lps() const { return lps_; }
+
+ private:
+  // From this many generator columns on, the probes go to the interior-point
+  // solver with certificates (measured on the Armadillo vault: the
+  // warm-started dual simplex needs thousands of pivots per probe there).
+  static constexpr int kLargeColumns = 2000;
+  const ContactLcp& lcp_;
+  FrictionProbe probe_;
+  bool large_ = false;
+  int lps_ = 0;
+};
+
+FrictionBracket BisectFriction(const ContactLcp& lcp, double start, double k_max, int* lps) {
+  FrictionBracket out;
+  FrictionOracle oracle(lcp);
+  double bound = 0;
+  StaticEquilibrium at;
+  // 1. A feasible upper end: the nominal factor, doubled until it holds.
+  double k = start;
+  while (!oracle.Ask(k, &bound, &at)) {
+    out.lo = bound;
+    out.lo_proved = true;
+    if (k >= k_max) {
+      *lps += oracle.lps();
+      return out;
+    }
+    k = std::min(std::max(2 * k, bound * (1 + kFrictionTolerance)), k_max);
+  }
+  double hi = bound;
+  out.at_hi = at;
+  // 2. Frictionless? One LP decides k* = 0.
+  if (hi > 0 && !out.lo_proved) {
+    if (oracle.Ask(0.0, &bound, &at)) {
+      hi = 0;
+      out.at_hi = at;
+    } else {
+      out.lo = bound;
+      out.lo_proved = true;
+    }
+  }
+  // 3. Bisection on [lo, hi], each end tightened by its certificate. (The
+  // iteration cap is a guard: the bracket at least halves each time.)
+  for (int i = 0; i < kMaxBisections && hi - out.lo > oracle.tolerance() * hi; ++i) {
+    const double mid = 0.5 * (out.lo + hi);
+    if (oracle.Ask(mid, &bound, &at)) {
+      hi = std::max(bound, out.lo);
+      out.at_hi = at;
+    } else {
+      out.lo = std::min(bound, hi);
+    }
+  }
+  out.hi = hi;
+  *lps += oracle.lps();
+  return out;
+}
+
+void FrictionMargin(const AssemblyDef& def, const Configuration& config, MarginResult& r) {
+  r.factor = !def.friction_pairs.empty();
+  // The base model: μ = 1 everywhere (k is then μ itself), or the scene's
+  // friction pairs as they are (k scales them).
+  AssemblyDef base = def;
+  if (!r.factor) base.friction = 1.0;
+  r.nominal = r.factor ? 1.0 : def.friction;
+  double largest_mu = r.factor ? def.friction : 1.0;
+  for (const FrictionPairDef& p : def.friction_pairs) largest_mu = std::max(largest_mu, p.mu);
+  const double k_max = limits::kMaxFriction / std::max(largest_mu, 1e-300);
+  const Assembly assembly = Assembly::Create(base);
+  const std::vector<ContactLcp> lcps = BuildComponentLcps(assembly, config);
+  r.method =
+      "bisection over equilibrium LPs (warm-started dual simplex; interior point on large "
+      "components)";
+  r.sides.resize(1);
+  MarginSide& side = r.sides[0];
+  bool any_friction_needed = false, unbounded = false;
+  for (size_t c = 0; c < lcps.size(); ++c) {
+    const ContactLcp& lcp = lcps[c];
+    ComponentMargin& cm = r.components[c];
+    const double start = r.nominal > 0 ? r.nominal : 1.0;
+    FrictionBracket b = BisectFriction(lcp, start, k_max, &cm.lps);
+    cm.critical.push_back(b.hi);
+    cm.holds_at_nominal = b.hi && *b.hi <= r.nominal;
+    any_friction_needed = any_friction_needed || b.lo_proved;
+    if (unbounded) continue;  // a component no friction holds decides already
+    if (!b.hi) {
+      // No friction up to the largest allowed holds this component.
+      unbounded = true;
+      side.component = static_cast<int>(c);
+      side.critical.reset();
+      side.equilibrium.reset();
+      side.mechanism = ToCertificate(lcp, FindMechanism(WithFrictionFactor(lcp, k_max)), k_max);
+      continue;
+    }
+    r.tolerance = std::max(r.tolerance, *b.hi - b.lo);
+    if (side.component >= 0 && *side.critical >= *b.hi) continue;
+    // The component that needs the most friction decides.
+    side.component = static_cast<int>(c);
+    side.critical = b.hi;
+    side.equilibrium = ToCertificate(WithFrictionFactor(lcp, *b.hi), b.at_hi, *b.hi);
+    side.mechanism.reset();
+    if (*b.hi > 0) {
+      const double past = *b.hi * (1 - kPastStep);
+      side.mechanism = ToCertificate(lcp, FindMechanism(WithFrictionFactor(lcp, past)), past);
+    }
+  }
+  // Strong stability: a frictionless equilibrium in every component (k* = 0
+  // everywhere) certifies it at every μ; any infeasible probe rules it out.
+  r.strong_all = !any_friction_needed && !unbounded;
+  // Which parts move just below μ*, and how: the check there.
+  if (side.critical && *side.critical > 0) {
+    const double below = *side.critical * (1 - kPastStep);
+    r.failing_at = below;
+    const Assembly weaker = Assembly::Create(ScaleFriction(base, below));
+    StabilityOptions options;
+    options.check_equilibrium = true;
+    const StabilityResult check = AnalyzeConfiguration(weaker, config, options);
+    for (const PartMotion& m : check.parts)
+      if (m.moving && m.role == PartRole::kJudged) r.failing_below.push_back(m);
+  }
+}
+
+void CheckRequest(const Assembly& assembly, const Configuration& config, const MarginRequest& req) {
+  if (req.quantity == MarginQuantity::kTilt) {
+    if (!(req.axis.norm() > 0) || !req.axis.allFinite())
+      throw InputError("", "--tilt", "the axis must be a non-zero vector");
+    if (!assembly.is_3d() && (req.axis.x() != 0 || req.axis.y() != 0))
+      throw InputError("", "--tilt",
+                       "a 2-D scene turns in its plane: the axis must be 0,0,1 or 0,0,-1");
+  }
+  if (req.quantity == MarginQuantity::kLoad) {
+    if (req.part < 0 || req.part >= assembly.num_parts())
+      throw InputError("", "--load", "no such part");
+    const std::string& name = assembly.part(req.part).name;
+    if (assembly.part(req.part).fixed)
+      throw InputError("", "--load",
+                       "part \"" + name + "\" is fixed: a load on it goes to the ground");
+    if (!config.present[req.part])
+      throw InputError("", "--load", "part \"" + name + "\" is taken away (--without)");
+    if (!(req.direction.norm() > 0) || !req.direction.allFinite())
+      throw InputError("", "--direction", "must be a non-zero vector");
+    if (!req.point.allFinite()) throw InputError("", "--point", "must be finite");
+    if (!assembly.is_3d() && (req.direction.z() != 0 || req.point.z() != 0))
+      throw InputError("", "--direction", "a 2-D scene takes 2 numbers");
+  }
+}
+
+}  // namespace
+
+const char* to_string(MarginQuantity q) {
+  switch (q) {
+    case MarginQuantity::kFriction:
+      return "friction";
+    case MarginQuantity::kTilt:
+      return "tilt";
+    case MarginQuantity::kLoad:
+      return "load";
+  }
+  return "?";
+}
+
+AssemblyDef ScaleFriction(const AssemblyDef& def, double factor) {
+  AssemblyDef out = def;
+  out.friction *= factor;
+  for (FrictionPairDef& p : out.friction_pairs) p.mu *= factor;
+  return out;
+}
+
+MarginResult ComputeMargin(const AssemblyDef& def, const Assembly& assembly,
+                           const Configuration& config, const MarginRequest& request) {
+  MarginRequest req = request;
+  CheckRequest(assembly, config, req);
+  if (req.quantity == MarginQuantity::kLoad) req.direction.normalize();
+  MarginResult r;
+  r.quantity = req.quantity;
+  // 1. The components, as the check splits them.
+  const std::vector<ContactLcp> lcps = BuildComponentLcps(assembly, config);
+  for (const ContactLcp& lcp : lcps) {
+    ComponentMargin cm;
+    for (const BodyDynamics& b : lcp.bodies) cm.parts.push_back(b.part);
+    r.components.push_back(cm);
+  }
+  // 2–4. Each component's margin, the worst one's, the certificates.
+  try {
+    switch (req.quantity) {
+      case MarginQuantity::kFriction:
+        FrictionMargin(def, config, r);
+        break;
+      case MarginQuantity::kTilt:
+        TiltMargin(assembly, lcps, req, r);
+        break;
+      case MarginQuantity::kLoad:
+        LoadMargin(assembly, lcps, req, r);
+        break;
+    }
+  } catch (const std::runtime_error& e) {
+    if (dynamic_cast<const InputError*>(&e)) throw;
+    r.solved = false;
+    r.message = e.what();
+  }
+  r.holds_at_nominal = true;
+  for (const ComponentMargin& cm : r.components) {
+    r.lps += cm.lps;
+    r.holds_at_nominal = r.holds_at_nominal && cm.holds_at_nominal;
+  }
+  return r;
+}
+
+}  // namespace cairn
