@@ -122,12 +122,15 @@ json MarginToJson(const Assembly& assembly, const MarginRequest& req, const Marg
       break;
     }
     case MarginQuantity::kLoad: {
-      const std::optional<double> f = r.sides.empty() ? std::nullopt : r.sides[0].critical;
+      // The largest load (null: any load along D is carried).
+      const bool bounded = !r.sides.empty() && r.sides[0].critical.has_value();
+      const double f = bounded ? *r.sides[0].critical : 0.0;
       m["part"] = assembly.part(req.part).name;
       m["point"] = Vec(req.point, dim);
       m["direction"] = Vec(req.direction.normalized(), dim);
-      m["critical"] = Optional(f);
-      m["critical_weights"] = f && r.part_weight > 0 ? json(*f / r.part_weight) : json(nullptr);
+      m["critical"] = bounded ? json(f) : json(nullptr);
+      m["critical_weights"] =
+          bounded && r.part_weight > 0 ? json(f / r.part_weight) : json(nullptr);
       m["part_weight"] = r.part_weight;
       break;
     }
