@@ -19,13 +19,11 @@ constexpr int kMaxSimulations = 60;
 PlanMargin PlanFrictionMargin(const AssemblyDef& def, const Plan& plan,
                               const SimulationOptions& options) {
   PlanMargin out;
-  out.factor = !def.friction_pairs.empty();
-  AssemblyDef base = def;
-  if (!out.factor) base.friction = 1.0;
-  out.nominal = out.factor ? 1.0 : def.friction;
-  double largest_mu = out.factor ? def.friction : 1.0;
-  for (const FrictionPairDef& p : def.friction_pairs) largest_mu = std::max(largest_mu, p.mu);
-  const double k_max = limits::kMaxFriction / std::max(largest_mu, 1e-300);
+  const FrictionScaling scaling = FrictionScalingOf(def);
+  out.factor = scaling.factor;
+  out.nominal = scaling.nominal;
+  const AssemblyDef& base = scaling.base;
+  const double k_max = scaling.k_max;
   SimulationOptions sim = options;
   sim.continue_after_failure = false;  // the first failure is the answer
   sim.record_timeline = false;

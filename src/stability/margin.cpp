@@ -466,15 +466,13 @@ FrictionBracket BisectFriction(const ContactLcp& lcp, double start, double k_max
 }
 
 void FrictionMargin(const AssemblyDef& def, const Configuration& config, MarginResult& r) {
-  r.factor = !def.friction_pairs.empty();
   // The base model: μ = 1 everywhere (k is then μ itself), or the scene's
   // friction pairs as they are (k scales them).
-  AssemblyDef base = def;
-  if (!r.factor) base.friction = 1.0;
-  r.nominal = r.factor ? 1.0 : def.friction;
-  double largest_mu = r.factor ? def.friction : 1.0;
-  for (const FrictionPairDef& p : def.friction_pairs) largest_mu = std::max(largest_mu, p.mu);
-  const double k_max = limits::kMaxFriction / std::max(largest_mu, 1e-300);
+  const FrictionScaling scaling = FrictionScalingOf(def);
+  r.factor = scaling.factor;
+  r.nominal = scaling.nominal;
+  const AssemblyDef& base = scaling.base;
+  const double k_max = scaling.k_max;
   const Assembly assembly = Assembly::Create(base);
   const std::vector<ContactLcp> lcps = BuildComponentLcps(assembly, config);
   r.method =
@@ -566,6 +564,18 @@ const char* to_string(MarginQuantity q) {
       return "load";
   }
   return "?";
+}
+
+FrictionScaling FrictionScalingOf(const AssemblyDef& def) {
+  FrictionScaling s;
+  s.factor = !def.friction_pairs.empty();
+  s.base = def;
+  if (!s.factor) s.base.friction = 1.0;
+  s.nominal = s.factor ? 1.0 : def.friction;
+  double largest_mu = s.factor ? def.friction : 1.0;
+  for (const FrictionPairDef& p : def.friction_pairs) largest_mu = std::max(largest_mu, p.mu);
+  s.k_max = limits::kMaxFriction / std::max(largest_mu, 1e-300);
+  return s;
 }
 
 AssemblyDef ScaleFriction(const AssemblyDef& def, double factor) {

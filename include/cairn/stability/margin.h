@@ -136,4 +136,16 @@ MarginResult ComputeMargin(const AssemblyDef& def, const Assembly& assembly,
 /// default μ and every friction pair's): what the friction margin scales.
 AssemblyDef ScaleFriction(const AssemblyDef& def, double factor);
 
+/// What a friction margin varies: the friction factor k on `base`.
+/// Without friction pairs, base has μ = 1 everywhere, so k is μ itself and
+/// the scene's μ is `nominal`; with them, base is the scene and k scales every
+/// μ (`nominal` = 1). `k_max` keeps every μ within limits::kMaxFriction.
+struct FrictionScaling {
+  bool factor = false;  ///< k scales the scene's friction pairs (else k is μ)
+  AssemblyDef base;
+  double nominal = 0;
+  double k_max = 0;
+};
+FrictionScaling FrictionScalingOf(const AssemblyDef& def);
+
 }  // namespace cairn
