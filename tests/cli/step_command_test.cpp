@@ -8,6 +8,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <set>
 
@@ -176,6 +177,23 @@ TEST(StepCommand, BourjaultPenPlanFindsDisassemblySequences) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const json doc = json::parse(r.out);
   ASSERT_FALSE(doc["sequences"].empty()) << r.out.substr(0, 2000);
+  // Each sequence takes the five movable parts out, each exactly once, and
+  // the ink never before the button (along +X the ground truth has the ink
+  // blocked by the button, and the axes offer it no other way out first).
+  const std::set<std::string> movable = {"cap_001", "button_001", "ink_001", "cartridge_001",
+                                         "head_001"};
+  for (const json& seq : doc["sequences"]) {
+    std::multiset<std::string> removed;
+    std::map<std::string, size_t> step_of;
+    for (size_t k = 0; k < seq["steps"].size(); ++k)
+      for (const json& part : seq["steps"][k]["remove"]) {
+        removed.insert(part.get<std::string>());
+        step_of[part.get<std::string>()] = k;
+      }
+    EXPECT_EQ(std::set<std::string>(removed.begin(), removed.end()), movable) << seq.dump();
+    EXPECT_EQ(removed.size(), movable.size()) << seq.dump();
+    EXPECT_LE(step_of["button_001"], step_of["ink_001"]) << seq.dump();
+  }
 }
 
 // ASAP's beams on their posts (README): every mesh loads; a top beam leaves
