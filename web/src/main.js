@@ -214,13 +214,21 @@ class Page {
     story.push((r.stable ? 'Stable' : 'Not stable') + (r.stability ? ' (' + r.stability + ')' : '') +
                (absent.length ? ' without ' + absent.map((i) => this.names[i]).join(', ') : '') + '.');
     for (const m of this.motions) story.push(this.names[m.part] + ' ' + motionWords(m) + '.');
-    if (r.diagnostics) story.push(r.diagnostics);
     this.setStory(story);
+    this.setSolverNotes(r.diagnostics);
     this.foot.append($('div', { class: 'note' }, (r.contacts || []).length + ' contacts · ' + this.names.length + ' parts'));
   }
 
   setStory(lines) {
     this.storyEl.replaceChildren(...lines.map((l) => $('li', {}, l)));
+  }
+
+  // What decided each component, folded away under the story.
+  setSolverNotes(text) {
+    if (!text) return;
+    const notes = text.split(/;\s*(?=component \d|step \d)/).filter((t) => t.trim());
+    this.storyEl.after($('details', { id: 'solver-notes' }, $('summary', {}, 'solver notes'),
+                         $('ul', {}, ...notes.map((t) => $('li', {}, t.replace(/;\s*$/, ''))))));
   }
 
   // A simulation: frames (one per tick), a scrubber, play, the chart.
@@ -239,6 +247,7 @@ class Page {
       story.push('Step ' + (s.index + 1) + ': remove ' + (s.parts || []).join(', ') + ' (' + s.verdict + ', ' + (s.time_steps || 0) + ' time steps).');
     if (f && f.description) story.push(brief(f.description));
     this.setStory(story);
+    this.setSolverNotes(this.result.diagnostics);
 
     const row = $('div', { class: 'row' });
     this.playBtn = $('button', { id: 'play' }, 'Play');

@@ -40,6 +40,8 @@ aside h2:first-child { margin-top:0; }
 #info { white-space:pre-wrap; font-family: ui-monospace, "DejaVu Sans Mono", monospace; font-size:12px;
   background:#f3f2ef; padding:6px; border-radius:4px; min-height:3em; }
 #story { margin:0; padding-left:16px; } #story li { margin:3px 0; }
+#solver-notes { margin-top:6px; color:var(--muted); font-size:12px; }
+#solver-notes ul { margin:4px 0; padding-left:16px; } #solver-notes li { margin:2px 0; }
 footer { grid-area:foot; border-top:1px solid var(--line); background:var(--panel); padding:6px 12px; }
 footer .row { display:flex; align-items:center; gap:10px; }
 footer button { font:inherit; padding:3px 12px; border:1px solid var(--line); border-radius:4px; background:#fff; cursor:pointer; }
