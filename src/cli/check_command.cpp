@@ -67,8 +67,7 @@ int RunCheck(const CheckArgs& args, std::ostream& out, std::ostream& err) {
     // Everything is computed before anything is written.
     const nlohmann::json doc = CheckJson(c);
     OutputFiles files;
-    if (!args.html.empty())
-      files.Add(args.html, CheckPage(c.assembly, c.config, doc, c.report), "--html");
+    if (!args.html.empty()) files.Add(args.html, CheckPage(c.assembly, doc, c.report), "--html");
     files.Commit();
     if (args.json)
       out << doc.dump(2) << '\n';

@@ -322,8 +322,7 @@ std::string HtmlPage(const json& data) {
   return page;
 }
 
-std::string CheckPage(const Assembly& assembly, const Configuration& /*config*/, const json& doc,
-                      const ReportOptions& options) {
+std::string CheckPage(const Assembly& assembly, const json& doc, const ReportOptions& options) {
   return HtmlPage({{"cairn_page", 1},
                    {"kind", "check"},
                    {"title", Title(assembly, options)},

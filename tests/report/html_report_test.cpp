@@ -74,7 +74,7 @@ TEST(CheckPage, CarriesTheShapesAndTheCheckDocumentUnchanged) {
   options.without = {a.FindPart("C")};
   const StabilityResult r = AnalyzeConfiguration(a, config, {});
   const json doc = StabilityToJson(a, config, r, options);
-  const json data = PageData(CheckPage(a, config, doc, options));
+  const json data = PageData(CheckPage(a, doc, options));
   EXPECT_EQ(data["kind"], "check");
   EXPECT_EQ(data["result"], doc);
   const json& parts = data["scene"]["parts"];
@@ -103,7 +103,7 @@ TEST(CheckPage, TheTrianglesOfA3dPartEncloseItsVolume) {
   const Assembly& a = jenga.assembly;
   const Configuration config = Configuration::Assembled(a);
   const StabilityResult r = AnalyzeConfiguration(a, config, {});
-  const json data = PageData(CheckPage(a, config, StabilityToJson(a, config, r, {}), {}));
+  const json data = PageData(CheckPage(a, StabilityToJson(a, config, r, {}), {}));
   for (int i = 0; i < a.num_parts(); i += 7) {
     const json& p = data["scene"]["parts"][i];
     const std::vector<double> v = p["vertices"].get<std::vector<double>>();

@@ -325,9 +325,8 @@ class Page {
     this.view.setContacts(fr.contacts);
     this.motions = k === this.failureFrame ? this.failureMotions : [];
     this.view.setMotions(this.motions);
-    const step = (this.result.steps || [])[fr.step];
     this.timeEl.textContent = 't = ' + fmt(fr.time, 4) + ' s · step ' + (fr.step + 1) + ' · tick ' + fr.tick +
-      (k === this.failureFrame ? ' · FAILS' : '') + (step ? '' : '');
+      (k === this.failureFrame ? ' · FAILS' : '');
     this.chart.setFrame(k);
     if (this.selected) this.infoEl.textContent = this.selected.part !== undefined ? this.describe(this.selected) : this.infoEl.textContent;
   }

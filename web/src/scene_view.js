@@ -378,7 +378,7 @@ export class SceneView {
     this.requestRender();
   }
 
-  setFixels(fixels, indexOf) {  // [{part, point, normal}]: arrows pushing into the part
+  setFixels(fixels) {  // [{part, point, normal}]: arrows pushing into the part
     const arrows = (fixels || []).map((f) => {
       const p = new THREE.Vector3(...pad3(f.point)), n = new THREE.Vector3(...pad3(f.normal)).normalize();
       return [p.clone().addScaledVector(n, -0.08 * this.size), p];

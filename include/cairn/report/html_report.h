@@ -48,10 +48,10 @@ inline constexpr int kMaxPageFrames = 2000;
 /// them are in `result`).
 inline constexpr int kMaxPageSequences = 50;
 
-/// `cairn check --html`: the configuration `config` and its check `doc`
-/// (StabilityToJson of the same result).
-std::string CheckPage(const Assembly& assembly, const Configuration& config,
-                      const nlohmann::json& doc, const ReportOptions& options);
+/// `cairn check --html`: the check `doc` (StabilityToJson: the parts taken
+/// away, the contacts and motions are all in it) drawn on the assembly.
+std::string CheckPage(const Assembly& assembly, const nlohmann::json& doc,
+                      const ReportOptions& options);
 
 /// `cairn simulate --html`: `result` must have been simulated with
 /// SimulationOptions::record_timeline; `frames` in the order analysed.
