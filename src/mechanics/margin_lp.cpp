@@ -17,6 +17,7 @@ using equilibrium_internal::kSimplexPrimalTolerance;
 using equilibrium_internal::Load;
 using equilibrium_internal::MakeEquilibriumLp;
 using equilibrium_internal::ReadEquilibrium;
+using equilibrium_internal::Triplets;
 
 namespace {
 
@@ -95,6 +96,12 @@ LoadParameterResult OptimizeLoadParameter(const ContactLcp& lcp, const std::vect
     return out;
   }
   out.value = lp.primalColumnSolution()[ng];
+  const double* y = lp.dualRowSolution();
+  for (size_t b = 0; b < lcp.bodies.size(); ++b) {
+    Vector6 yb;
+    for (int k = 0; k < 6; ++k) yb[k] = y[6 * b + k];
+    out.motion.push_back(-(e.P[b] * yb));
+  }
   // The forces at the optimum, re-checked as an equilibrium of F_ext + s F₁
   // (the amounts rescaled to that problem's load unit).
   std::vector<Vector6> at(lcp.bodies.size());
@@ -151,79 +158,118 @@ double FrictionUse(const ContactLcp& lcp, const StaticEquilibrium& e) {
   return use;
 }
 
-double MechanismFrictionBound(const ContactLcp& lcp, const Mechanism& m) {
-  double bound = std::numeric_limits<double>::infinity();
-  const int D = lcp.num_directions;
-  for (size_t c = 0; c < lcp.contacts.size(); ++c) {
-    const int f = lcp.friction_of[c];
-    const double mu = lcp.contacts[c].mu;
-    if (f < 0 || !(mu > 0)) continue;
-    const double pn = lcp.normal_rows[c].Dot(m.nu);
-    for (int k = 0; k < D; ++k) {
-      const double pd = lcp.direction_rows[D * f + k].Dot(m.nu);
-      if (pd < 0) bound = std::min(bound, std::max(0.0, pn) / (mu * -pd));
-    }
-  }
-  return bound;
-}
-
 // ---------------------------------------------------------------------------
-// FrictionProbe
+// The friction deficit LP (margin_lp.h): the equilibrium LP's generator
+// columns at k (in load_scale units), then the extra friction z_ci ≥ 0 along
+// each direction d_i of each frictional contact, cost 1; rows: the
+// equilibrium's 6 nb.
 
-struct FrictionProbe::Impl {
-  ContactLcp lcp;
-  std::vector<unsigned char> basis;  // Clp's status array of the last solve
-};
+namespace {
 
-FrictionProbe::FrictionProbe(const ContactLcp& lcp) : impl_(std::make_unique<Impl>()) {
-  impl_->lcp = lcp;
-}
+// A deficit below this (in units of the largest load, dimensionless) is 0:
+// the LP's answer is read as an equilibrium at k and re-checked. Above it
+// the component does not stand at k. The interior-point method's relative
+// gap is 1e-8.
+constexpr double kDeficitZero = 1e-9;
 
-FrictionProbe::~FrictionProbe() = default;
+}  // namespace
 
-FrictionProbe::Answer FrictionProbe::Probe(double k) {
-  Answer out;
-  const ContactLcp lcp_k = WithFrictionFactor(impl_->lcp, k);
+FrictionDeficit FrictionDeficitLp::Solve(double k) {
+  const ContactLcp& lcp = lcp_;
+  FrictionDeficit out;
+  const ContactLcp lcp_k = WithFrictionFactor(lcp, k);
+  // The equilibrium LP's generator columns x at k, then the extra friction
+  // z_ci ≥ 0 along each d_i (cost 1): its least total is φ(k).
   const EquilibriumLp e = MakeEquilibriumLp(lcp_k, /*frictionless=*/false);
-  const int ncols = static_cast<int>(e.generators.size());
+  const int ng = static_cast<int>(e.generators.size());
+  const int D = lcp.num_directions;
+  int nf = 0;
+  for (int f : lcp.friction_of) nf = std::max(nf, f + 1);
+  const int ncols = ng + D * nf;
+  const auto direction_wrench = [&](int c, int i, int s) -> Vector6 {
+    const int b = lcp.normal_rows[c].body[s];
+    return e.P[b] * lcp.direction_rows[D * lcp.friction_of[c] + i].g[s];
+  };
+  Triplets a = e.a;
+  for (int c = 0; c < static_cast<int>(lcp.contacts.size()); ++c) {
+    const int f = lcp.friction_of[c];
+    if (f < 0) continue;
+    for (int i = 0; i < D; ++i)
+      for (int s = 0; s < 2; ++s) {
+        const int b = lcp.normal_rows[c].body[s];
+        if (b < 0) continue;
+        const Vector6 w = direction_wrench(c, i, s);
+        for (int r = 0; r < 6; ++r) a.Add(6 * b + r, ng + D * f + i, w[r]);
+      }
+  }
+  a.DropDust();
+  std::vector<double> col_lo(ncols, 0.0), col_hi(ncols, COIN_DBL_MAX), cost(ncols, 0.0);
+  for (int j = ng; j < ncols; ++j) cost[j] = 1.0;
   ClpSimplex lp;
-  Load(e, lp);
-  lp.setPrimalTolerance(kSimplexPrimalTolerance);
-  // The same generators in the same order at every k: the last basis fits.
-  // With no objective it is dual feasible, and the dual simplex goes on from
-  // it to primal feasibility (or a proof that there is none).
-  if (impl_->basis.size() == static_cast<size_t>(ncols + e.nrows)) {
-    lp.copyinStatus(impl_->basis.data());
-    lp.dual(0, /*startFinishOptions=*/0);
-    ++warm_;
-    if (lp.status() != 0 && lp.status() != 1) SolveFresh(lp, ncols);
-  } else {
-    SolveFresh(lp, ncols);
+  lp.setLogLevel(0);
+  lp.loadProblem(a.Matrix(e.nrows, ncols), col_lo.data(), col_hi.data(), cost.data(), e.rhs.data(),
+                 e.rhs.data());
+  // The interior-point method on large components (a warm-started simplex
+  // took 2000–16000 pivots per step on the Armadillo vault: the LP is very
+  // degenerate); the dual simplex on small ones, or when the former fails.
+  if (ncols >= kBarrierColumns) {
+    ClpSolve how;
+    how.setSolveType(ClpSolve::useBarrierNoCross);
+    how.setPresolveType(ClpSolve::presolveOff);
+    lp.initialSolve(how);
+    out.method = "barrier";
+  }
+  if (ncols < kBarrierColumns || lp.status() != 0) {
+    lp.setPrimalTolerance(kSimplexPrimalTolerance);
+    lp.dual();
+    out.method = "dual simplex";
   }
   ++lps_;
-  iterations_ += lp.numberIterations();
-  if (lp.status() == 0 || lp.status() == 1)
-    impl_->basis.assign(lp.statusArray(), lp.statusArray() + ncols + e.nrows);
+  out.iterations = lp.numberIterations();
+  iterations_ += out.iterations;
   if (lp.status() == 1) {
+    // Infeasible even with unlimited friction: no factor holds.
     out.solved = true;
+    out.deficit = std::numeric_limits<double>::infinity();
     return out;
   }
-  if (lp.status() != 0) return out;
-  StaticEquilibrium eq;
-  if (ReadEquilibrium(lcp_k, e, lp.primalColumnSolution(), ncols, eq)) {
-    eq.solved = eq.exists = true;
-    eq.method = "dual simplex";
-    last_ = std::move(eq);
-    out.solved = out.exists = true;
+  if (lp.status() != 0) {
+    out.message = "Clp (friction deficit LP): status " + std::to_string(lp.status());
     return out;
   }
-  // The simplex said feasible within its tolerance but the forces do not
-  // balance: the equilibrium LP decides afresh.
-  StaticEquilibrium fresh = FindStaticEquilibrium(lcp_k);
-  ++lps_;
-  out.solved = fresh.solved;
-  out.exists = fresh.exists;
-  if (fresh.exists) last_ = std::move(fresh);
+  out.solved = true;
+  out.deficit = std::max(0.0, lp.objectiveValue());
+  // The slope: moving k by δ turns generator (c, i) by δ μ_c d_i. A
+  // contact's normal force f_n,c may go to any of its generators, so the
+  // value falls by δ μ_c f_n,c max_i P_ci, P_ci = yᵀ (P Jᵀ d_i) the power of
+  // d_i under the duals y (max_i P_ci ≥ 0, as the d_i sum to 0).
+  const double* x = lp.primalColumnSolution();
+  const double* y = lp.dualRowSolution();
+  std::vector<double> fn(lcp.contacts.size(), 0.0);
+  for (int j = 0; j < ng; ++j) fn[e.generators[j].contact] += std::max(0.0, x[j]);
+  for (int c = 0; c < static_cast<int>(lcp.contacts.size()); ++c) {
+    if (lcp.friction_of[c] < 0 || !(fn[c] > 0)) continue;
+    double best = 0;
+    for (int i = 0; i < D; ++i) {
+      double p = 0;
+      for (int s = 0; s < 2; ++s) {
+        const int b = lcp.normal_rows[c].body[s];
+        if (b < 0) continue;
+        const Vector6 w = direction_wrench(c, i, s);
+        for (int r = 0; r < 6; ++r) p += y[6 * b + r] * w[r];
+      }
+      best = std::max(best, p);
+    }
+    out.slope -= lcp.contacts[c].mu * fn[c] * best;
+  }
+  if (out.deficit > kDeficitZero) return out;
+  // φ ≈ 0: the generator amounts are an equilibrium at k, refined and
+  // re-checked there.
+  if (ReadEquilibrium(lcp_k, e, x, ng, out.equilibrium)) {
+    out.equilibrium.solved = out.equilibrium.exists = true;
+    out.equilibrium.method = out.method;
+    out.exists = true;
+  }
   return out;
 }
 

@@ -327,29 +327,34 @@ bool SolveElasticLp(const EquilibriumLp& e, const std::vector<double>& radius, C
   return false;
 }
 
-// The virtual motion ν = −P y per body from the row duals, normalised so that
-// the largest body moves by 1 (|v| + r|ω|); bodies below kMechanismRest of
-// that are at rest (interior-point duals leave dust there). False when every
-// body is at rest.
-bool MotionFromDuals(const EquilibriumLp& e, const std::vector<double>& radius, const double* y,
-                     std::vector<Vector6>* nu) {
-  const int nb = static_cast<int>(radius.size());
+// Scales a virtual motion so that its fastest body moves by 1 (|v| + r|ω|);
+// bodies below kMechanismRest of that are at rest (interior-point duals leave
+// dust there). False when every body is at rest.
+bool NormaliseMotion(const std::vector<double>& radius, std::vector<Vector6>* nu) {
   const auto size = [&](int b) {
     return (*nu)[b].head<3>().norm() + radius[b] * (*nu)[b].tail<3>().norm();
   };
-  nu->assign(nb, Vector6::Zero());
+  const int nb = static_cast<int>(radius.size());
   double largest = 0;
-  for (int b = 0; b < nb; ++b) {
-    Vector6 yb;
-    for (int k = 0; k < 6; ++k) yb[k] = y[6 * b + k];
-    (*nu)[b] = -(e.P[b] * yb);
-    largest = std::max(largest, size(b));
-  }
-  if (!(largest > 0)) return false;
+  for (int b = 0; b < nb; ++b) largest = std::max(largest, size(b));
+  if (!(largest > 0) || !std::isfinite(largest)) return false;
   for (int b = 0; b < nb; ++b)
     if (size(b) <= kMechanismRest * largest) (*nu)[b].setZero();
   for (Vector6& n : *nu) n /= largest;
   return true;
+}
+
+// The virtual motion ν = −P y per body from the row duals, normalised.
+bool MotionFromDuals(const EquilibriumLp& e, const std::vector<double>& radius, const double* y,
+                     std::vector<Vector6>* nu) {
+  const int nb = static_cast<int>(radius.size());
+  nu->assign(nb, Vector6::Zero());
+  for (int b = 0; b < nb; ++b) {
+    Vector6 yb;
+    for (int k = 0; k < 6; ++k) yb[k] = y[6 * b + k];
+    (*nu)[b] = -(e.P[b] * yb);
+  }
+  return NormaliseMotion(radius, nu);
 }
 
 // The independent check of a mechanism, without Clp: gravity's power F·ν >
@@ -391,6 +396,26 @@ void CheckMechanism(const ContactLcp& lcp, const EquilibriumLp& e,
 }
 
 }  // namespace
+
+Mechanism VerifyMechanism(const ContactLcp& lcp, std::vector<Vector6> nu) {
+  Mechanism out;
+  const int nb = static_cast<int>(lcp.bodies.size());
+  std::vector<double> radius(nb);
+  for (int b = 0; b < nb; ++b) radius[b] = BodyRadius(lcp.bodies[b]);
+  if (static_cast<int>(nu.size()) != nb) {
+    out.message = "no motion given";
+    return out;
+  }
+  for (int b = 0; b < nb; ++b) nu[b] = lcp.bodies[b].FreeProjector() * nu[b];
+  if (!NormaliseMotion(radius, &nu)) {
+    out.message = "every body is at rest";
+    return out;
+  }
+  out.nu = std::move(nu);
+  const EquilibriumLp e = MakeEquilibriumLp(lcp, /*frictionless=*/false);
+  CheckMechanism(lcp, e, radius, out);
+  return out;
+}
 
 Mechanism FindMechanism(const ContactLcp& lcp) {
   Mechanism out;

@@ -15,6 +15,7 @@
 #include "cairn/core/error.h"
 #include "cairn/io/compas_reader.h"
 #include "cairn/io/scene_reader.h"
+#include "cairn/mechanics/margin_lp.h"
 #include "scene_builders.h"
 #include "test_paths.h"
 
@@ -128,6 +129,34 @@ TEST(Margin, InclineCriticalFrictionIsTanTheta) {
     // Agreement with the check.
     EXPECT_NEAR(*r.sides[0].critical, CheckCriticalFriction(s.def, 2.0), 1e-5) << file;
   }
+}
+
+// The friction deficit (mechanics/margin_lp.h) of the same block: the
+// friction it lacks is its weight's tangential part, m g sin θ, less the
+// pyramid's k μ m g cos θ, in units of its weight (the largest load). So
+// φ(k) = sin θ − k cos θ up to tan θ, its slope is −cos θ, Newton's first
+// step from 0 lands on tan θ, and the margin takes three LPs: k = 0, tan θ,
+// and the factor just below it.
+TEST(Margin, InclineFrictionDeficitIsLinearAndNewtonLandsOnTanTheta) {
+  const double theta = 20.0 / kDeg;
+  const Scene s = Example("incline.json", 1.0);
+  const std::vector<ContactLcp> lcps = BuildComponentLcps(s.assembly, s.config());
+  ASSERT_EQ(lcps.size(), 1u);
+  FrictionDeficitLp deficit(lcps[0]);
+  for (double k : {0.0, 0.1, 0.3}) {
+    const FrictionDeficit d = deficit.Solve(k);
+    ASSERT_TRUE(d.solved) << d.message;
+    EXPECT_FALSE(d.exists) << k;
+    EXPECT_NEAR(d.deficit, std::sin(theta) - k * std::cos(theta), 1e-9) << k;
+    EXPECT_NEAR(d.slope, -std::cos(theta), 1e-9) << k;
+  }
+  const FrictionDeficit at = deficit.Solve(0.5);
+  ASSERT_TRUE(at.exists);
+  EXPECT_EQ(at.deficit, 0.0);
+  EXPECT_LT(at.equilibrium.residual, 1e-9);
+  const MarginResult r = s.Margin(Friction());
+  EXPECT_NEAR(*r.sides[0].critical, std::tan(theta), 1e-6);
+  EXPECT_EQ(r.lps, 3);
 }
 
 // A box of width w on a table tilted by θ: with friction enough not to slide
@@ -395,6 +424,43 @@ TEST(Margin, ArchCriticalFrictionAgainstIndependentLp) {
   EXPECT_GT(mu, 0.01);  // the arch needs friction
   EXPECT_NEAR(*r.sides[0].critical, mu, 1e-5);
   EXPECT_NEAR(*r.sides[0].critical, CheckCriticalFriction(def, 2.0), 1e-4);
+}
+
+// On the arch the deficit is not linear: its slope changes with k as the
+// forces redistribute. Newton's step from below, k + φ/|φ'|, still at least
+// halves the distance to μ* from every k below it (from 0.99 μ* it lands
+// 2e-5 past μ*: φ is not convex there, which is why the steps are
+// safeguarded), and the margin needs far fewer LPs than the ~20 of a
+// bisection to 1e-6.
+TEST(Margin, ArchFrictionDeficitNewtonStepsStayBelowCritical) {
+  AssemblyDef def;
+  def.friction = 1.0;
+  def.parts.push_back(Box("ground", -3, -1, 3, 0, true));
+  const int n = 7;
+  for (int i = 0; i < n; ++i) {
+    PartDef p;
+    p.name = "v" + std::to_string(i);
+    const double a0 = M_PI * i / n, a1 = M_PI * (i + 1) / n;
+    for (const auto& [r, a] : {std::pair{1.0, a0}, {1.25, a0}, {1.25, a1}, {1.0, a1}})
+      p.polygon.push_back(Vector2(r * std::cos(a), r * std::sin(a)));
+    std::reverse(p.polygon.begin(), p.polygon.end());
+    def.parts.push_back(p);
+  }
+  const Scene s(def);
+  const MarginResult r = s.Margin(Friction());
+  ASSERT_TRUE(r.sides[0].critical);
+  const double critical = *r.sides[0].critical;
+  EXPECT_LE(r.lps, 12);  // 10: half the bisection's 22
+  FrictionDeficitLp deficit(BuildComponentLcps(s.assembly, s.config())[0]);
+  for (double f : {0.0, 0.3, 0.6, 0.9, 0.99}) {
+    const double k = f * critical;
+    const FrictionDeficit d = deficit.Solve(k);
+    ASSERT_TRUE(d.solved) << d.message;
+    ASSERT_GT(d.deficit, 0) << k;
+    ASSERT_LT(d.slope, 0) << k;
+    const double newton = k + d.deficit / -d.slope;
+    EXPECT_LE(std::abs(newton - critical), 0.5 * (critical - k)) << "from " << k;
+  }
 }
 
 // The same request gives the same answer, bit for bit.

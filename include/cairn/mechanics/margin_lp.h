@@ -11,9 +11,10 @@
 /// each (OptimizeLoadParameter: max s or min s over (x, s)). S is unbounded
 /// above exactly when F₁ alone is carried: if Σ W_j y_j + F₁ = 0 for some
 /// y ≥ 0 then F_ext + s F₁ is carried for every s ≥ s₀ ∈ S (add (s − s₀) y);
-/// conversely F(s)/s → F₁ and the cone of the W_j is closed. So
-/// IsCarried(F₁) (one equilibrium LP) decides unboundedness exactly, and the
-/// LP for the end is only solved when it has a finite optimum.
+/// conversely F(s)/s → F₁ and the cone of the W_j is closed. So one
+/// equilibrium LP (F₁ alone carried?) decides unboundedness exactly: the
+/// margins solve the LP for the end first and ask it only when that LP
+/// reports no finite end.
 ///
 ///  - the load margin: F₁ = Jᵀ(P) d, the wrench of a unit force along d at
 ///    point P of one body; s ≥ 0 is the force in force units.
@@ -28,14 +29,13 @@
 /// **Friction.** The generators n + k μ_c d_k are bilinear in the factor k,
 /// so the least k is not one LP; but feasibility is monotone in k (the
 /// pyramid k μ P grows with k, as P, the convex hull of the unit directions
-/// d_k, contains 0), so a bisection on k converges to k* with verified ends.
-/// FrictionProbe solves the equilibrium LP at successive k on one Clp model,
-/// warm-started from the last basis: with no objective every basis is dual
-/// feasible, so the dual simplex starts from it whatever the new k.
+/// d_k, contains 0). FrictionDeficitLp measures how far a factor k is from
+/// standing, φ(k), with the slope that Newton's method needs
+/// (stability/margin.cpp).
 
-#include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "cairn/mechanics/contact_model.h"
@@ -55,6 +55,11 @@ struct LoadParameterResult {
   double value = 0;  ///< the optimal s
   /// The equilibrium at F_ext + value F₁, re-checked from the forces.
   StaticEquilibrium equilibrium;
+  /// The LP's row duals as a virtual motion per body, ν = −P y: no generator
+  /// resists it and F₁·ν ≠ 0, so past the end (s beyond `value`) gravity and
+  /// the load do work along it. A mechanism just past the end, unverified
+  /// (VerifyMechanism checks it).
+  std::vector<Vector6> motion;
   const char* method = "";
   int iterations = 0;
   std::string message;
@@ -83,41 +88,56 @@ ContactLcp WithFrictionFactor(const ContactLcp& lcp, double factor);
 /// friction carries a tangential force.
 double FrictionUse(const ContactLcp& lcp, const StaticEquilibrium& e);
 
-/// The largest friction factor at which mechanism `m` of `lcp` stays
-/// admissible: every generator power P_n + k μ P_dk ≥ 0 holds for k ≤
-/// min over P_dk < 0 of P_n / (μ |P_dk|) (and P_n ≥ 0, the average over the
-/// symmetric d_k). So no equilibrium exists at any factor up to it: a lower
-/// bound on k*. +∞ when no generator's power falls with k.
-double MechanismFrictionBound(const ContactLcp& lcp, const Mechanism& m);
+/// The friction deficit at factor k: how much friction the component lacks
+/// to stand. The equilibrium LP (generator form) with, at every frictional
+/// contact, extra friction z_ci ≥ 0 along each direction d_i beyond the
+/// pyramid k μ_c f_n:
+///
+///     φ(k) = min Σ z_ci  over x ≥ 0, z ≥ 0 with
+///            Σ_j W_j(k) x_j + Σ_ci T_ci z_ci + F_ext = 0,
+///
+/// W_j(k) = J_jᵀ (n + k μ_c d_i) the pyramid's edges, T_ci = J_cᵀ d_i, in
+/// units of the largest load. φ(k) = 0 exactly when the component stands at
+/// k (the x of the LP's answer are then such an equilibrium), φ(k) > 0 when
+/// it does not. Unlike the feasibility LP, this one always has a strictly
+/// feasible point, so the interior-point method converges on either side of
+/// k*: the feasibility LP's interior vanishes as k → k*, where it needed its
+/// 60 iterations and still failed (docs/benchmarks.md).
+///
+/// φ is non-increasing in k. By the envelope theorem, raising k by δ turns
+/// generator (c, i) by δ μ_c T_ci; a contact's normal force may go to any of
+/// its D generators, so φ falls by δ Σ_c μ_c f_n,c max_i yᵀT_ci, y the
+/// equilibrium rows' duals: that is `slope` (≤ 0, as the d_i sum to 0).
+/// Newton's step k + φ/|slope| from below reaches k* in a few LPs where
+/// bisection needs twenty (stability/margin.cpp).
+struct FrictionDeficit {
+  bool solved = false;  ///< the LP was solved (false: `message`)
+  /// φ(k) (dimensionless, in units of the largest load); +∞ when no
+  /// friction, however large, holds the component (the LP is infeasible)
+  double deficit = 0;
+  double slope = 0;               ///< dφ/dk (≤ 0), from this solution's duals
+  bool exists = false;            ///< φ(k) ≈ 0 and its forces passed the re-check: `equilibrium`
+  StaticEquilibrium equilibrium;  ///< at factor k, in the caller's force units
+  const char* method = "";
+  int iterations = 0;
+  std::string message;
+};
 
-/// The equilibrium LP of one component at successive friction factors k, on
-/// one warm-started Clp model (see the file comment).
-class FrictionProbe {
+/// φ(k) of one component (see FrictionDeficit) at successive factors k:
+/// the interior-point method (no crossover) on large components, the dual
+/// simplex on small ones.
+class FrictionDeficitLp {
  public:
-  explicit FrictionProbe(const ContactLcp& lcp);
-  ~FrictionProbe();
-  FrictionProbe(const FrictionProbe&) = delete;
-  FrictionProbe& operator=(const FrictionProbe&) = delete;
+  explicit FrictionDeficitLp(ContactLcp lcp) : lcp_(std::move(lcp)) {}
 
-  /// Can the component stand with every μ multiplied by k? `solved` false:
-  /// the solver failed (the caller decides). A "yes" is re-checked from the
-  /// forces (the equilibrium residual); the forces are in `last()`.
-  struct Answer {
-    bool solved = false;
-    bool exists = false;
-  };
-  Answer Probe(double k);
-  /// The equilibrium of the last probe that found one.
-  const StaticEquilibrium& last() const { return last_; }
-  int lps() const { return lps_; }                ///< probes solved so far
-  int iterations() const { return iterations_; }  ///< simplex iterations, all probes
-  int warm_starts() const { return warm_; }       ///< probes started from a stored basis
+  /// φ(k); `k` ≥ 0 multiplies every μ.
+  FrictionDeficit Solve(double k);
+  int lps() const { return lps_; }                ///< LPs solved so far
+  int iterations() const { return iterations_; }  ///< simplex and barrier iterations
 
  private:
-  struct Impl;
-  std::unique_ptr<Impl> impl_;
-  StaticEquilibrium last_;
-  int lps_ = 0, iterations_ = 0, warm_ = 0;
+  ContactLcp lcp_;
+  int lps_ = 0, iterations_ = 0;
 };
 
 }  // namespace cairn

@@ -119,4 +119,11 @@ StaticEquilibrium FindStaticEquilibrium(const ContactLcp& lcp,
 /// component cannot stand, and names the parts that must move.
 Mechanism FindMechanism(const ContactLcp& lcp);
 
+/// Checks a virtual motion `nu` (one (v, ω) per body) as a mechanism of
+/// `lcp`, as FindMechanism checks its own: scaled so that the fastest body
+/// moves by 1, gravity's power F·ν > 0 and no generator's power negative,
+/// both to the same slack. `found` says whether it passed. For motions that
+/// come from elsewhere, such as the duals of a margin LP.
+Mechanism VerifyMechanism(const ContactLcp& lcp, std::vector<Vector6> nu);
+
 }  // namespace cairn
