@@ -1,5 +1,6 @@
 // The friction deficit LP φ(k) of the Armadillo vault (mechanics/margin_lp.h)
-// at a row of friction factors: its value, slope, solver and time.
+// at a row of friction factors: its value, slope, solver, time, and whether
+// its dual motion is a mechanism where it fails.
 //   build/bench/margin_bench [SHARED_DATASETS_DIR] [k ...]
 #include <chrono>
 #include <cstdio>
@@ -95,8 +96,15 @@ int main(int argc, char** argv) {
       const auto t0 = std::chrono::steady_clock::now();
       const cairn::FrictionDeficit d = deficit.Solve(k);
       const double t = Since(t0);
-      std::printf("k %.6f: phi %.3e slope %.4e %s %s %5d it %.3f s\n", k, d.deficit, d.slope,
-                  d.solved ? (d.exists ? "stands" : "-") : "FAILED", d.method, d.iterations, t);
+      // Where it fails: does the LP's dual motion pass the mechanism check?
+      const char* dual = "";
+      if (d.solved && !d.exists && !d.motion.empty())
+        dual = cairn::VerifyMechanism(cairn::WithFrictionFactor(lcp, k), d.motion).found
+                   ? "dual: mechanism"
+                   : "dual: no mechanism";
+      std::printf("k %.6f: phi %.3e slope %.4e %s %s %5d it %.3f s %s\n", k, d.deficit, d.slope,
+                  d.solved ? (d.exists ? "stands" : "-") : "FAILED", d.method, d.iterations, t,
+                  dual);
     }
   }
 }

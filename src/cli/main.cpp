@@ -13,8 +13,8 @@
 #include "cli/check_command.h"
 #include "cli/command.h"
 #include "cli/convert_command.h"
-#include "cli/mpi.h"
 #include "cli/margin_command.h"
+#include "cli/mpi.h"
 #include "cli/plan_command.h"
 #include "cli/simulate_command.h"
 

@@ -262,6 +262,11 @@ FrictionDeficit FrictionDeficitLp::Solve(double k) {
     }
     out.slope -= lcp.contacts[c].mu * fn[c] * best;
   }
+  for (size_t b = 0; b < lcp.bodies.size(); ++b) {
+    Vector6 yb;
+    for (int r = 0; r < 6; ++r) yb[r] = y[6 * b + r];
+    out.motion.push_back(-(e.P[b] * yb));
+  }
   if (out.deficit > kDeficitZero) return out;
   // φ ≈ 0: the generator amounts are an equilibrium at k, refined and
   // re-checked there.

@@ -405,6 +405,8 @@ struct FrictionBracket {
   double lo = 0;             // greatest k proved infeasible (0 when none was)
   bool lo_proved = false;    // some probe at lo was infeasible (φ(lo) > 0)
   StaticEquilibrium at_hi;
+  // The deficit LP's dual motion at lo (a mechanism there, unverified).
+  std::vector<Vector6> motion_at_lo;
 };
 
 FrictionBracket NewtonFriction(const ContactLcp& lcp, double k_max, int* lps) {
@@ -431,6 +433,7 @@ FrictionBracket NewtonFriction(const ContactLcp& lcp, double k_max, int* lps) {
     if (d.deficit > 0) {
       out.lo = k;
       out.lo_proved = true;
+      out.motion_at_lo = std::move(d.motion);
       phi_lo = d.deficit, slope_lo = d.slope;
       return;
     }
@@ -474,6 +477,20 @@ FrictionBracket NewtonFriction(const ContactLcp& lcp, double k_max, int* lps) {
   return out;
 }
 
+// The mechanism just below k*: the deficit LP's own dual motion at lo (the
+// greatest factor proved failing, within the tolerance of k*) when it passes
+// the mechanism's check there; else the mechanism LP kPastStep below k*
+// (near k* gravity does so little work along the motion that the check's
+// slack can refuse it).
+MarginMechanism FrictionMechanism(const ContactLcp& lcp, const FrictionBracket& b) {
+  if (b.lo_proved && b.lo > 0 && b.lo >= *b.hi * (1 - kPastStep) && !b.motion_at_lo.empty()) {
+    const Mechanism m = VerifyMechanism(WithFrictionFactor(lcp, b.lo), b.motion_at_lo);
+    if (m.found) return ToCertificate(lcp, m, b.lo);
+  }
+  const double past = *b.hi * (1 - kPastStep);
+  return ToCertificate(lcp, FindMechanism(WithFrictionFactor(lcp, past)), past);
+}
+
 void FrictionMargin(const AssemblyDef& def, const Configuration& config, MarginResult& r) {
   // The base model: μ = 1 everywhere (k is then μ itself), or the scene's
   // friction pairs as they are (k scales them).
@@ -514,10 +531,7 @@ void FrictionMargin(const AssemblyDef& def, const Configuration& config, MarginR
     side.critical = b.hi;
     side.equilibrium = ToCertificate(WithFrictionFactor(lcp, *b.hi), b.at_hi, *b.hi);
     side.mechanism.reset();
-    if (*b.hi > 0) {
-      const double past = *b.hi * (1 - kPastStep);
-      side.mechanism = ToCertificate(lcp, FindMechanism(WithFrictionFactor(lcp, past)), past);
-    }
+    if (*b.hi > 0) side.mechanism = FrictionMechanism(lcp, b);
   }
   // Strong stability: a frictionless equilibrium in every component (k* = 0
   // everywhere) certifies it at every μ; any infeasible probe rules it out.

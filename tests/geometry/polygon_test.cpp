@@ -192,7 +192,6 @@ TEST(EdgeNormal, OutwardForCounterClockwise) {
   EXPECT_TRUE(n.isApprox(Vector2(0.8, -0.6)));
 }
 
-
 // FindSelfIntersection above 64 vertices is a sweep over the edges' boxes:
 // it must agree with the test of every pair of edges (written here) on
 // whether a polygon is simple, and name a pair that truly touches.
@@ -204,8 +203,7 @@ double Cross(const Vector2& o, const Vector2& a, const Vector2& b) {
 
 // The distance between segments [a0, a1] and [b0, b1]: 0 where they cross,
 // else the least distance of an end to the other segment.
-double SegmentDistance(const Vector2& a0, const Vector2& a1, const Vector2& b0,
-                       const Vector2& b1) {
+double SegmentDistance(const Vector2& a0, const Vector2& a1, const Vector2& b0, const Vector2& b1) {
   const double d1 = Cross(a0, a1, b0), d2 = Cross(a0, a1, b1);
   const double d3 = Cross(b0, b1, a0), d4 = Cross(b0, b1, a1);
   if (((d1 > 0 && d2 < 0) || (d1 < 0 && d2 > 0)) && ((d3 > 0 && d4 < 0) || (d3 < 0 && d4 > 0)))

@@ -424,6 +424,31 @@ TEST(Margin, ArchCriticalFrictionAgainstIndependentLp) {
   EXPECT_GT(mu, 0.01);  // the arch needs friction
   EXPECT_NEAR(*r.sides[0].critical, mu, 1e-5);
   EXPECT_NEAR(*r.sides[0].critical, CheckCriticalFriction(def, 2.0), 1e-4);
+  // The mechanism just below μ*: at a factor within 10⁻³ of it where the
+  // independent LP finds no equilibrium; along it gravity does work and no
+  // contact resists: every pyramid edge n ± μ t at that factor has power ≥ 0.
+  ASSERT_TRUE(r.sides[0].mechanism);
+  const MarginMechanism& m = *r.sides[0].mechanism;
+  ASSERT_TRUE(m.found) << m.message;
+  EXPECT_LT(m.at, *r.sides[0].critical);
+  EXPECT_GE(m.at, *r.sides[0].critical * (1 - 1e-3));
+  EXPECT_LT(IndependentLp::Solve(lcps[0], m.at, nullptr, true), 0.5);
+  EXPECT_GT(m.power, 0);
+  const ContactLcp& lcp = lcps[0];
+  std::vector<Vector6> nu(lcp.bodies.size(), Vector6::Zero());
+  for (size_t i = 0; i < m.parts.size(); ++i)
+    for (size_t b = 0; b < lcp.bodies.size(); ++b)
+      if (lcp.bodies[b].part == m.parts[i]) nu[b] = m.nu[i];
+  const int D = lcp.num_directions;
+  for (size_t c = 0; c < lcp.contacts.size(); ++c) {
+    const int f = lcp.friction_of[c];
+    ASSERT_GE(f, 0);
+    for (int i = 0; i < D; ++i)
+      EXPECT_GE(lcp.normal_rows[c].Dot(nu) +
+                    m.at * lcp.contacts[c].mu * lcp.direction_rows[D * f + i].Dot(nu),
+                -1e-9)
+          << "contact " << c << ", direction " << i;
+  }
 }
 
 // On the arch the deficit is not linear: its slope changes with k as the

@@ -115,7 +115,11 @@ struct FrictionDeficit {
   /// φ(k) (dimensionless, in units of the largest load); +∞ when no
   /// friction, however large, holds the component (the LP is infeasible)
   double deficit = 0;
-  double slope = 0;               ///< dφ/dk (≤ 0), from this solution's duals
+  double slope = 0;  ///< dφ/dk (≤ 0), from this solution's duals
+  /// The equilibrium rows' duals as a virtual motion per body, ν = −P y:
+  /// where φ(k) > 0 no generator at k resists it and gravity does work φ(k)
+  /// along it (in load units), a mechanism at k, unverified (VerifyMechanism)
+  std::vector<Vector6> motion;
   bool exists = false;            ///< φ(k) ≈ 0 and its forces passed the re-check: `equilibrium`
   StaticEquilibrium equilibrium;  ///< at factor k, in the caller's force units
   const char* method = "";
