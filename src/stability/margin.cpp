@@ -1,6 +1,7 @@
 #include "cairn/stability/margin.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <utility>
@@ -38,7 +39,8 @@ constexpr double kLpRelative = 1e-7;
 constexpr double kTiltScanStep = 5.0 * M_PI / 180.0;
 constexpr double kTiltTolerance = 1e-7;
 
-// The axis counts as perpendicular to gravity below this |a·ĝ|
+// The axis counts as perpendicular to gravity below this |a·ĝ|, and as
+// along gravity above 1 minus it
 // (dimensionless).
 constexpr double kPerpendicular = 1e-12;
 
@@ -224,6 +226,7 @@ void LoadMargin(const Assembly& assembly, const std::vector<ContactLcp>& lcps,
 
 // The angle of the first failure in one sense (rad, signed), empty: none.
 struct TiltEnd {
+  bool empty = false;  // no t at all is carried (S is empty)
   std::optional<double> theta;
   LoadParameterResult lp;  // the deciding LP
   double cos_scale = 1;    // |cos θ| (the LP's loads are per unit of it)
@@ -234,7 +237,10 @@ TiltEnd TiltSense(const ContactLcp& lcp, const Loads& F0, const Loads& F1, bool 
   TiltEnd out;
   const double inf = -std::numeric_limits<double>::infinity();
   const Interval near = End(lcp, F0, F1, positive, inf, frictionless, lps);
-  if (near.empty) return out;  // caller checks nominal first
+  if (near.empty) {
+    out.empty = true;
+    return out;
+  }
   if (near.end) {
     out.theta = std::atan(*near.end);
     out.lp = near.lp;
@@ -301,15 +307,31 @@ void TiltMargin(const Assembly& assembly, const std::vector<ContactLcp>& lcps,
   const Vector3 a = req.axis.normalized();
   r.axis = a;
   const bool exact = std::abs(a.dot(g.normalized())) <= kPerpendicular;
-  r.method = exact ? "parametric equilibrium LP in tan θ (exact)"
-                   : "scan by 5° and bisection over equilibrium LPs";
-  r.tolerance = exact ? 0 : kTiltTolerance * kDeg;
+  // An axis along gravity turns the assembly without changing its load: it
+  // holds at every angle or at none.
+  const bool along = std::abs(a.dot(g.normalized())) >= 1 - kPerpendicular;
+  r.method = exact   ? "parametric equilibrium LP in tan θ (exact)"
+             : along ? "axis along gravity: the turn leaves the load unchanged (exact)"
+                     : "scan by 5° and bisection over equilibrium LPs";
+  r.tolerance = exact || along ? 0 : kTiltTolerance * kDeg;
   r.sides.resize(2);
   for (size_t c = 0; c < lcps.size(); ++c) {
     const ContactLcp& lcp = lcps[c];
     ComponentMargin& cm = r.components[c];
     const Loads F0 = GravityLoads(lcp);
-    cm.holds_at_nominal = Carried(lcp, F0, false, &cm.lps);
+    // Both ends first where the axis is exact: S = {t : F0 + t F1 carried}
+    // is an interval, and the assembly stands as it is exactly when it holds
+    // 0, so the two LPs of the ends also answer that, without the
+    // equilibrium LP. Elsewhere the equilibrium LP answers it.
+    TiltEnd ends[2];
+    if (exact) {
+      const Loads F1 = TiltLoads(lcp, -a.cross(g));
+      for (int s = 0; s < 2; ++s) ends[s] = TiltSense(lcp, F0, F1, s == 1, false, &cm.lps);
+      cm.holds_at_nominal = !ends[0].empty && (!ends[0].theta || *ends[0].theta <= 0) &&
+                            (!ends[1].theta || *ends[1].theta >= 0);
+    } else {
+      cm.holds_at_nominal = Carried(lcp, F0, false, &cm.lps);
+    }
     cm.critical.assign(2, std::nullopt);
     for (int s = 0; s < 2; ++s) {
       const bool positive = s == 1;
@@ -325,12 +347,10 @@ void TiltMargin(const Assembly& assembly, const std::vector<ContactLcp>& lcps,
         continue;
       }
       std::optional<double> theta;
-      TiltEnd end;
+      const TiltEnd& end = ends[s];
       if (exact) {
-        const Loads F1 = TiltLoads(lcp, -a.cross(g));
-        end = TiltSense(lcp, F0, F1, positive, false, &cm.lps);
         theta = end.theta;
-      } else {
+      } else if (!along) {
         theta = TiltBisect(lcp, g, a, positive, &cm.lps);
       }
       if (theta) cm.critical[s] = *theta * kDeg;
@@ -362,23 +382,32 @@ void TiltMargin(const Assembly& assembly, const std::vector<ContactLcp>& lcps,
   bool nominal = true;
   for (const ComponentMargin& cm : r.components) nominal = nominal && cm.holds_at_nominal;
   if (!exact || !nominal) return;
+  // Each component's frictionless ends, both senses: they also say whether
+  // a frictionless equilibrium exists as it stands (0 in the frictionless
+  // S). Where one does not, strong stability is certified at no angle, and
+  // the strong ranges are left empty.
+  std::vector<std::array<TiltEnd, 2>> ends(lcps.size());
+  for (size_t c = 0; c < lcps.size(); ++c) {
+    const ContactLcp& lcp = lcps[c];
+    int lps = 0;
+    for (int s = 0; s < 2; ++s)
+      ends[c][s] =
+          TiltSense(lcp, GravityLoads(lcp), TiltLoads(lcp, -a.cross(g)), s == 1, true, &lps);
+    const TiltEnd& below = ends[c][0];
+    const TiltEnd& above = ends[c][1];
+    if (below.empty || (below.theta && *below.theta > 0) || (above.theta && *above.theta < 0))
+      return;
+  }
   for (int s = 0; s < 2; ++s) {
     std::optional<double> strong;
-    bool all = true, never = false;
-    for (const ContactLcp& lcp : lcps) {
-      int lps = 0;
-      if (!Carried(lcp, GravityLoads(lcp), true, &lps)) {
-        never = true;
-        break;
-      }
-      const TiltEnd e =
-          TiltSense(lcp, GravityLoads(lcp), TiltLoads(lcp, -a.cross(g)), s == 1, true, &lps);
+    bool all = true;
+    for (size_t c = 0; c < lcps.size(); ++c) {
+      const TiltEnd& e = ends[c][s];
       if (!e.theta) continue;
       all = false;
       const double deg = *e.theta * kDeg;
       if (!strong || std::abs(deg) < std::abs(*strong)) strong = deg;
     }
-    if (never) continue;  // not certified at any angle: left empty
     r.sides[s].strong = all ? std::optional<double>() : strong;
   }
 }

@@ -207,6 +207,29 @@ TEST(Margin, Box3dTiltExactAndOblique) {
   ASSERT_TRUE(o.sides[1].critical);
   EXPECT_NEAR(*o.sides[1].critical, CheckCriticalTilt(def, s.assembly.gravity(), oblique, 120),
               1e-3);
+  // About the vertical the load never changes: the box holds all the way
+  // round, by the one equilibrium LP at 0, as a turned check agrees.
+  const MarginResult v = s.Margin(Tilt({0, 0, 1}));
+  ASSERT_TRUE(v.solved) << v.message;
+  EXPECT_NE(v.method.find("exact"), std::string::npos);
+  EXPECT_FALSE(v.sides[0].critical);
+  EXPECT_FALSE(v.sides[1].critical);
+  EXPECT_EQ(v.lps, 1);
+  EXPECT_TRUE(CheckStable(def));
+  // On a table too slippery to hold it (tilted 30° about x, μ 0.1 < tan 30°)
+  // a turn about the (turned) gravity fails at once, both ways.
+  AssemblyDef slippery = def;
+  slippery.friction = 0.1;
+  slippery.gravity = Vector3(0, 9.81 * std::sin(M_PI / 6), -9.81 * std::cos(M_PI / 6));
+  ASSERT_FALSE(CheckStable(slippery));
+  const Scene t(slippery);
+  const MarginResult w = t.Margin(Tilt(-*slippery.gravity));
+  ASSERT_TRUE(w.solved) << w.message;
+  ASSERT_TRUE(w.sides[0].critical && w.sides[1].critical);
+  EXPECT_EQ(*w.sides[0].critical, 0.0);
+  EXPECT_EQ(*w.sides[1].critical, 0.0);
+  ASSERT_TRUE(w.sides[1].mechanism);
+  EXPECT_TRUE(w.sides[1].mechanism->found);
 }
 
 // The leaning ladder (examples/ladder.json: 60°, floor μ 0.35, frictionless
