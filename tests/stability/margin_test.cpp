@@ -418,16 +418,16 @@ TEST(Margin, CompasWedgesCriticalTiltAgainstIndependentLp) {
 }
 
 // A semicircular arch of 7 voussoirs (radii 1 and 1.25, radial joints) on a
-// fixed ground: its critical μ (the joints near the springing slide first)
-// by bisection over the independent LP's feasibility, against the margin's.
-TEST(Margin, ArchCriticalFrictionAgainstIndependentLp) {
+// fixed ground, μ 1.
+AssemblyDef SevenVoussoirArch() {
   AssemblyDef def;
   def.friction = 1.0;
   def.parts.push_back(Box("ground", -3, -1, 3, 0, true));
   const int n = 7;
   for (int i = 0; i < n; ++i) {
     PartDef p;
-    p.name = "v" + std::to_string(i);
+    p.name = "v";  // (not "v" + …: GCC 12 warns wrongly of an overflow there)
+    p.name += std::to_string(i);
     const double a0 = M_PI * i / n, a1 = M_PI * (i + 1) / n;
     for (const auto& [r, a] : {std::pair{1.0, a0}, {1.25, a0}, {1.25, a1}, {1.0, a1}})
       p.polygon.push_back(Vector2(r * std::cos(a), r * std::sin(a)));
@@ -435,6 +435,13 @@ TEST(Margin, ArchCriticalFrictionAgainstIndependentLp) {
     std::reverse(p.polygon.begin(), p.polygon.end());
     def.parts.push_back(p);
   }
+  return def;
+}
+
+// The arch: its critical μ (the joints near the springing slide first)
+// by bisection over the independent LP's feasibility, against the margin's.
+TEST(Margin, ArchCriticalFrictionAgainstIndependentLp) {
+  const AssemblyDef def = SevenVoussoirArch();
   const Scene s(def);
   const MarginResult r = s.Margin(Friction());
   ASSERT_TRUE(r.solved) << r.message;
@@ -481,19 +488,7 @@ TEST(Margin, ArchCriticalFrictionAgainstIndependentLp) {
 // safeguarded), and the margin needs far fewer LPs than the ~20 of a
 // bisection to 1e-6.
 TEST(Margin, ArchFrictionDeficitNewtonStepsStayBelowCritical) {
-  AssemblyDef def;
-  def.friction = 1.0;
-  def.parts.push_back(Box("ground", -3, -1, 3, 0, true));
-  const int n = 7;
-  for (int i = 0; i < n; ++i) {
-    PartDef p;
-    p.name = "v" + std::to_string(i);
-    const double a0 = M_PI * i / n, a1 = M_PI * (i + 1) / n;
-    for (const auto& [r, a] : {std::pair{1.0, a0}, {1.25, a0}, {1.25, a1}, {1.0, a1}})
-      p.polygon.push_back(Vector2(r * std::cos(a), r * std::sin(a)));
-    std::reverse(p.polygon.begin(), p.polygon.end());
-    def.parts.push_back(p);
-  }
+  const AssemblyDef def = SevenVoussoirArch();
   const Scene s(def);
   const MarginResult r = s.Margin(Friction());
   ASSERT_TRUE(r.sides[0].critical);
