@@ -23,15 +23,14 @@ namespace {
 
 // From this many columns on, a margin LP (with an objective) goes to the
 // interior-point method without crossover; below, the dual simplex. Measured
-// (bench/margin_bench --tilt): the tilt LP of the 100-brick wall (1141
-// columns) takes 16 ms by the barrier, 30 ms by the dual simplex; of Jenga
-// (2497 columns) 15 ms against 44–64 ms; the barrier with crossover 23 and
-// 35 ms.
+// (bench/margin_bench --tilt; docs/benchmarks.md, "Margins"): the tilt LP of
+// the 100-brick wall (1141 columns) takes 16 ms so, 30 ms by the dual
+// simplex; Jenga's (2497 columns) 15 ms against 44–64 ms, and 35 ms with
+// crossover; the cross vault's tilt margin takes 1.2 s so, 1.9 s with
+// crossover.
 constexpr int kMarginBarrierColumns = kBarrierColumns / 2;
 
-// Solves `lp` from scratch: the interior-point method with crossover for
-// large problems (a vertex, as the dual simplex gives), else Clp's default
-// (the dual or primal simplex). Returns the method's name.
+// Solves `lp` from scratch (see above). Returns the method's name.
 const char* SolveFresh(ClpSimplex& lp, int ncols) {
   lp.setPrimalTolerance(kSimplexPrimalTolerance);
   if (ncols >= kMarginBarrierColumns) {
@@ -65,6 +64,66 @@ ContactLcp WithFrictionFactor(const ContactLcp& lcp, double factor) {
   return out;
 }
 
+namespace {
+
+// Reads the optimum of OptimizeLoadParameter's LP (its status, s, the dual
+// motion, the forces re-checked as an equilibrium at F_ext + s F₁) into
+// `out`. True when that is the answer (an optimum whose forces pass, or a
+// proof of infeasibility or unboundedness); false when the solve failed or
+// its forces do not balance (`out.message`).
+bool ReadOptimum(const ContactLcp& lcp, const std::vector<Vector6>& load, bool frictionless,
+                 const EquilibriumLp& e, ClpSimplex& lp, int ng, LoadParameterResult& out) {
+  if (lp.status() == 1) {
+    out.status = LoadParameterResult::Status::kInfeasible;
+    return true;
+  }
+  if (lp.status() == 2) {
+    out.status = LoadParameterResult::Status::kUnbounded;
+    return true;
+  }
+  if (lp.status() != 0) {
+    out.message = "Clp: status " + std::to_string(lp.status()) + ", secondary status " +
+                  std::to_string(lp.secondaryStatus());
+    return false;
+  }
+  out.value = lp.primalColumnSolution()[ng];
+  out.motion.clear();
+  const double* y = lp.dualRowSolution();
+  for (size_t b = 0; b < lcp.bodies.size(); ++b) {
+    Vector6 yb;
+    for (int k = 0; k < 6; ++k) yb[k] = y[6 * b + k];
+    out.motion.push_back(-(e.P[b] * yb));
+  }
+  // The forces at the optimum, re-checked as an equilibrium of F_ext + s F₁
+  // (the amounts rescaled to that problem's load unit).
+  std::vector<Vector6> at(lcp.bodies.size());
+  for (size_t b = 0; b < at.size(); ++b) at[b] = lcp.bodies[b].F_ext + out.value * load[b];
+  const ContactLcp lcp_s = WithLoads(lcp, at);
+  const EquilibriumLp e_s = MakeEquilibriumLp(lcp_s, frictionless);
+  std::vector<double> x(lp.primalColumnSolution(), lp.primalColumnSolution() + ng);
+  for (double& v : x) v *= e.load_scale / e_s.load_scale;
+  if (ReadEquilibrium(lcp_s, e_s, x.data(), ng, out.equilibrium)) {
+    out.equilibrium.solved = out.equilibrium.exists = true;
+    out.equilibrium.method = out.method;
+    out.status = LoadParameterResult::Status::kOptimal;
+    return true;
+  }
+  // The optimum sits on the boundary, within the solver's tolerance of it:
+  // an equilibrium LP at that load decides (and gives verified forces).
+  EquilibriumOptions options;
+  options.frictionless = frictionless;
+  out.equilibrium = FindStaticEquilibrium(lcp_s, options);
+  if (out.equilibrium.exists) {
+    out.status = LoadParameterResult::Status::kOptimal;
+    return true;
+  }
+  out.message = "the optimum's forces fail the equilibrium re-check (residual " +
+                std::to_string(out.equilibrium.residual) + ")";
+  return false;
+}
+
+}  // namespace
+
 // The LP of the file comment: columns x (the generators, in load_scale
 // units) and s (force units per unit of the load wrench), rows
 //     A x + s P F₁ / load_scale = −P F_ext / load_scale,
@@ -87,53 +146,16 @@ LoadParameterResult OptimizeLoadParameter(const ContactLcp& lcp, const std::vect
   lp.loadProblem(e.a.Matrix(e.nrows, ncols), col_lo.data(), col_hi.data(), cost.data(),
                  e.rhs.data(), e.rhs.data());
   out.method = SolveFresh(lp, ncols);
-  out.iterations = lp.numberIterations();
-  if (lp.status() == 1) {
-    out.status = LoadParameterResult::Status::kInfeasible;
-    return out;
+  // The barrier's optimum lies inside the optimal face, within its tolerance
+  // of the end: should its forces fail the re-check, the dual simplex's
+  // vertex is read instead.
+  for (bool retry = std::string(out.method) == "barrier";; retry = false) {
+    out.iterations += lp.numberIterations();
+    if (ReadOptimum(lcp, load, frictionless, e, lp, ng, out) || !retry) return out;
+    lp.allSlackBasis(true);
+    lp.dual();
+    out.method = "dual simplex";
   }
-  if (lp.status() == 2) {
-    out.status = LoadParameterResult::Status::kUnbounded;
-    return out;
-  }
-  if (lp.status() != 0) {
-    out.message = "Clp: status " + std::to_string(lp.status()) + ", secondary status " +
-                  std::to_string(lp.secondaryStatus());
-    return out;
-  }
-  out.value = lp.primalColumnSolution()[ng];
-  const double* y = lp.dualRowSolution();
-  for (size_t b = 0; b < lcp.bodies.size(); ++b) {
-    Vector6 yb;
-    for (int k = 0; k < 6; ++k) yb[k] = y[6 * b + k];
-    out.motion.push_back(-(e.P[b] * yb));
-  }
-  // The forces at the optimum, re-checked as an equilibrium of F_ext + s F₁
-  // (the amounts rescaled to that problem's load unit).
-  std::vector<Vector6> at(lcp.bodies.size());
-  for (size_t b = 0; b < at.size(); ++b) at[b] = lcp.bodies[b].F_ext + out.value * load[b];
-  const ContactLcp lcp_s = WithLoads(lcp, at);
-  const EquilibriumLp e_s = MakeEquilibriumLp(lcp_s, frictionless);
-  std::vector<double> x(lp.primalColumnSolution(), lp.primalColumnSolution() + ng);
-  for (double& v : x) v *= e.load_scale / e_s.load_scale;
-  if (ReadEquilibrium(lcp_s, e_s, x.data(), ng, out.equilibrium)) {
-    out.equilibrium.solved = out.equilibrium.exists = true;
-    out.equilibrium.method = out.method;
-    out.status = LoadParameterResult::Status::kOptimal;
-    return out;
-  }
-  // The optimum sits on the boundary, within the solver's tolerance of it:
-  // an equilibrium LP at that load decides (and gives verified forces).
-  EquilibriumOptions options;
-  options.frictionless = frictionless;
-  out.equilibrium = FindStaticEquilibrium(lcp_s, options);
-  if (out.equilibrium.exists) {
-    out.status = LoadParameterResult::Status::kOptimal;
-    return out;
-  }
-  out.message = "the optimum's forces fail the equilibrium re-check (residual " +
-                std::to_string(out.equilibrium.residual) + ")";
-  return out;
 }
 
 double FrictionUse(const ContactLcp& lcp, const StaticEquilibrium& e) {
