@@ -21,15 +21,13 @@ using equilibrium_internal::Triplets;
 
 namespace {
 
-// From this many columns on, a margin LP (with an objective) goes to the
-// interior-point method without crossover; below, the dual simplex. Measured
-// (bench/margin_bench --tilt; docs/benchmarks.md, "Margins"): the tilt LP of
-// the 100-brick wall (1141 columns) takes 16 ms so, 30 ms by the dual
-// simplex; Jenga's (2497 columns) 15 ms against 44–64 ms, and 35 ms with
-// crossover; the cross vault's tilt margin takes 1.2 s so, 1.9 s with
+// A margin LP (with an objective) from kMarginBarrierColumns columns on goes
+// to the interior-point method without crossover; below, the dual simplex.
+// Measured (bench/margin_bench --tilt; docs/benchmarks.md, "Margins"): the
+// tilt LP of the 100-brick wall (1141 columns) takes 16 ms so, 30 ms by the
+// dual simplex; Jenga's (2497 columns) 15 ms against 44–64 ms, and 35 ms
+// with crossover; the cross vault's tilt margin takes 1.2 s so, 1.9 s with
 // crossover.
-constexpr int kMarginBarrierColumns = kBarrierColumns / 2;
-
 // Solves `lp` from scratch (see above). Returns the method's name.
 const char* SolveFresh(ClpSimplex& lp, int ncols) {
   lp.setPrimalTolerance(kSimplexPrimalTolerance);

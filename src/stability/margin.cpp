@@ -382,19 +382,26 @@ void TiltMargin(const Assembly& assembly, const std::vector<ContactLcp>& lcps,
   bool nominal = true;
   for (const ComponentMargin& cm : r.components) nominal = nominal && cm.holds_at_nominal;
   if (!exact || !nominal) return;
-  // Each component's frictionless ends, both senses, once a frictionless
-  // equilibrium is found as it stands (the equilibrium LP: where there is
-  // none, and that is common, it answers faster than the ends' LPs would).
-  // Where one component has none, strong stability is certified at no angle,
-  // and the strong ranges are left empty.
+  // Each component's frictionless ends, both senses. Where a component has
+  // no frictionless equilibrium as it stands, strong stability is certified
+  // at no angle, and the strong ranges are left empty. The ends say so
+  // themselves (0 ∉ the frictionless S); but where their LPs go to the
+  // interior-point method (large components), which is slow to find S empty,
+  // and that is common, the equilibrium LP is asked first (on the cross
+  // vault: 1.24 s against 3.3–4.0 s for the whole tilt margin).
   std::vector<std::array<TiltEnd, 2>> ends(lcps.size());
   for (size_t c = 0; c < lcps.size(); ++c) {
     const ContactLcp& lcp = lcps[c];
     int lps = 0;
-    if (!Carried(lcp, GravityLoads(lcp), true, &lps)) return;
+    const bool ask_first = static_cast<int>(lcp.contacts.size()) + 1 >= kMarginBarrierColumns;
+    if (ask_first && !Carried(lcp, GravityLoads(lcp), true, &lps)) return;
     for (int s = 0; s < 2; ++s)
       ends[c][s] =
           TiltSense(lcp, GravityLoads(lcp), TiltLoads(lcp, -a.cross(g)), s == 1, true, &lps);
+    const TiltEnd& below = ends[c][0];
+    const TiltEnd& above = ends[c][1];
+    if (below.empty || (below.theta && *below.theta > 0) || (above.theta && *above.theta < 0))
+      return;
   }
   for (int s = 0; s < 2; ++s) {
     std::optional<double> strong;
