@@ -16,8 +16,9 @@
 
 namespace {
 
+// Milliseconds since t0.
 double Since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
 
 }  // namespace
@@ -26,9 +27,6 @@ double Since(std::chrono::steady_clock::time_point t0) {
 int TiltPieces(int argc, char** argv) {
   using namespace cairn;
   if (argc < 6) return 2;
-  const auto Since = [](std::chrono::steady_clock::time_point t0) {
-    return 1000 * std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  };
 
   const Assembly a = ReadScene(argv[2]);
   const auto lcps = BuildComponentLcps(a, Configuration::Assembled(a));
@@ -102,7 +100,7 @@ int main(int argc, char** argv) {
         dual = cairn::VerifyMechanism(cairn::WithFrictionFactor(lcp, k), d.motion).found
                    ? "dual: mechanism"
                    : "dual: no mechanism";
-      std::printf("k %.6f: phi %.3e slope %.4e %s %s %5d it %.3f s %s\n", k, d.deficit, d.slope,
+      std::printf("k %.6f: phi %.3e slope %.4e %s %s %5d it %.1f ms %s\n", k, d.deficit, d.slope,
                   d.solved ? (d.exists ? "stands" : "-") : "FAILED", d.method, d.iterations, t,
                   dual);
     }

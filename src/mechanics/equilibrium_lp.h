@@ -89,6 +89,11 @@ struct EquilibriumLp {
 
 EquilibriumLp MakeEquilibriumLp(const ContactLcp& lcp, bool frictionless);
 
+// The row duals y of an LP over these rows as a virtual motion per body,
+// ν_b = −P_b y_b (a generator's power under ν is minus its reduced cost's
+// row part: the duals of the margin and mechanism LPs are their motions).
+std::vector<Vector6> MotionOfDuals(const EquilibriumLp& e, const double* y);
+
 // Loads the feasibility problem {A x = rhs, x ≥ 0} into a fresh Clp model.
 void Load(const EquilibriumLp& e, ClpSimplex& lp);
 

@@ -16,6 +16,7 @@ using equilibrium_internal::kBarrierColumns;
 using equilibrium_internal::kSimplexPrimalTolerance;
 using equilibrium_internal::Load;
 using equilibrium_internal::MakeEquilibriumLp;
+using equilibrium_internal::MotionOfDuals;
 using equilibrium_internal::ReadEquilibrium;
 using equilibrium_internal::Triplets;
 
@@ -85,13 +86,7 @@ bool ReadOptimum(const ContactLcp& lcp, const std::vector<Vector6>& load, bool f
     return false;
   }
   out.value = lp.primalColumnSolution()[ng];
-  out.motion.clear();
-  const double* y = lp.dualRowSolution();
-  for (size_t b = 0; b < lcp.bodies.size(); ++b) {
-    Vector6 yb;
-    for (int k = 0; k < 6; ++k) yb[k] = y[6 * b + k];
-    out.motion.push_back(-(e.P[b] * yb));
-  }
+  out.motion = MotionOfDuals(e, lp.dualRowSolution());
   // The forces at the optimum, re-checked as an equilibrium of F_ext + s F₁
   // (the amounts rescaled to that problem's load unit).
   std::vector<Vector6> at(lcp.bodies.size());
@@ -288,11 +283,7 @@ FrictionDeficit FrictionDeficitLp::Solve(double k) {
     }
     out.slope -= lcp.contacts[c].mu * fn[c] * best;
   }
-  for (size_t b = 0; b < lcp.bodies.size(); ++b) {
-    Vector6 yb;
-    for (int r = 0; r < 6; ++r) yb[r] = y[6 * b + r];
-    out.motion.push_back(-(e.P[b] * yb));
-  }
+  out.motion = MotionOfDuals(e, y);
   if (out.deficit > kDeficitZero) return out;
   // φ ≈ 0: the generator amounts are an equilibrium at k, refined and
   // re-checked there.

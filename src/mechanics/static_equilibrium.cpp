@@ -68,6 +68,12 @@ EquilibriumLp MakeEquilibriumLp(const ContactLcp& lcp, bool frictionless) {
   return lp;
 }
 
+std::vector<Vector6> MotionOfDuals(const EquilibriumLp& e, const double* y) {
+  std::vector<Vector6> nu(e.P.size());
+  for (size_t b = 0; b < e.P.size(); ++b) nu[b] = -(e.P[b] * Eigen::Map<const Vector6>(y + 6 * b));
+  return nu;
+}
+
 // The interior-point method's iteration budget on the equilibrium LP: a
 // feasible one converges in 12–20 (Jenga, the vaults); an infeasible one
 // wanders for hundreds (9 s on the cross vault at μ 0.3) before it says so,
@@ -347,13 +353,7 @@ bool NormaliseMotion(const std::vector<double>& radius, std::vector<Vector6>* nu
 // The virtual motion ν = −P y per body from the row duals, normalised.
 bool MotionFromDuals(const EquilibriumLp& e, const std::vector<double>& radius, const double* y,
                      std::vector<Vector6>* nu) {
-  const int nb = static_cast<int>(radius.size());
-  nu->assign(nb, Vector6::Zero());
-  for (int b = 0; b < nb; ++b) {
-    Vector6 yb;
-    for (int k = 0; k < 6; ++k) yb[k] = y[6 * b + k];
-    (*nu)[b] = -(e.P[b] * yb);
-  }
+  *nu = equilibrium_internal::MotionOfDuals(e, y);
   return NormaliseMotion(radius, nu);
 }
 

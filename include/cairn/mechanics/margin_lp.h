@@ -106,10 +106,11 @@ double FrictionUse(const ContactLcp& lcp, const StaticEquilibrium& e);
 /// W_j(k) = J_jᵀ (n + k μ_c d_i) the pyramid's edges, T_ci = J_cᵀ d_i, in
 /// units of the largest load. φ(k) = 0 exactly when the component stands at
 /// k (the x of the LP's answer are then such an equilibrium), φ(k) > 0 when
-/// it does not. Unlike the feasibility LP, this one always has a strictly
-/// feasible point, so the interior-point method converges on either side of
-/// k*: the feasibility LP's interior vanishes as k → k*, where it needed its
-/// 60 iterations and still failed (docs/benchmarks.md).
+/// it does not. Unlike the feasibility LP, whose interior vanishes as k → k*
+/// (the interior-point method ran out of its 60 iterations there), this one
+/// is strictly feasible on either side of k*, so the interior-point method
+/// reaches an answer there too, if slowly (100–750 iterations on the
+/// Armadillo vault: docs/benchmarks.md).
 ///
 /// φ is non-increasing in k. By the envelope theorem, raising k by δ turns
 /// generator (c, i) by δ μ_c T_ci; a contact's normal force may go to any of
