@@ -3,9 +3,17 @@
 // LLVMFuzzerTestOneInput, then runs a bounded number of mutations of them
 // (byte flips, insertions, deletions, splices and numbers made extreme: the
 // kinds of change that found issue 15's defects), from a fixed seed so that
-// a run is the same every time. Usage: TARGET [--runs N] [--seed S] DIR...
+// a run is the same every time. Usage:
+//   TARGET [--runs N | --seconds S] [--seed S] [--timeout S] [--last FILE] DIR...
+// --seconds runs mutations until that much time has passed (a fuzz round
+// without libFuzzer); --timeout ends the process by SIGALRM when one input
+// takes longer (a hang is a finding); --last keeps each input in FILE before
+// it runs, so that the one a crash or hang stopped at can be replayed.
 // A finding aborts (the target's own rule, or a sanitizer).
+#include <unistd.h>
+
 #include <algorithm>
+#include <chrono>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
@@ -76,14 +84,33 @@ Bytes Mutate(const std::vector<Bytes>& corpus, std::mt19937_64& rng) {
 
 }  // namespace
 
+// Runs one input under the hang watchdog, kept first in `last` if named.
+void RunOne(const Bytes& b, unsigned timeout_s, const std::string& last) {
+  if (!last.empty())
+    std::ofstream(last, std::ios::binary | std::ios::trunc)
+        .write(reinterpret_cast<const char*>(b.data()), static_cast<std::streamsize>(b.size()));
+  ::alarm(timeout_s);  // 0: no watchdog
+  LLVMFuzzerTestOneInput(b.data(), b.size());
+  ::alarm(0);
+}
+
 int main(int argc, char** argv) {
   long runs = 0;
+  double seconds = 0;
+  unsigned timeout_s = 0;
+  std::string last;
   uint64_t seed = 1;
   std::vector<Bytes> corpus;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     if (arg == "--runs" && i + 1 < argc) {
       runs = std::atol(argv[++i]);
+    } else if (arg == "--seconds" && i + 1 < argc) {
+      seconds = std::atof(argv[++i]);
+    } else if (arg == "--timeout" && i + 1 < argc) {
+      timeout_s = static_cast<unsigned>(std::atoi(argv[++i]));
+    } else if (arg == "--last" && i + 1 < argc) {
+      last = argv[++i];
     } else if (arg == "--seed" && i + 1 < argc) {
       seed = std::strtoull(argv[++i], nullptr, 10);
     } else if (std::filesystem::is_directory(arg)) {
@@ -96,15 +123,18 @@ int main(int argc, char** argv) {
       corpus.push_back(Slurp(arg));
     }
   }
-  for (const Bytes& b : corpus) LLVMFuzzerTestOneInput(b.data(), b.size());
+  for (const Bytes& b : corpus) RunOne(b, timeout_s, last);
   std::printf("replayed %zu inputs\n", corpus.size());
-  if (corpus.empty()) return runs > 0 ? 1 : 0;
+  if (corpus.empty()) return runs > 0 || seconds > 0 ? 1 : 0;
   std::mt19937_64 rng(seed);
-  for (long r = 0; r < runs; ++r) {
-    const Bytes b = Mutate(corpus, rng);
-    LLVMFuzzerTestOneInput(b.data(), b.size());
-  }
-  std::printf("ran %ld mutations (seed %llu): no finding\n", runs,
+  const auto start = std::chrono::steady_clock::now();
+  const auto elapsed = [&] {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  };
+  long done = 0;
+  for (; seconds > 0 ? elapsed() < seconds : done < runs; ++done)
+    RunOne(Mutate(corpus, rng), timeout_s, last);
+  std::printf("ran %ld mutations in %.0f s (seed %llu): no finding\n", done, elapsed(),
               static_cast<unsigned long long>(seed));
   return 0;
 }
