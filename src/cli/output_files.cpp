@@ -117,8 +117,9 @@ std::string SameFileKey(const fs::path& p) {
   if (::stat(p.c_str(), &st) == 0)
     return "inode " + std::to_string(st.st_dev) + ":" + std::to_string(st.st_ino);
   std::error_code ec;
-  fs::path c = fs::weakly_canonical(p, ec);
-  if (ec) c = fs::absolute(p, ec).lexically_normal();
+  const fs::path absolute = fs::absolute(p, ec).lexically_normal();
+  fs::path c = fs::weakly_canonical(absolute, ec);
+  if (ec) c = absolute;
   return "path " + c.string();
 }
 

@@ -216,9 +216,10 @@ TEST(OutputFilesCli, NoCommandWritesOverItsInput) {
   fs::remove_all(dir);
 }
 
-// SIGTERM while `plan --emit-plans` commits its thousands of files: the
-// handler removes every temporary, every target the run made and the folder
-// it made, whatever their number.
+// SIGTERM while `plan --emit-plans` commits its thousands of files (4 000:
+// the 2 000 best sequences of the pyramid, a plan each way): the handler
+// removes every temporary, every target the run made and the folder it made,
+// whatever their number.
 TEST(OutputFilesCli, SigtermDuringEmitPlans_LeavesNothing) {
   const fs::path dir = Folder("of_sigterm");
   const fs::path em = dir / "em";
@@ -228,8 +229,8 @@ TEST(OutputFilesCli, SigtermDuringEmitPlans_LeavesNothing) {
   ASSERT_GE(pid, 0);
   if (pid == 0) {
     if (!std::freopen("/dev/null", "w", stdout)) ::_exit(126);
-    ::execl(cli.c_str(), cli.c_str(), "plan", scene.c_str(), "--threads", "1", "--html",
-            html.c_str(), "--dot", dot.c_str(), "--emit-plans", em.string().c_str(),
+    ::execl(cli.c_str(), cli.c_str(), "plan", scene.c_str(), "--threads", "1", "--max", "2000",
+            "--html", html.c_str(), "--dot", dot.c_str(), "--emit-plans", em.string().c_str(),
             static_cast<char*>(nullptr));
     ::_exit(127);
   }
