@@ -91,6 +91,7 @@ int RunPlan(const PlanArgs& args, std::ostream& out, std::ostream& err) {
     std::vector<NamedFile> inputs = ModelInputs(args.scene, args.model, "the model file");
     if (!args.paths.empty()) inputs.push_back({args.paths, "--paths"});
     CheckOutputs({{args.dot, "--dot"}, {args.html, "--html"}}, inputs);
+    if (!args.emit_plans.empty()) OutputFiles(inputs).AddFolder(args.emit_plans, "--emit-plans");
     // A long search says where it is, on a terminal (rank 0's: the others'
     // standard error is quiet under mpirun).
     Progress progress("cairn plan");
