@@ -213,6 +213,17 @@ TEST(OutputFilesCli, NoCommandWritesOverItsInput) {
   }
   EXPECT_TRUE(fs::exists(dir / "sequence_001.plan.json"));
   EXPECT_FALSE(fs::exists(dir / "same.out"));
+  // A scene named as the first emitted plan, in the --emit-plans folder.
+  fs::create_directories(dir / "em");
+  const std::string named = (dir / "em" / "sequence_001.plan.json").string();
+  fs::copy_file(scene, named);
+  const testing::CliRun r =
+      Cairn("plan " + named + " --max 1 --threads 1 --emit-plans " + (dir / "em").string());
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_EQ(r.err, "cairn: error: --emit-plans and the model file name the same file '" + named +
+                       "': an output never replaces an input\n");
+  EXPECT_EQ(Read(named), scene_text);
+  ExpectOnly(dir / "em", {"sequence_001.plan.json"});
   fs::remove_all(dir);
 }
 
