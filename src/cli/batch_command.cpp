@@ -353,7 +353,10 @@ class Results {
         // so only a write cut short leaves this: the start of a result (or
         // the whole of one), dropped to be written again. Anything else is
         // not RESULTS, and is refused as a line with its newline is.
-        const bool start_of_result = line.rfind("{\"id\":", 0) == 0 && parsed.cut_short;
+        const std::string head = "{\"id\":";  // how every result line starts
+        const bool start_of_result = line.size() < head.size()
+                                         ? head.rfind(line, 0) == 0
+                                         : line.rfind(head, 0) == 0 && parsed.cut_short;
         if (!start_of_result && !result) NotAResult(n, parsed.why);
         keep_ = at;
         break;

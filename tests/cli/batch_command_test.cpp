@@ -331,6 +331,16 @@ TEST(BatchCli, ResultsEndingInANonResultWithOrWithoutNewline_BothRefused) {
     EXPECT_NE(r.err.find(out + ": line "), std::string::npos) << r.err;
     EXPECT_EQ(Slurp(out), text) << "untouched";
   }
+  // What a write cut short leaves, however short: cut off, the job run.
+  const std::string whole = dir + "/whole";
+  ASSERT_EQ(Cairn("batch " + dir + "/jobs.jsonl -o " + whole).exit_code, 0);
+  for (const size_t keep : {size_t{1}, size_t{3}, size_t{7}, Slurp(whole).size() - 1}) {
+    const std::string out = dir + "/cut";
+    WriteText(out, Slurp(whole).substr(0, keep));
+    const CliRun r = Cairn("batch " + dir + "/jobs.jsonl -o " + out);
+    EXPECT_EQ(r.exit_code, 0) << keep << r.err;
+    EXPECT_EQ(Slurp(out), Slurp(whole)) << keep;
+  }
   std::filesystem::remove_all(dir);
 }
 
