@@ -15,6 +15,7 @@
 #include <condition_variable>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <mutex>
 #include <new>
@@ -26,8 +27,11 @@
 
 #include "cairn/core/error.h"
 #include "cairn/mechanics/rest_solution.h"
+#include "cli/margin_command.h"
 #include "cli/mpi.h"
+#include "cli/output_files.h"
 #include "cli/progress.h"
+#include "io/json_checks.h"
 
 namespace cairn::cli {
 namespace {
@@ -41,7 +45,69 @@ struct JobTimeout {};
 // The exit code of a job that exceeded --job-timeout (docs/cli.md).
 constexpr int kExitTimeout = 5;
 
+// A --job-timeout at or above this many seconds (about 32 years) means no
+// deadline: a deadline is a count of nanoseconds (std::chrono's int64), and
+// 1e9 s is far inside it wherever the clock starts.
+constexpr double kMaxJobTimeoutSeconds = 1e9;
+
 std::string Dump(const json& j) { return j.dump(-1, ' ', false, json::error_handler_t::replace); }
+
+// ---- Lines of JSON --------------------------------------------------------------
+
+// A line of JOBS or RESULTS, parsed with the readers' checks
+// (io_internal::SyntaxChecker): nested at most kMaxJsonDepth deep (a line
+// nested deeper would overflow the stack of whatever walks it), no key given
+// twice in one object (JSON would silently keep the last).
+struct ParsedLine {
+  std::optional<json> value;  // empty: not JSON, or refused
+  std::string why;            // then: what is wrong, with its JSON path
+  bool cut_short = false;     // then: valid JSON text up to its end, but incomplete
+};
+
+ParsedLine ParseLine(const std::string& line) {
+  ParsedLine out;
+  io_internal::SyntaxChecker checker;
+  if (line.find('\0') == std::string::npos && json::sax_parse(line, &checker)) {
+    out.value = json::parse(line);
+    return out;
+  }
+  if (checker.duplicate_path()) {
+    out.why = *checker.duplicate_path() + ": duplicate key in one object";
+  } else if (checker.too_deep_path()) {
+    out.why = *checker.too_deep_path() + ": nested more than " +
+              std::to_string(io_internal::kMaxJsonDepth) + " arrays or objects deep";
+  } else if (line.find('\0') != std::string::npos) {
+    out.why = "a NUL byte (a JSON text has none; is this a binary file?)";
+  } else {
+    out.why = io_internal::DescribeJsonError(line, checker.error_position(),
+                                             checker.error().value_or(""));
+    // One line: its column says where ("at line 1, column C" says no more).
+    if (const size_t at = out.why.find("at line 1, column"); at != std::string::npos)
+      out.why.replace(at, 17, "at column");
+    out.cut_short = checker.error_position() >= line.size();
+  }
+  return out;
+}
+
+// "a string", "a number", ... (for messages).
+std::string Article(const json& j) { return io_internal::JsonChecker::Article(j); }
+
+// The batch reads its own files (JOBS, RESULTS) and a job's files only when
+// they are regular files: a FIFO would block the read forever (no deadline
+// reaches into a read), a device such as /dev/zero would never end. A folder
+// is let through where `folder_ok` (an ASAP model). Nothing is said of a
+// path that does not exist: its reader says so.
+void RefuseSpecialFile(const std::string& path, bool folder_ok, const std::string& what) {
+  std::error_code ec;
+  const std::filesystem::file_status st = std::filesystem::status(path, ec);
+  if (ec || !std::filesystem::exists(st) || std::filesystem::is_regular_file(st)) return;
+  if (folder_ok && std::filesystem::is_directory(st)) return;
+  const char* kind = std::filesystem::is_directory(st) ? "a folder"
+                     : std::filesystem::is_fifo(st)    ? "a FIFO"
+                     : std::filesystem::is_socket(st)  ? "a socket"
+                                                       : "a device";
+  throw InputError(path, "", std::string("is ") + kind + ", not a regular file: " + what);
+}
 
 // ---- JOBS -------------------------------------------------------------------
 
@@ -55,6 +121,7 @@ struct Job {
 // file bad input: such a job could not be recorded, nor found again on
 // resume. Everything else about a job is its own error, recorded in RESULTS.
 std::vector<Job> ReadJobs(const std::string& path) {
+  RefuseSpecialFile(path, false, "the jobs file is read line by line");
   std::ifstream in(path);
   if (!in) throw InputError(path, "", "cannot read the jobs file");
   std::vector<Job> jobs;
@@ -64,9 +131,11 @@ std::vector<Job> ReadJobs(const std::string& path) {
     if (!line.empty() && line.back() == '\r') line.pop_back();
     if (line.find_first_not_of(" \t") == std::string::npos) continue;
     const std::string where = "line " + std::to_string(n);
-    const json j = json::parse(line, nullptr, false);
-    if (j.is_discarded() || !j.is_object())
-      throw InputError(path, where, "not a JSON object (one job per line)");
+    const ParsedLine parsed = ParseLine(line);
+    if (!parsed.value) throw InputError(path, where, parsed.why + " (one job per line)");
+    const json& j = *parsed.value;
+    if (!j.is_object())
+      throw InputError(path, where, "not a JSON object (one job per line), but " + Article(j));
     const auto id = j.find("id");
     if (id == j.end() || !(id->is_string() || id->is_number_integer()))
       throw InputError(path, where, "a job needs an \"id\" (a string or an integer)");
@@ -87,6 +156,16 @@ bool RefusedOption(const std::string& name) {
          name == "html" || name == "help" || name == "version";
 }
 
+// An option's name as the command line spells it after its dashes: letters,
+// digits and inner dashes (so that a key cannot carry a value, `html=x.html`,
+// or a second argument).
+bool OptionName(const std::string& name) {
+  if (name.empty() || !std::isalnum(static_cast<unsigned char>(name.front()))) return false;
+  return std::all_of(name.begin(), name.end(), [](char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) || c == '-';
+  });
+}
+
 // An option's value on the command line: numbers as JSON writes them, a list
 // comma-separated (as the CLI's list options take them).
 std::string OptionValue(const json& v, const std::string& where) {
@@ -96,76 +175,134 @@ std::string OptionValue(const json& v, const std::string& where) {
     std::string out;
     for (const json& x : v) {
       if (!(x.is_string() || x.is_number()))
-        throw InputError("", where, "a list of names or numbers was expected");
+        throw InputError("", where,
+                         "a list of names or numbers was expected, not a list of " +
+                             std::string(x.type_name()) + "s");
       out += (out.empty() ? "" : ",") + OptionValue(x, where);
     }
     return out;
   }
-  throw InputError("", where, "a string, a number, a list or true was expected");
+  throw InputError("", where,
+                   "must be a string, a number, a list or true (a flag), not " + Article(v));
 }
+
+// A file name of a job (`model`, `plan`): a non-empty string.
+std::string JobFile(const json& job, const char* key, const std::string& what) {
+  const auto it = job.find(key);
+  if (it == job.end()) throw InputError("", key, "missing: " + what);
+  if (!it->is_string())
+    throw InputError("", key, "must be a file name (a string), not " + Article(*it));
+  if (it->get<std::string>().empty()) throw InputError("", key, "the file name is empty");
+  return it->get<std::string>();
+}
+
+constexpr const char* kCommands = "check, simulate, plan, blocking or margin";
 
 // The job's command line, as the user would type it after `cairn`.
 std::vector<std::string> JobCommandLine(const json& job) {
   for (const auto& [key, value] : job.items())
     if (key != "id" && key != "command" && key != "model" && key != "plan" && key != "options")
-      throw InputError("", EscapedName(key),
+      throw InputError("", key.empty() ? "\"\"" : EscapedName(key),
                        "unknown key of a job (known: id, command, model, plan, options)");
   const auto command = job.find("command");
-  if (command == job.end() || !command->is_string())
-    throw InputError("", "command", "missing: check, simulate, plan or blocking");
-  const std::string name = command->get<std::string>();
-  if (name != "check" && name != "simulate" && name != "plan" && name != "blocking")
+  if (command == job.end()) throw InputError("", "command", std::string("missing: ") + kCommands);
+  if (!command->is_string())
     throw InputError("", "command",
-                     "must be check, simulate, plan or blocking (got " + EscapedName(name) + ")");
-  const auto model = job.find("model");
-  if (model == job.end() || !model->is_string() || model->get<std::string>().empty())
-    throw InputError("", "model", "missing: the model file (a path)");
-  const auto plan = job.find("plan");
-  if (name == "simulate" && (plan == job.end() || !plan->is_string()))
-    throw InputError("", "plan", "missing: simulate needs a plan file (a path)");
-  if (name != "simulate" && plan != job.end())
+                     std::string("must be ") + kCommands + " (a string), not " + Article(*command));
+  const std::string name = command->get<std::string>();
+  if (name != "check" && name != "simulate" && name != "plan" && name != "blocking" &&
+      name != "margin")
+    throw InputError("", "command",
+                     std::string("must be ") + kCommands + " (got " + EscapedName(name) + ")");
+  const std::string model = JobFile(job, "model", "the model file (a path)");
+  std::string plan;
+  if (name == "simulate") plan = JobFile(job, "plan", "simulate needs a plan file (a path)");
+  if (name != "simulate" && job.contains("plan"))
     throw InputError("", "plan", "only simulate takes a plan");
 
   std::vector<std::string> args{name};
-  bool threads = false;
+  bool threads = false, asap = false;
+  std::vector<std::string> files{plan};  // besides the model, to be read (sidecar, paths)
   if (const auto options = job.find("options"); options != job.end()) {
-    if (!options->is_object()) throw InputError("", "options", "must be an object");
+    if (!options->is_object())
+      throw InputError("", "options", "must be an object, not " + Article(*options));
     for (const auto& [key, value] : options->items()) {
       std::string option = key;
       while (!option.empty() && option.front() == '-') option.erase(0, 1);
-      const std::string where = "options." + EscapedName(key);
-      if (option.empty()) throw InputError("", where, "not an option");
-      if (RefusedOption(option))
-        throw InputError("", where, "not in a batch (a job's result is its JSON document)");
+      const std::string where = "options." + (key.empty() ? "\"\"" : EscapedName(key));
+      // The name before any `=`: an output option is refused however it is spelled.
+      if (RefusedOption(option.substr(0, option.find('='))))
+        throw InputError("", where,
+                         "not in a batch: the output options (--json, --html, --timeline, --dot, "
+                         "--emit-plans) are not for batch jobs (a job's result is its JSON "
+                         "document)");
+      if (!OptionName(option))
+        throw InputError("", where,
+                         option.find('=') != std::string::npos
+                             ? "an option's name has no '=': its value is the key's value"
+                             : "not an option name");
       threads = threads || option == "threads";
       if (value.is_null() || (value.is_boolean() && !value.get<bool>())) continue;
-      if (value.is_boolean())
+      if (value.is_boolean()) {
         args.push_back("--" + option);
-      else
-        args.push_back("--" + option + "=" + OptionValue(value, where));
+        continue;
+      }
+      const std::string text = OptionValue(value, where);
+      if (option == "format") asap = text == "asap";
+      if (option == "sidecar" || option == "paths") files.push_back(text);
+      args.push_back("--" + option + "=" + text);
     }
   }
+  // What the job reads must be a regular file (a FIFO would block the batch).
+  RefuseSpecialFile(model, asap, "a model is read from a file (or an ASAP folder)");
+  for (const std::string& f : files)
+    if (!f.empty()) RefuseSpecialFile(f, false, "the job reads it as a file");
   // A plan job runs on one thread unless it says otherwise: the batch's
   // workers already fill the cores.
   if (name == "plan" && !threads) args.push_back("--threads=1");
   args.push_back("--");
-  args.push_back(model->get<std::string>());
-  if (name == "simulate") args.push_back(plan->get<std::string>());
+  args.push_back(model);
+  if (name == "simulate") args.push_back(plan);
   return args;
 }
 
 // ---- RESULTS ------------------------------------------------------------------
 
+// What a RESULTS line must be: a JSON object with an id (a string or an
+// integer, as JOBS gives them) and an exit code. Empty when it is not.
+struct RecordedResult {
+  std::string id;  // as JSON text
+  int exit = 0;
+};
+std::optional<RecordedResult> AsResult(const ParsedLine& parsed) {
+  if (!parsed.value || !parsed.value->is_object()) return std::nullopt;
+  const json& j = *parsed.value;
+  const auto id = j.find("id"), exit = j.find("exit");
+  if (id == j.end() || !(id->is_string() || id->is_number_integer())) return std::nullopt;
+  if (exit == j.end() || !exit->is_number_integer()) return std::nullopt;
+  return RecordedResult{Dump(*id), exit->get<int>()};
+}
+
+// Failed: bad input, internal error, timed out (3 is simulate's infeasible,
+// a verdict). What --retry-failed runs again, and the progress line counts.
+bool Failed(int exit) {
+  return exit == kExitBadInput || exit == kExitInternalError || exit == kExitTimeout;
+}
+
 // RESULTS, opened for appending: with --fresh emptied; otherwise the ids
 // already there are collected and a last line cut short (a batch killed while
-// it wrote) is cut off, so that the file is whole lines again.
+// it wrote) is cut off, so that the file is whole lines again. With
+// --retry-failed the lines of failed jobs are taken out (their jobs run
+// again).
 class Results {
  public:
-  Results(const std::string& path, bool fresh, std::set<std::string>& done) : path_(path) {
+  Results(const std::string& path, bool fresh, bool retry, std::set<std::string>& done)
+      : path_(path) {
     struct stat st {};
     if (::stat(path.c_str(), &st) == 0 && !S_ISREG(st.st_mode))
       throw InputError("", "-o", "'" + path + "' is not a regular file");
-    if (!fresh) ReadDone(done);
+    if (!fresh) ReadDone(done, retry);
+    if (!dropped_.empty()) Rewrite();
     fd_ = ::open(path.c_str(), O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC | (fresh ? O_TRUNC : 0),
                  0644);
     if (fd_ < 0) throw InputError("", "-o", "cannot write '" + path + "': " + std::strerror(errno));
@@ -191,31 +328,85 @@ class Results {
     }
   }
 
+  // The ids whose failed results were taken out (--retry-failed).
+  const std::set<std::string>& retried() const { return retried_; }
+
  private:
+  [[noreturn]] void NotAResult(size_t n, const std::string& why) const {
+    throw InputError(path_, "line " + std::to_string(n),
+                     "not a result of cairn batch" + (why.empty() ? "" : " (" + why + ")") +
+                         "; give --fresh to start over");
+  }
+
   // Line by line (RESULTS may be large): the ids, and where a last line cut
   // short starts.
-  void ReadDone(std::set<std::string>& done) {
+  void ReadDone(std::set<std::string>& done, bool retry) {
     std::ifstream in(path_, std::ios::binary);
     if (!in) return;  // a new file
     long long at = 0;
     std::string line;
     for (size_t n = 1; std::getline(in, line); ++n) {
-      if (in.eof()) {  // no newline after it: cut short, dropped
+      const ParsedLine parsed = ParseLine(line);
+      const std::optional<RecordedResult> result = AsResult(parsed);
+      if (in.eof()) {
+        // No newline after it. A batch writes a line and its newline at once,
+        // so only a write cut short leaves this: the start of a result (or
+        // the whole of one), dropped to be written again. Anything else is
+        // not RESULTS, and is refused as a line with its newline is.
+        const std::string head = "{\"id\":";  // how every result line starts
+        const bool start_of_result = line.size() < head.size()
+                                         ? head.rfind(line, 0) == 0
+                                         : line.rfind(head, 0) == 0 && parsed.cut_short;
+        if (!start_of_result && !result) NotAResult(n, parsed.why);
         keep_ = at;
         break;
       }
       at += static_cast<long long>(line.size()) + 1;
-      const json j = json::parse(line, nullptr, false);
-      if (j.is_discarded() || !j.is_object() || !j.contains("id") || !j.contains("exit"))
-        throw InputError(path_, "line " + std::to_string(n),
-                         "not a result of cairn batch (give --fresh to start over)");
-      done.insert(Dump(j["id"]));
+      if (!result) NotAResult(n, parsed.why);
+      if (retry && Failed(result->exit)) {
+        dropped_.insert(n);
+        retried_.insert(result->id);
+      } else {
+        done.insert(result->id);
+      }
     }
+    if (in.bad()) throw InputError(path_, "", "cannot read the results file");
+  }
+
+  // RESULTS without the dropped lines (and without a last line cut short):
+  // written to a temporary file beside it (beside the file a link names),
+  // then renamed over it, so that a batch killed meanwhile leaves RESULTS as
+  // it was.
+  void Rewrite() {
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    const fs::path target = fs::canonical(path_, ec);
+    if (ec) throw InputError("", "-o", "cannot write '" + path_ + "': " + ec.message());
+    const fs::path temp = target.parent_path() / ("." + target.filename().string() + ".cairn-" +
+                                                  std::to_string(::getpid()) + ".tmp");
+    bool written = false;
+    {
+      std::ifstream in(path_, std::ios::binary);
+      std::ofstream out(temp, std::ios::binary | std::ios::trunc);
+      std::string line;
+      for (size_t n = 1; std::getline(in, line) && !in.eof(); ++n)
+        if (!dropped_.count(n)) out << line << '\n';
+      written = !in.bad() && out.flush();
+    }
+    if (written) fs::rename(temp, target, ec);
+    if (!written || ec) {
+      const std::string why = ec ? ec.message() : std::string(std::strerror(errno));
+      fs::remove(temp, ec);
+      throw InputError("", "-o", "cannot write '" + path_ + "': " + why);
+    }
+    keep_ = -1;
   }
 
   std::string path_;
   int fd_ = -1;
-  long long keep_ = -1;  // ≥ 0: the length to cut the file to
+  long long keep_ = -1;            // ≥ 0: the length to cut the file to
+  std::set<size_t> dropped_;       // lines taken out (--retry-failed)
+  std::set<std::string> retried_;  // their ids
 };
 
 // ---- Progress -------------------------------------------------------------------
@@ -238,9 +429,11 @@ class BatchProgress {
     line_.Show(os.str());
   }
   void Done() { line_.Done(); }
-  // Failed: bad input, internal error, timed out (3 is simulate's
-  // infeasible: a verdict).
-  size_t Failed() const { return by_exit_[2] + by_exit_[4] + by_exit_[kExitTimeout]; }
+  size_t Failed() const {
+    size_t n = 0;
+    for (int code = 0; code < 10; ++code) n += cli::Failed(code) ? by_exit_[code] : 0;
+    return n;
+  }
   const std::array<size_t, 10>& by_exit() const { return by_exit_; }
 
  private:
@@ -318,9 +511,10 @@ void RunOnThreads(const std::vector<const Job*>& todo, int threads, const JobPar
   }
 }
 
-std::string Summary(size_t run, size_t skipped, const BatchProgress& progress) {
+std::string Summary(size_t run, size_t retried, size_t skipped, const BatchProgress& progress) {
   std::ostringstream os;
   os << "cairn batch: " << run << " job" << (run == 1 ? "" : "s") << " run";
+  if (retried > 0) os << " (" << retried << " of them again: --retry-failed)";
   if (skipped > 0) os << ", " << skipped << " already in RESULTS";
   const char* what[10] = {"stable",    "not stable", "bad input", "infeasible", "internal error",
                           "timed out", "",           "",          "",           "other exit code"};
@@ -332,6 +526,25 @@ std::string Summary(size_t run, size_t skipped, const BatchProgress& progress) {
 }
 
 }  // namespace
+
+CommandDocument MarginJobDocument(MarginArgs args) {
+  args.json = true;
+  std::ostringstream out, err;
+  const int exit = RunMargin(args, out, err);
+  // One line on standard error, after "cairn: error: " or "cairn: internal
+  // error: ".
+  std::string message = err.str();
+  while (!message.empty() && message.back() == '\n') message.pop_back();
+  if (exit == kExitBadInput) {
+    const std::string tag = "cairn: error: ";
+    throw InputError("", "", message.rfind(tag, 0) == 0 ? message.substr(tag.size()) : message);
+  }
+  if (exit != kExitStable && exit != kExitUnstable) {
+    const std::string tag = "cairn: internal error: ";
+    throw std::runtime_error(message.rfind(tag, 0) == 0 ? message.substr(tag.size()) : message);
+  }
+  return {json::parse(out.str()), exit};
+}
 
 JobResult RunJob(const std::string& line, const JobParser& parse, double job_timeout) {
   // The line: {"id":…,"exit":…,"result":…} or {"id":…,"exit":…,"error":…},
@@ -346,15 +559,16 @@ JobResult RunJob(const std::string& line, const JobParser& parse, double job_tim
   try {
     const json job = json::parse(line);
     id = Dump(job.at("id"));
-    const auto start = Clock::now();
-    const auto deadline =
-        start + std::chrono::duration_cast<Clock::duration>(
-                    std::chrono::duration<double>(job_timeout > 0 ? job_timeout : 0));
     // The deadline is cooperative: checked before each node check and at
     // every time step; a check (one solve) is not interrupted, but a job that
-    // ends past its deadline is recorded as timed out all the same.
+    // ends past its deadline is recorded as timed out all the same. A
+    // timeout of kMaxJobTimeoutSeconds or more is none.
+    const bool limited = job_timeout > 0 && job_timeout < kMaxJobTimeoutSeconds;
+    const auto deadline =
+        Clock::now() + std::chrono::duration_cast<Clock::duration>(
+                           std::chrono::duration<double>(limited ? job_timeout : 0));
     const Checkpoint checkpoint = [&] {
-      if (job_timeout > 0 && Clock::now() > deadline) throw JobTimeout{};
+      if (limited && Clock::now() > deadline) throw JobTimeout{};
     };
     const JobCommand command = parse(JobCommandLine(job));
     const CommandDocument doc = command(checkpoint);
@@ -390,12 +604,21 @@ int RunBatch(const BatchArgs& args, const JobParser& parse, std::ostream& out, s
   const int code = RunGuarded(err, [&]() -> int {
     if (args.fresh && args.resume)
       throw InputError("", "--fresh", "and --resume exclude each other");
+    if (args.fresh && args.retry_failed)
+      throw InputError("", "--fresh",
+                       "and --retry-failed exclude each other (--fresh runs every job)");
     const std::vector<Job> jobs = ReadJobs(args.jobs);
+    // RESULTS is never JOBS (nor a link to it).
+    CheckOutputs({{args.output, "-o"}}, {{args.jobs, "the jobs file"}});
     std::set<std::string> done;
-    Results results(args.output, args.fresh, done);
+    Results results(args.output, args.fresh, args.retry_failed, done);
     std::vector<const Job*> todo;
-    for (const Job& job : jobs)
-      if (!done.count(job.id)) todo.push_back(&job);
+    size_t retried = 0;
+    for (const Job& job : jobs) {
+      if (done.count(job.id)) continue;
+      todo.push_back(&job);
+      retried += results.retried().count(job.id);
+    }
 
     BatchProgress progress(todo.size());
     InOrder order(todo.size(), results, progress);
@@ -422,7 +645,7 @@ int RunBatch(const BatchArgs& args, const JobParser& parse, std::ostream& out, s
       RunOnThreads(todo, threads, parse, args.job_timeout, order, progress);
     }
     progress.Done();
-    out << Summary(todo.size(), jobs.size() - todo.size(), progress);
+    out << Summary(todo.size(), retried, jobs.size() - todo.size(), progress);
     return kExitStable;
   });
   MpiStopWorkers();  // on every way out: the other ranks must not wait for jobs

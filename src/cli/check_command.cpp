@@ -63,10 +63,13 @@ CommandDocument CheckDocument(const CheckArgs& args, const Checkpoint& checkpoin
 
 int RunCheck(const CheckArgs& args, std::ostream& out, std::ostream& err) {
   return RunGuarded(err, [&]() -> int {
+    // The output is checked first (never over the input), written last.
+    const std::vector<NamedFile> inputs = ModelInputs(args.scene, args.model, "the model file");
+    CheckOutputs({{args.html, "--html"}}, inputs);
     const Checked c = Check(args, {}, &err);
     // Everything is computed before anything is written.
     const nlohmann::json doc = CheckJson(c);
-    OutputFiles files;
+    OutputFiles files(inputs);
     if (!args.html.empty()) files.Add(args.html, CheckPage(c.assembly, doc, c.report), "--html");
     files.Commit();
     if (args.json)

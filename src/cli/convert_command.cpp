@@ -20,6 +20,7 @@
 #include "cairn/stability/analyze.h"
 #include "cli/command.h"
 #include "cli/model.h"
+#include "cli/output_files.h"
 #include "cli/scene_writer.h"
 
 namespace cairn::cli {
@@ -30,7 +31,10 @@ int RunConvert(const ConvertArgs& args, std::ostream& out, std::ostream& err) {
     // so a scene that convert writes is one `cairn check` reads.
     const Model m = LoadModel(args.input, args.model, &err);
     const std::string text = WriteSceneJson(m.def);
-    WriteAtomically(args.output, text, "");
+    // Whole or not at all, never over the input (OutputFiles).
+    OutputFiles files(ModelInputs(args.input, args.model, "the input file"));
+    files.Add(args.output, text, "the output file");
+    files.Commit();
     int fixed = 0;
     for (const Part& p : m.assembly.parts()) fixed += p.fixed ? 1 : 0;
     out << "cairn: wrote " << args.output << ": " << m.assembly.num_parts() << " parts (" << fixed

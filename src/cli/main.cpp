@@ -209,9 +209,11 @@ CLI::App* AddPlan(CLI::App& app, cairn::cli::PlanArgs& plan) {
 
 // ---- cairn batch (docs/batch.md) ----------------------------------------------
 
+CLI::App* AddMargin(CLI::App& app, cairn::cli::MarginArgs& margin);
+
 CLI::App* AddBatch(CLI::App& app, cairn::cli::BatchArgs& batch) {
   CLI::App* cmd = app.add_subcommand(
-      "batch", "Run many jobs (check, simulate, plan, blocking) from a JSON-lines file");
+      "batch", "Run many jobs (check, simulate, plan, blocking, margin) from a JSON-lines file");
   cmd->add_option("jobs", batch.jobs, "Jobs file (JSON lines: id, command, model, plan, options)")
       ->required();
   cmd->add_option("-o", batch.output, "Results file (JSON lines), appended job by job")
@@ -220,6 +222,8 @@ CLI::App* AddBatch(CLI::App& app, cairn::cli::BatchArgs& batch) {
   cmd->add_flag("--fresh", batch.fresh, "Start over: empty the results file first");
   cmd->add_flag("--resume", batch.resume,
                 "Skip the jobs already in the results file (the default)");
+  cmd->add_flag("--retry-failed", batch.retry_failed,
+                "Also run again the jobs recorded as failed (exit 2, 4 or 5)");
   cmd->add_option("--job-timeout", batch.job_timeout,
                   "Seconds a job may take; one that takes longer is recorded as timed out")
       ->check(kPositive);
@@ -241,22 +245,40 @@ cairn::cli::JobCommand ParseJob(const std::vector<std::string>& args) {
     cli::SimulateArgs sim;
     cli::BlockingArgs blocking;
     cli::PlanArgs plan;
+    cli::MarginArgs margin;
   };
   struct Parser {
     Parsed values;  // bound to the options below: reset, never moved
     CLI::App app{"cairn"};
-    CLI::App *check, *sim, *blocking, *plan;
+    CLI::App *check, *sim, *blocking, *plan, *margin;
     Parser()
         : check(AddCheck(app, values.check)),
           sim(AddSimulate(app, values.sim)),
           blocking(AddBlocking(app, values.blocking)),
-          plan(AddPlan(app, values.plan)) {
+          plan(AddPlan(app, values.plan)),
+          margin(AddMargin(app, values.margin)) {
       app.require_subcommand(1);
     }
   };
   thread_local Parser parser;
   parser.values = Parsed{};
   parser.app.clear();
+  // A job's `true` is a flag: an option that takes a value would take the
+  // next argument (`--` or the model) as its value instead.
+  const CLI::App* command = nullptr;
+  for (const CLI::App* sub :
+       {parser.check, parser.sim, parser.blocking, parser.plan, parser.margin})
+    if (!args.empty() && sub->get_name() == args[0]) command = sub;
+  if (command != nullptr) {
+    for (const std::string& arg : args) {
+      if (arg == "--") break;
+      if (arg.rfind("--", 0) != 0 || arg.find('=') != std::string::npos) continue;
+      const CLI::Option* option = command->get_option_no_throw(arg);
+      if (option != nullptr && option->get_expected_min() > 0)
+        throw cairn::InputError("", "options." + arg.substr(2),
+                                "takes a value (a string, a number or a list), not true");
+    }
+  }
   std::vector<std::string> reversed(args.rbegin(), args.rend());  // CLI11 takes them so
   try {
     parser.app.parse(reversed);
@@ -274,7 +296,9 @@ cairn::cli::JobCommand ParseJob(const std::vector<std::string>& args) {
   if (*parser.blocking)
     return [p](const cli::Checkpoint&) { return cli::BlockingDocument(p->blocking); };
   if (*parser.plan) return [p](const cli::Checkpoint& c) { return cli::PlanDocument(p->plan, c); };
-  throw cairn::InputError("", "command", "must be check, simulate, plan or blocking");
+  if (*parser.margin)
+    return [p](const cli::Checkpoint&) { return cli::MarginJobDocument(p->margin); };
+  throw cairn::InputError("", "command", "must be check, simulate, plan, blocking or margin");
 }
 
 // `--friction [MU]` replaces the model option of the same name: alone it asks

@@ -87,6 +87,11 @@ CommandDocument PlanDocument(const PlanArgs& args, const Checkpoint& checkpoint,
 
 int RunPlan(const PlanArgs& args, std::ostream& out, std::ostream& err) {
   return RunGuarded(err, [&]() -> int {
+    // The outputs are checked first (never over an input), written last.
+    std::vector<NamedFile> inputs = ModelInputs(args.scene, args.model, "the model file");
+    if (!args.paths.empty()) inputs.push_back({args.paths, "--paths"});
+    CheckOutputs({{args.dot, "--dot"}, {args.html, "--html"}}, inputs);
+    if (!args.emit_plans.empty()) OutputFiles(inputs).AddFolder(args.emit_plans, "--emit-plans");
     // A long search says where it is, on a terminal (rank 0's: the others'
     // standard error is quiet under mpirun).
     Progress progress("cairn plan");
@@ -109,9 +114,12 @@ int RunPlan(const PlanArgs& args, std::ostream& out, std::ostream& err) {
     const nlohmann::json doc = PlannerToJson(assembly, result, args.scene);
     const std::string text =
         args.json ? doc.dump(2) + "\n" : PlannerToText(assembly, result, args.scene);
-    // Every file, or none (OutputFiles).
-    OutputFiles files;
+    // Every file, or none (OutputFiles); the --emit-plans folder is made at
+    // the commit, and taken away again (when the commit made it) if the
+    // files fail or a signal ends the run.
+    OutputFiles files(inputs);
     if (!args.emit_plans.empty()) {
+      files.AddFolder(args.emit_plans, "--emit-plans");
       const std::filesystem::path dir(args.emit_plans);
       const int dim = assembly.dimension();
       for (size_t k = 0; k < result.sequences.size(); ++k) {
@@ -147,23 +155,7 @@ int RunPlan(const PlanArgs& args, std::ostream& out, std::ostream& err) {
       report.scene_file = args.scene;
       files.Add(args.html, PlanPage(assembly, result, doc, report), "--html");
     }
-    // The --emit-plans folder is made only now that every file is checked,
-    // and taken away again (when this run made it) if the files fail.
-    bool made_folder = false;
-    if (!args.emit_plans.empty()) {
-      std::error_code ec;
-      made_folder = std::filesystem::create_directories(args.emit_plans, ec);
-      if (ec)
-        throw InputError("", "--emit-plans",
-                         "cannot create folder '" + args.emit_plans + "': " + ec.message());
-    }
-    try {
-      files.Commit();
-    } catch (...) {
-      std::error_code ec;
-      if (made_folder) std::filesystem::remove(args.emit_plans, ec);  // empty: nothing committed
-      throw;
-    }
+    files.Commit();
     out << text;
     return planned.exit();
   });

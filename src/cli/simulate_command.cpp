@@ -138,6 +138,10 @@ CommandDocument SimulateDocument(const SimulateArgs& args, const Checkpoint& che
 
 int RunSimulate(const SimulateArgs& args, std::ostream& out, std::ostream& err) {
   return RunGuarded(err, [&]() -> int {
+    // The outputs are checked first (never over an input), written last.
+    std::vector<NamedFile> inputs = ModelInputs(args.scene, args.model, "the model file");
+    inputs.push_back({args.plan, "the plan file"});
+    CheckOutputs({{args.timeline, "--timeline"}, {args.html, "--html"}}, inputs);
     // A long plan says where it is, on a terminal (the steps' lengths in
     // time steps computed at the first tick).
     Progress progress("cairn simulate");
@@ -167,7 +171,7 @@ int RunSimulate(const SimulateArgs& args, std::ostream& out, std::ostream& err) 
       if (s.margin) text += PlanMarginToText(s.model.assembly, *s.margin);
     }
     // Every file, or none (OutputFiles).
-    OutputFiles files;
+    OutputFiles files(inputs);
     if (!args.timeline.empty())
       files.Add(args.timeline, TimelineToCsv(s.model.assembly, s.result, s.report), "--timeline");
     if (!args.html.empty())

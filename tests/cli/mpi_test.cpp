@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
 #include <nlohmann/json.hpp>
 
 #include "cli/cli_run.h"
@@ -95,6 +96,35 @@ TEST(MpiBatch, ThreeRanks_TheSameResultsAsThreads) {
   // A bad batch (no jobs file) under mpirun: exit 2, and no rank waits.
   const CliRun bad = Mpirun(2, "batch " + dir + "/none.jsonl -o " + dir + "/bad");
   EXPECT_EQ(bad.exit_code, 2) << bad.err;
+  std::filesystem::remove_all(dir);
+}
+
+// Rank 0 resuming a RESULTS line whose id is nested 100 000 deep: exit 2
+// naming the file and the line (no rank crashes, none waits), RESULTS as it
+// was; and margin jobs on the ranks give the threads' results.
+TEST(MpiBatch, DeepResultsLineRefused_MarginJobsOnRanks) {
+  if (std::string(CAIRN_MPIRUN).empty()) GTEST_SKIP() << "built without MPI (CAIRN_MPI off)";
+  const std::string dir = TempDir("cairn_mpi_batch_deep");
+  std::filesystem::create_directories(dir);
+  const std::string stack = ExamplePath("stack3.json");
+  std::ofstream(dir + "/jobs.jsonl")
+      << "{\"id\":\"c\",\"command\":\"check\",\"model\":\"" << stack << "\"}\n"
+      << "{\"id\":\"m\",\"command\":\"margin\",\"model\":\"" << stack
+      << "\",\"options\":{\"tilt\":[0,0,1]}}\n";
+  const std::string deep =
+      "{\"id\":" + std::string(100000, '[') + std::string(100000, ']') + ",\"exit\":0}\n";
+  std::ofstream(dir + "/deep") << deep;
+  const CliRun bad = Mpirun(2, "batch " + dir + "/jobs.jsonl -o " + dir + "/deep");
+  EXPECT_EQ(bad.exit_code, 2) << bad.err.substr(0, 300);
+  EXPECT_NE(bad.err.find(dir + "/deep: line 1: not a result of cairn batch"), std::string::npos)
+      << bad.err.substr(0, 300);
+  EXPECT_EQ(Slurp(dir + "/deep"), deep);
+  const CliRun threads = Cairn("batch " + dir + "/jobs.jsonl -o " + dir + "/threads");
+  ASSERT_EQ(threads.exit_code, 0) << threads.err;
+  const CliRun ranks = Mpirun(2, "batch " + dir + "/jobs.jsonl -o " + dir + "/ranks");
+  ASSERT_EQ(ranks.exit_code, 0) << ranks.err;
+  EXPECT_EQ(Slurp(dir + "/ranks"), Slurp(dir + "/threads"));
+  EXPECT_NE(Slurp(dir + "/ranks").find("\"id\":\"m\",\"exit\":0,\"result\":"), std::string::npos);
   std::filesystem::remove_all(dir);
 }
 
