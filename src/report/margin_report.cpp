@@ -166,8 +166,10 @@ json MarginToJson(const Assembly& assembly, const MarginRequest& req, const Marg
 
 namespace {
 
-std::string Deg(const std::optional<double>& x) {
-  return x ? Num(*x) + "°" : std::string("none (holds all the way round)");
+// A tilt's critical angle in one sense ("negative", "positive").
+std::string Deg(const std::optional<double>& x, const char* sense) {
+  return x ? Num(*x) + "° (" + sense + " sense)"
+           : std::string("none in the ") + sense + " sense (it holds all the way round)";
 }
 
 // A long list of parts is cut after this many names in the text (the JSON
@@ -236,8 +238,8 @@ std::string MarginToText(const Assembly& assembly, const MarginRequest& req, con
       break;
     case MarginQuantity::kTilt:
       os << "critical tilt about [" << Num(r.axis.x()) << ", " << Num(r.axis.y()) << ", "
-         << Num(r.axis.z()) << "]: " << Deg(r.sides[0].critical) << " (negative sense) / "
-         << Deg(r.sides[1].critical) << " (positive sense)\n";
+         << Num(r.axis.z()) << "]: " << Deg(r.sides[0].critical, "negative") << " / "
+         << Deg(r.sides[1].critical, "positive") << '\n';
       break;
     case MarginQuantity::kLoad:
       os << "largest load on " << assembly.part(req.part).name << ": ";
