@@ -473,10 +473,11 @@ std::string ExplainUsage(const CLI::App& app, const std::vector<std::string>& ar
            (near.empty() ? " (the commands: " + list + ")" : " (did you mean " + near + "?)");
   }
   const std::string& command = args[0];
-  size_t positionals = 0;
+  size_t positionals = 0, required = 0;
   for (const CLI::Option* opt : cmd->get_options())
-    if (opt->get_positional()) ++positionals;
+    if (opt->get_positional()) ++positionals, required += opt->get_required() ? 1 : 0;
   size_t given = 0;
+  std::string swallowed;  // an optional value that is no number: a file?
   bool only_positionals = false;
   for (size_t i = 1; i < args.size(); ++i) {
     const std::string& arg = args[i];
@@ -515,8 +516,15 @@ std::string ExplainUsage(const CLI::App& app, const std::vector<std::string>& ar
     }
     const bool has_value = i + 1 < args.size() && !LooksLikeOption(args[i + 1]);
     if (opt->get_items_expected_min() > 0 && !has_value) return name + " needs a value";
+    if (has_value && opt->get_items_expected_min() == 0) {
+      double x = 0;
+      if (!CLI::detail::lexical_cast(args[i + 1], x))
+        swallowed = name + " took '" + args[i + 1] + "' as its value: write the file before " +
+                    name + ", or " + name + "=VALUE";
+    }
     if (has_value) ++i;  // the option's value (optional ones take it too)
   }
+  if (given < required && !swallowed.empty()) return "a file is missing: " + swallowed;
   return "";
 }
 

@@ -97,6 +97,21 @@ TEST(UsageErrors, AnOptionWithoutItsValueSaysSo) {
   ExpectUsageError("blocking " + fig1 + " --direction", "--direction needs a value");
 }
 
+// margin's --friction takes a value or none: the file after it is taken as
+// its value, and the message says so.
+TEST(UsageErrors, AnOptionalValueThatTookTheFileSaysSo) {
+  const std::string incline = ExamplePath("incline.json");
+  ExpectUsageError("margin --friction " + incline, "a file is missing: --friction took '" +
+                                                       incline +
+                                                       "' as its value: write the file "
+                                                       "before --friction, or "
+                                                       "--friction=VALUE");
+  const CliRun r = Cairn("margin " + incline + " --friction");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  const CliRun mu = Cairn("margin --friction 0.5 " + incline);
+  EXPECT_EQ(mu.exit_code, 0) << mu.err;
+}
+
 TEST(UsageErrors, AnArgumentTooManyIsNamed) {
   const std::string fig1 = ExamplePath("paper_fig1.json");
   ExpectUsageError("check " + fig1 + " --without D C",
