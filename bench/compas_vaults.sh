@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# CLI harness: `cairn check` of the shared COMPAS vaults (issue 4, section 5),
+# CLI harness: `cairn check` of the shared COMPAS vaults,
 # timed as a user runs it. Usage: bench/compas_vaults.sh [path/to/cairn]
 # (default build-bench/cairn). Reads ../shared/datasets; skips what is absent.
 set -uo pipefail

@@ -1,4 +1,4 @@
-// Degenerate contact LCPs (issue 13): the component LCPs of scenes whose
+// Degenerate contact LCPs: the component LCPs of scenes whose
 // contacts are many coplanar points per interface, solved by Cairn's factored
 // Lemke (SolveLemkeFactored), by the same after HullContactSubset has reduced
 // every planar patch to its hull vertices, and by Siconos' lcp_lexicolemke on

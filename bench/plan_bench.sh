@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# CLI harness: `cairn plan` (issue 5, section 5), timed as a user runs it:
+# CLI harness: `cairn plan`, timed as a user runs it:
 # the 10- and 14-brick pyramids enumerated completely (frictionless, and the
 # 10-brick one with friction 0.5), the 54-block Jenga tower's first stable
 # sequence and its first 10, Fig. 6 with its exits. Prints, per run, the

@@ -28,11 +28,11 @@
 #include "cairn/report/blocking_report.h"
 #include "cairn/report/check_report.h"
 #include "cairn/report/fixture_report.h"
-#include "cairn/report/margin_report.h"  // cairn.margin (issue 20)
+#include "cairn/report/margin_report.h"  // cairn.margin
 #include "cairn/report/plan_report.h"
 #include "cairn/report/simulation_report.h"
 #include "cairn/stability/analyze.h"
-#include "cli/margin_command.h"  // cairn.margin (issue 20)
+#include "cli/margin_command.h"  // cairn.margin
 #include "cli/model.h"
 
 namespace py = pybind11;
@@ -183,7 +183,7 @@ std::string Blocking(const PyModel& m, const std::vector<std::string>& without) 
   return NdbgToJson(assembly, ComputeNdbg(assembly, config), report).dump(2);
 }
 
-// ---- cairn.margin (issue 20) ----
+// ---- cairn.margin ----
 // `cairn margin --json`: friction (a flag), tilt (an axis) or load (a part,
 // a point, a direction), as the CLI's --friction, --tilt, --load.
 std::string Margin(const PyModel& m, bool friction, const std::vector<double>& tilt,
@@ -285,6 +285,6 @@ PYBIND11_MODULE(_cairn, m) {
         py::arg("paths"), py::arg("allow_fixtures"), py::arg("keep"), py::arg("support"),
         py::arg("threads"));
   m.def("blocking", &Blocking, py::arg("model"), py::arg("without"));
-  m.def("margin", &Margin, py::arg("model"), py::arg("friction"), py::arg("tilt"),  // issue 20
-        py::arg("load"), py::arg("point"), py::arg("direction"), py::arg("without"));
+  m.def("margin", &Margin, py::arg("model"), py::arg("friction"), py::arg("tilt"), py::arg("load"),
+        py::arg("point"), py::arg("direction"), py::arg("without"));
 }

@@ -14,15 +14,16 @@ namespace cairn::cli {
 
 namespace {
 
-// --direction: 3 finite numbers, not all zero (in 2-D, z = 0).
+// --direction: X,Y in a 2-D scene, X,Y,Z in a 3-D one; finite, not all zero.
 Vector3 DirectionFlag(const std::vector<double>& xyz, const Assembly& assembly) {
-  if (xyz.size() != 3)
+  const size_t dim = static_cast<size_t>(assembly.dimension());
+  if (xyz.size() != dim)
     throw InputError("", "--direction",
-                     "must have 3 numbers X,Y,Z, not " + std::to_string(xyz.size()));
-  const Vector3 d(xyz[0], xyz[1], xyz[2]);
+                     std::string(dim == 2 ? "a 2-D scene takes a direction of 2 numbers X,Y"
+                                          : "a 3-D scene takes a direction of 3 numbers X,Y,Z") +
+                         ", not " + std::to_string(xyz.size()));
+  const Vector3 d(xyz[0], xyz[1], dim == 3 ? xyz[2] : 0.0);
   if (!d.allFinite()) throw InputError("", "--direction", "must have finite components");
-  if (!assembly.is_3d() && d.z() != 0)
-    throw InputError("", "--direction", "must have Z = 0 in a 2-D scene");
   if (!(d.norm() > 0)) throw InputError("", "--direction", "must not be the zero vector");
   return d;
 }

@@ -42,6 +42,9 @@ Checked Check(const CheckArgs& args, const Checkpoint& checkpoint, std::ostream*
   ReportOptions report;
   report.scene_file = args.scene;
   report.normalize_part = ResolveNormalize(assembly, args.normalize, args.scene);
+  report.contacts = args.contacts == "all"    ? ContactListing::kAll
+                    : args.contacts == "none" ? ContactListing::kNone
+                                              : ContactListing::kSummary;
   Configuration config = WithoutParts(assembly, args.without, args.scene, report.without);
   if (checkpoint) checkpoint();
   StabilityOptions analysis;

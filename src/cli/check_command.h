@@ -16,6 +16,7 @@ struct CheckArgs {
   std::string html;                  // --html FILE: the result page, or empty
   std::string normalize;             // part name, or empty
   std::vector<std::string> without;  // part names
+  std::string contacts = "summary";  // --contacts: summary, all or none (text only)
   ModelArgs model;
 };
 

@@ -1,11 +1,14 @@
 // cairn: the command-line tool. See docs/cli.md.
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <iostream>
 #include <memory>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "cairn/core/error.h"
 #include "cli/batch_command.h"
@@ -44,6 +47,78 @@ const CLI::Validator kNotEmpty(
     },
     "");
 
+// A comma-separated list: its parts in order. An empty part (two commas in a
+// row, a comma at an end, or nothing at all) is refused, as `what` says
+// (e.g. "part name"), naming the option.
+std::vector<std::string> SplitCommas(const std::string& token, const std::string& option,
+                                     const std::string& what) {
+  std::vector<std::string> parts;
+  size_t begin = 0;
+  while (true) {
+    const size_t comma = token.find(',', begin);
+    const size_t end = comma == std::string::npos ? token.size() : comma;
+    if (end == begin) {
+      const bool between = begin > 0 && comma != std::string::npos;
+      throw CLI::ValidationError(option, "an empty " + what +
+                                             (token.empty() ? std::string()
+                                              : between     ? " (between two commas)"
+                                                            : " (a comma at an end)"));
+    }
+    parts.push_back(token.substr(begin, end - begin));
+    if (comma == std::string::npos) return parts;
+    begin = comma + 1;
+  }
+}
+
+// A list option (--without A,B): each occurrence takes exactly one argument,
+// split at its commas, so that the argument after it (the scene file) is
+// never taken as more of the list; it may be given again (the lists are
+// joined); an empty name is refused.
+CLI::Option* AddNameList(CLI::App* cmd, const std::string& name, std::vector<std::string>& out,
+                         const std::string& description) {
+  return cmd
+      ->add_option(
+          name,
+          [&out, option = name.substr(0, name.find(','))](const CLI::results_t& tokens) {
+            for (const std::string& token : tokens)
+              for (std::string& part : SplitCommas(token, option, "part name"))
+                out.push_back(std::move(part));
+            return true;
+          },
+          description)
+      ->type_name("NAME,...")
+      ->expected(1)
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+}
+
+// A vector option (--tilt X,Y,Z): exactly one argument, its numbers
+// comma-separated, given once. How many numbers it needs is the command's to
+// say (a 2-D scene takes 2, a 3-D one 3).
+CLI::Option* AddNumberList(CLI::App* cmd, const std::string& name, std::vector<double>& out,
+                           const std::string& description, const std::string& type_name) {
+  return cmd
+      ->add_option(
+          name,
+          [&out, name, type_name](const CLI::results_t& tokens) {
+            if (tokens.size() != 1)
+              throw CLI::ValidationError(name, "given " + std::to_string(tokens.size()) +
+                                                   " times; give it once, as " + type_name);
+            out.clear();
+            for (const std::string& part : SplitCommas(tokens[0], name, "number")) {
+              double x = 0;
+              if (!CLI::detail::lexical_cast(part, x))
+                throw CLI::ValidationError(
+                    name, "\"" + part + "\" is not a number (" + type_name + ", comma-separated)");
+              out.push_back(x);
+            }
+            return true;
+          },
+          description)
+      ->type_name(type_name)
+      ->expected(1)
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+}
+
 // The options that say how the input file is read and what the command line
 // changes in its model: the same on check, simulate and convert.
 void AddModelOptions(CLI::App* cmd, cairn::cli::ModelArgs& model) {
@@ -55,9 +130,8 @@ void AddModelOptions(CLI::App* cmd, cairn::cli::ModelArgs& model) {
   cmd->add_option("--friction", model.friction,
                   "Coulomb friction coefficient of every contact (required with --format compas; "
                   "replaces the scene's default friction with --format scene)");
-  cmd->add_option("--supports,--fixed", model.supports,
-                  "Also fix these parts (COMPAS blocks: node keys), comma-separated")
-      ->delimiter(',');
+  AddNameList(cmd, "--supports,--fixed", model.supports,
+              "Also fix these parts (COMPAS blocks: node keys), comma-separated");
   // STEP and ASAP input (docs/step-format.md).
   cmd->add_option("--mesh-tolerance", model.mesh_tolerance,
                   "STEP: chordal tolerance of curved faces, metres (default: 1/1000 of the "
@@ -70,9 +144,9 @@ void AddModelOptions(CLI::App* cmd, cairn::cli::ModelArgs& model) {
   cmd->add_option("--tolerance", model.tolerance,
                   "Length tolerance: contact distance, allowed overlap, planarity (default: the "
                   "scene's, or a fraction of the size of the assembly)");
-  cmd->add_option("--gravity", model.gravity,
-                  "Gravity vector, comma-separated (e.g. 0,0,9.81: the assembly upside down)")
-      ->delimiter(',');
+  AddNumberList(cmd, "--gravity", model.gravity,
+                "Gravity vector, comma-separated (e.g. 0,0,9.81: the assembly upside down)",
+                "X,Y[,Z]");
   cmd->add_option("--interfaces", model.interfaces,
                   "Contacts: detect (found from the shapes, default) or stored (a COMPAS file's "
                   "stored interfaces, for blocks modelled too loosely for exact contacts)")
@@ -91,7 +165,7 @@ CLI::App* AddSceneCommand(CLI::App& app, const char* name, const char* descripti
 
 // --without: parts taken away before the command's work.
 void AddWithout(CLI::App* cmd, std::vector<std::string>& without, const char* description) {
-  cmd->add_option("--without", without, description)->delimiter(',')->check(kNotEmpty);
+  AddNameList(cmd, "--without", without, description);
 }
 
 // --html FILE: the result page (docs/html.md).
@@ -108,6 +182,11 @@ CLI::App* AddCheck(CLI::App& app, cairn::cli::CheckArgs& check) {
   cmd->add_option("--normalize", check.normalize, "Divide forces by the weight of this part")
       ->check(kNotEmpty);
   AddWithout(cmd, check.without, "Check with these parts taken away (comma-separated)");
+  cmd->add_option("--contacts", check.contacts,
+                  "The contact forces the summary lists: summary (the most loaded contacts and "
+                  "each pair of parts' resultant, default), all (every contact) or none; --json "
+                  "has every one")
+      ->check(CLI::IsMember({"summary", "all", "none"}));
   AddHtml(cmd, check.html);
   AddModelOptions(cmd, check.model);
   return cmd;
@@ -157,10 +236,10 @@ CLI::App* AddBlocking(CLI::App& app, cairn::cli::BlockingArgs& blocking) {
       app, "blocking", "Which parts can be taken out, and along which directions? (the NDBG)",
       blocking.scene, blocking.json);
   AddWithout(cmd, blocking.without, "Compute it with these parts taken away (comma-separated)");
-  cmd->add_option("--direction", blocking.direction,
-                  "Only the blocking graphs at this direction X,Y,Z (one cell), e.g. 1,0,0")
-      ->delimiter(',')
-      ->expected(1, 3);
+  AddNumberList(cmd, "--direction", blocking.direction,
+                "Only the blocking graphs at this direction (one cell): X,Y in a 2-D scene, "
+                "X,Y,Z in a 3-D one, e.g. 1,0,0",
+                "X,Y[,Z]");
   AddModelOptions(cmd, blocking.model);
   return cmd;
 }
@@ -184,8 +263,7 @@ CLI::App* AddPlan(CLI::App& app, cairn::cli::PlanArgs& plan) {
                   "Write the AND/OR graph (Graphviz dot) with stable and unstable edges")
       ->check(kNotEmpty);
   AddHtml(cmd, plan.html);
-  cmd->add_option("--keep", plan.keep, "Parts that stay in the assembly (comma-separated)")
-      ->delimiter(',');
+  AddNameList(cmd, "--keep", plan.keep, "Parts that stay in the assembly (comma-separated)");
   cmd->add_option("--support", plan.support,
                   "Support of straight removals: full (carried, default), none (pushed "
                   "along the path), both")
@@ -317,18 +395,161 @@ CLI::App* AddMargin(CLI::App& app, cairn::cli::MarginArgs& margin) {
                       "at which the assembly stands; with a value, also the model's mu")
           ->expected(0, 1);
   cmd->callback([&margin, friction] { margin.friction_given = friction->count() > 0; });
-  cmd->add_option("--tilt", margin.query.tilt,
-                  "The critical tilt about this axis X,Y,Z (the assembly turned with its fixed "
-                  "parts), each sense")
-      ->delimiter(',');
+  AddNumberList(cmd, "--tilt", margin.query.tilt,
+                "The critical tilt about this axis X,Y,Z (the assembly turned with its fixed "
+                "parts), each sense",
+                "X,Y,Z");
   cmd->add_option("--load", margin.query.load,
                   "The largest force on this part (at --point, along --direction) carried at rest")
       ->check(kNotEmpty);
-  cmd->add_option("--point", margin.query.point, "Where the load acts (world frame), X,Y[,Z]")
-      ->delimiter(',');
-  cmd->add_option("--direction", margin.query.direction, "The load's direction, X,Y[,Z]")
-      ->delimiter(',');
+  AddNumberList(cmd, "--point", margin.query.point, "Where the load acts (world frame), X,Y[,Z]",
+                "X,Y[,Z]");
+  AddNumberList(cmd, "--direction", margin.query.direction, "The load's direction, X,Y[,Z]",
+                "X,Y[,Z]");
   return cmd;
+}
+
+// ---- Usage errors in a person's words ------------------------------------------
+
+// The edit distance (insertions, deletions, substitutions and swaps of two
+// neighbours) between two names: how far a typo is from what was meant.
+size_t EditDistance(const std::string& a, const std::string& b) {
+  std::vector<std::vector<size_t>> d(a.size() + 1, std::vector<size_t>(b.size() + 1));
+  for (size_t i = 0; i <= a.size(); ++i) d[i][0] = i;
+  for (size_t j = 0; j <= b.size(); ++j) d[0][j] = j;
+  for (size_t i = 1; i <= a.size(); ++i)
+    for (size_t j = 1; j <= b.size(); ++j) {
+      d[i][j] = std::min(
+          {d[i - 1][j] + 1, d[i][j - 1] + 1, d[i - 1][j - 1] + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1])
+        d[i][j] = std::min(d[i][j], d[i - 2][j - 2] + 1);
+    }
+  return d[a.size()][b.size()];
+}
+
+// A name is suggested for a typo when it is at most this many edits away per
+// this many characters of the typo (at least one edit): "withot" (6) gets
+// "without" (1 edit), "chek" (4) gets "check".
+constexpr size_t kCharactersPerSuggestedEdit = 3;
+
+// The nearest of `names` to `typo`, if it is near enough to be what was meant
+// ("" if none is, or if two are equally near).
+std::string Nearest(const std::string& typo, const std::vector<std::string>& names) {
+  const size_t most = std::max<size_t>(1, typo.size() / kCharactersPerSuggestedEdit);
+  std::string best;
+  size_t best_distance = most + 1;
+  bool tie = false;
+  for (const std::string& name : names) {
+    const size_t d = EditDistance(typo, name);
+    if (d < best_distance) {
+      best = name, best_distance = d, tie = false;
+    } else if (d == best_distance && name != best) {
+      tie = true;
+    }
+  }
+  return tie ? std::string() : best;
+}
+
+std::vector<const CLI::App*> Commands(const CLI::App& app) {
+  return app.get_subcommands([](const CLI::App*) { return true; });
+}
+
+// The option names of a command, with their dashes: --without, -o.
+std::vector<std::string> OptionNames(const CLI::App& cmd) {
+  std::vector<std::string> names;
+  for (const CLI::Option* opt : cmd.get_options()) {
+    for (const std::string& l : opt->get_lnames()) names.push_back("--" + l);
+    for (const std::string& s : opt->get_snames()) names.push_back("-" + s);
+  }
+  return names;
+}
+
+// An argument that names an option (not a negative number such as -1,0,0).
+bool LooksLikeOption(const std::string& arg) {
+  if (arg.size() < 2 || arg[0] != '-') return false;
+  return !(std::isdigit(static_cast<unsigned char>(arg[1])) || arg[1] == '.');
+}
+
+// What is wrong with a command line, said as a person would: an unknown
+// command or option (with the nearest one, if one is near), an option
+// without its value (CLI11 would take the option after it as its value), an
+// argument too many. Empty when none of these is found: CLI11 parses it, and
+// its own words are the message of what else it refuses.
+std::string ExplainUsage(const CLI::App& app, const std::vector<std::string>& args) {
+  std::vector<std::string> command_names;
+  for (const CLI::App* c : Commands(app)) command_names.push_back(c->get_name());
+  std::string list;
+  for (size_t i = 0; i < command_names.size(); ++i)
+    list += (i == 0 ? "" : i + 1 == command_names.size() ? " or " : ", ") + command_names[i];
+  if (args.empty()) return "say which command: " + list;
+  if (LooksLikeOption(args[0])) {
+    const std::string name = args[0].substr(0, args[0].find('='));
+    if (app.get_option_no_throw(name) == nullptr)
+      return "unknown option " + name + " (a command comes first: " + list + ")";
+    return "";
+  }
+  const CLI::App* cmd = nullptr;
+  for (const CLI::App* c : Commands(app))
+    if (c->get_name() == args[0]) cmd = c;
+  if (cmd == nullptr) {
+    const std::string near = Nearest(args[0], command_names);
+    return "unknown command '" + args[0] + "'" +
+           (near.empty() ? " (the commands: " + list + ")" : " (did you mean " + near + "?)");
+  }
+  const std::string& command = args[0];
+  size_t positionals = 0, required = 0;
+  for (const CLI::Option* opt : cmd->get_options())
+    if (opt->get_positional()) ++positionals, required += opt->get_required() ? 1 : 0;
+  size_t given = 0;
+  std::string swallowed;  // an optional value that is no number: a file?
+  bool only_positionals = false;
+  for (size_t i = 1; i < args.size(); ++i) {
+    const std::string& arg = args[i];
+    if (!only_positionals && arg == "--") {
+      only_positionals = true;
+      continue;
+    }
+    if (only_positionals || !LooksLikeOption(arg)) {
+      if (++given > positionals)
+        return "unexpected argument '" + arg + "': " + command + " takes " +
+               std::to_string(positionals) + " file" + (positionals == 1 ? "" : "s") +
+               " (an option's list is one argument, without spaces: --without A,B)";
+      continue;
+    }
+    const size_t eq = arg.find('=');
+    const std::string name = arg.substr(0, eq);
+    const CLI::Option* opt = cmd->get_option_no_throw(name);
+    if (opt == nullptr) {
+      const std::string near = Nearest(name, OptionNames(*cmd));
+      if (!near.empty()) return "unknown option " + name + " (did you mean " + near + "?)";
+      std::string others;
+      for (const CLI::App* c : Commands(app))
+        if (c != cmd && c->get_option_no_throw(name) != nullptr)
+          others += (others.empty() ? "" : ", ") + c->get_name();
+      return "unknown option " + name + " for " + command +
+             (others.empty() ? ""
+                             : " (" + others + " take" +
+                                   (others.find(',') == std::string::npos ? "s" : "") + " it)") +
+             "; see cairn " + command + " --help";
+    }
+    if (opt->get_items_expected_max() == 0) continue;  // a flag
+    if (eq != std::string::npos) {
+      if (eq + 1 == arg.size() && opt->get_items_expected_min() > 0)
+        return name + " needs a value (nothing after '=')";
+      continue;
+    }
+    const bool has_value = i + 1 < args.size() && !LooksLikeOption(args[i + 1]);
+    if (opt->get_items_expected_min() > 0 && !has_value) return name + " needs a value";
+    if (has_value && opt->get_items_expected_min() == 0) {
+      double x = 0;
+      if (!CLI::detail::lexical_cast(args[i + 1], x))
+        swallowed = name + " took '" + args[i + 1] + "' as its value: write the file before " +
+                    name + ", or " + name + "=VALUE";
+    }
+    if (has_value) ++i;  // the option's value (optional ones take it too)
+  }
+  if (given < required && !swallowed.empty()) return "a file is missing: " + swallowed;
+  return "";
 }
 
 // The command line: its subcommands and their options, parsed; then the
@@ -352,11 +573,19 @@ int Run(int argc, char** argv) {
   const CLI::App* batch_cmd = AddBatch(app, batch);
   cli::MarginArgs margin;
   const CLI::App* margin_cmd = AddMargin(app, margin);
+  // A usage error is bad input (exit 2), said on one line as every other
+  // error is: in Cairn's words for an unknown command or option, a missing
+  // value or an argument too many; else CLI11's (a value its check refused).
+  const std::string explained =
+      ExplainUsage(app, std::vector<std::string>(argv + std::min(argc, 1), argv + argc));
+  if (!explained.empty()) {
+    std::cerr << "cairn: error: " << explained << '\n';
+    return cli::kExitBadInput;
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    // --help and --version exit 0; a usage error is bad input (exit 2), said
-    // on one line as every other error is.
+    // --help and --version exit 0.
     if (e.get_exit_code() == 0) return app.exit(e);
     std::string what = e.what();
     for (char& c : what)

@@ -83,6 +83,14 @@ int RunMargin(const MarginArgs& args, std::ostream& out, std::ostream& err) {
                              args.friction_value + "\")");
       model.friction = mu;
     }
+    // A COMPAS file stores no friction: its μ comes from --friction MU, also
+    // when another margin is asked for.
+    if (args.friction_given && args.friction_value.empty() && model.format == "compas" &&
+        !model.friction)
+      throw InputError("", "--friction",
+                       "needs a value with --format compas: the blocks' friction coefficient "
+                       "(e.g. --friction 0.6; alone, --friction MU also asks for the friction "
+                       "margin)");
     // Without a value --friction asks for the friction margin (and
     // ResolveMarginQuery refuses it beside --tilt or --load).
     if (args.friction_given &&

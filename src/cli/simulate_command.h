@@ -26,7 +26,7 @@ struct SimulateArgs {
   /// --max-ticks: the most time steps one step of the plan may take.
   long long max_ticks = Plan::kDefaultMaxTicks;
   ModelArgs model;
-  /// --margin friction (issue 20): also the least friction factor for which
+  /// --margin friction: also the least friction factor for which
   /// every tick is stable (motion/plan_margin.h); empty: not asked for.
   std::string margin;
 };

@@ -31,9 +31,7 @@
 // refactored from the data when that exceeds a tenth of the tie-breaking
 // perturbation or k/4 pivots have passed since the last factorisation (k the
 // basis order), when the border outgrows BlockLu::MaxBorder(k), and after a
-// zero pivot element, before that pivot is retried once. (Before issue 13:
-// an explicit inverse H = C⁻¹ with rank-one updates, refactored every 400
-// pivots, later every k/4.)
+// zero pivot element, before that pivot is retried once.
 //
 // Ratio test: Harris's two passes with the pivot tolerance as the value
 // slack: of the candidates tied within roundoff, the largest pivot element

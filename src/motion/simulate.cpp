@@ -362,8 +362,8 @@ class PlanSimulation {
     ++st.report.ticks;
     for (const ComponentReport& c : an.r.components) st.report.pivots += c.pivots;
     if (!an.r.diagnostics.empty())
-      result_.diagnostics +=
-          "step " + std::to_string(k) + ", tick " + std::to_string(tick) + ": " + an.r.diagnostics;
+      result_.diagnostics += "step " + std::to_string(k + 1) + ", tick " + std::to_string(tick) +
+                             ": " + an.r.diagnostics;
     if (options_.record_timeline)
       for (const ContactReport& c : an.r.contacts)
         result_.timeline.push_back({tm.t_now, k, tick, c});
@@ -375,7 +375,7 @@ class PlanSimulation {
       an.has_moved = true;
       if (!an.moved.diagnostics.empty())
         result_.diagnostics +=
-            "step " + std::to_string(k) + ", tick 0 (gripper moving): " + an.moved.diagnostics;
+            "step " + std::to_string(k + 1) + ", tick 0 (gripper moving): " + an.moved.diagnostics;
     }
     return an;
   }

@@ -3,7 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <sstream>
+#include <string>
+#include <vector>
 
 #include "cairn/core/format.h"
 #include "cairn/report/words.h"
@@ -18,6 +21,17 @@ using report_internal::ForceRoundoffScale;
 using report_internal::Tangential;
 using report_internal::Vec;
 std::string PartName(const Assembly& a, int i) { return report_internal::PartName(a, i, "world"); }
+
+// Nothing holds the assembly: no part present is fixed and no fixture (a
+// contact with the world) touches any part, so everything falls together.
+bool NothingFixed(const Assembly& assembly, const Configuration& config,
+                  const StabilityResult& result) {
+  for (int i = 0; i < assembly.num_parts(); ++i)
+    if (config.present[i] && assembly.part(i).fixed) return false;
+  for (const ContactReport& cr : result.contacts)
+    if (cr.contact.part_a < 0 || cr.contact.part_b < 0) return false;
+  return true;
+}
 }  // namespace
 
 namespace {
@@ -163,6 +177,7 @@ nlohmann::json StabilityToJson(const Assembly& assembly, const Configuration& co
   json moving = json::array();
   for (int i : result.moving) moving.push_back(assembly.part(i).name);
   doc["moving"] = moving;
+  doc["nothing_fixed"] = NothingFixed(assembly, config, result);
   doc["static_equilibrium"] =
       result.static_equilibrium ? json(*result.static_equilibrium) : json(nullptr);
   doc["weakly_stable"] = result.weakly_stable;
@@ -195,9 +210,15 @@ std::string TextPartName(const Assembly& a, int i) {
   return report_internal::PartName(a, i, "fixture");
 }
 
-// The headline: the scene, the verdict, the formulation; the parts taken away.
-void TextHeadline(const Assembly& assembly, const StabilityResult& result,
-                  const ReportOptions& options, std::ostringstream& os) {
+// The summary's lists (moving parts, contacts, pairs of parts) stop after
+// this many rows; --contacts all and --json give every one.
+constexpr size_t kSummaryRows = 10;
+
+// The headline: the scene, the verdict, the formulation; the parts taken
+// away; a note when nothing is fixed.
+void TextHeadline(const Assembly& assembly, const Configuration& config,
+                  const StabilityResult& result, const ReportOptions& options,
+                  std::ostringstream& os) {
   const bool st = result.formulation == Formulation::kStewartTrinkle;
   // Headline.
   os << (assembly.name().empty() ? options.scene_file : assembly.name()) << ": ";
@@ -218,9 +239,17 @@ void TextHeadline(const Assembly& assembly, const StabilityResult& result,
     for (int i : options.without) os << ' ' << assembly.part(i).name;
     os << '\n';
   }
+  if (NothingFixed(assembly, config, result))
+    os << "  nothing is fixed: no part is fixed and no fixture holds one, so the whole assembly\n"
+          "  falls. Fix the parts that rest on the ground: --fixed PART,... (also --supports;\n"
+          "  COMPAS: node keys), the sidecar's \"fixed\": true (STEP, ASAP), or a part's\n"
+          "  \"fixed\": true in a scene file\n";
 }
 
-// The sizes, what decided the components, and what is proved about rest.
+std::string PartCount(size_t n) { return std::to_string(n) + (n == 1 ? " part" : " parts"); }
+
+// The sizes, what decided the components (each one's message, once), and
+// what is proved about rest.
 void TextSummary(const Assembly& assembly, const StabilityResult& result, std::ostringstream& os) {
   int movable = 0, pivots = 0, lcp_vars = 0;
   for (const PartMotion& m : result.parts) (void)m, ++movable;
@@ -231,11 +260,14 @@ void TextSummary(const Assembly& assembly, const StabilityResult& result, std::o
      << pivots << " pivots\n";
   for (const ComponentReport& c : result.components) {
     if (c.rest_solution)
-      os << "  component of " << c.parts.size()
-         << " parts decided by a solution at rest: " << c.message << '\n';
+      os << "  component of " << PartCount(c.parts.size())
+         << " decided by a solution at rest: " << c.message << '\n';
+    else if (!c.message.empty())
+      os << "  component of " << PartCount(c.parts.size()) << ", decided by "
+         << to_string(c.decided_by) << ": " << c.message << '\n';
     if (c.decided_by == DecidedBy::kMechanism) {
-      os << "  component of " << c.parts.size()
-         << " parts: no static equilibrium exists; a mechanism (a motion no contact resists and "
+      os << "  component of " << PartCount(c.parts.size())
+         << ": no static equilibrium exists; a mechanism (a motion no contact resists and "
             "gravity drives) moves";
       for (int i : c.mechanism_parts) os << ' ' << assembly.part(i).name;
       if (!c.held.empty()) os << ", the others held to find how";
@@ -255,38 +287,132 @@ void TextSummary(const Assembly& assembly, const StabilityResult& result, std::o
           "  motion from rest is not ruled out\n";
 }
 
-// What moves, and how; then every contact force.
-void TextMotionsAndForces(const Assembly& assembly, const StabilityResult& result,
-                          const ReportOptions& options, std::ostringstream& os) {
+// What moves, and how (in a summary, the first kSummaryRows).
+void TextMotions(const Assembly& assembly, const StabilityResult& result,
+                 const ReportOptions& options, std::ostringstream& os) {
   const bool st = result.formulation == Formulation::kStewartTrinkle;
-  const auto [force_scale, force_unit] = ForceScale(assembly, options);
   const int dim = assembly.dimension();
-  // What moves, and how.
+  const bool all = options.contacts == ContactListing::kAll;
+  size_t shown = 0, moving = 0;
   for (const PartMotion& m : result.parts) {
     if (!m.moving) continue;
+    if (++moving > kSummaryRows && !all) continue;
+    ++shown;
     const Part& p = assembly.part(m.part);
     const char* what = st ? "velocity" : "acceleration";
     os << "  " << p.name << ' ' << DescribeMotion(m, dim);
     os << ": centroid " << what << ' ' << FormatPoint(m.linear, dim) << ", angular "
        << (dim == 2 ? Fmt("%.4g", m.angular.z()) : FormatPoint(m.angular, dim)) << '\n';
   }
+  if (moving > shown)
+    os << "  … and " << moving - shown
+       << " more moving parts (every one: --contacts all, --json)\n";
+}
 
-  // Contact forces.
-  os << "  contact forces (" << force_unit << "):\n";
+// One contact's line: "b pushes a" (the force on a from b acts along n).
+void TextContact(const Assembly& assembly, const ContactReport& cr, double force_scale,
+                 std::ostringstream& os) {
+  const Contact& c = cr.contact;
+  const int dim = assembly.dimension();
+  os << "    " << TextPartName(assembly, c.part_b) << " pushes " << TextPartName(assembly, c.part_a)
+     << " at " << FormatPoint(c.p_WC, dim) << " n=" << FormatPoint(c.n_W, dim) << "  normal "
+     << Fmt("%.6g", cr.normal_force / force_scale);
+  if (c.mu > 0 && dim == 2)
+    os << "  friction " << Fmt("%.6g", cr.friction_force.dot(c.t_W()) / force_scale);
+  else if (c.mu > 0)
+    os << "  friction " << FormatPoint(cr.friction_force / force_scale, dim);
+  if (cr.breaking) os << "  BREAKS";
+  if (cr.sliding) os << "  SLIDES";
+  os << '\n';
+}
+
+// The summary of the forces: the most loaded contacts, and per pair of parts
+// the resultant of its contacts' forces (the sum of what the report holds).
+void TextForceSummary(const Assembly& assembly, const StabilityResult& result, double force_scale,
+                      const std::string& force_unit, std::ostringstream& os) {
+  const int dim = assembly.dimension();
+  const double roundoff = ForceRoundoffScale(assembly, force_scale);
+  std::vector<size_t> order(result.contacts.size());
+  size_t loaded = 0, breaking = 0, sliding = 0;
+  for (size_t k = 0; k < order.size(); ++k) {
+    order[k] = k;
+    const ContactReport& cr = result.contacts[k];
+    if (Clean(cr.normal_force / force_scale, roundoff) > 0) ++loaded;
+    breaking += cr.breaking ? 1 : 0;
+    sliding += cr.sliding ? 1 : 0;
+  }
+  std::stable_sort(order.begin(), order.end(), [&](size_t x, size_t y) {
+    return result.contacts[x].normal_force > result.contacts[y].normal_force;
+  });
+  os << "  contact forces (" << force_unit << "): " << loaded << " of " << result.contacts.size()
+     << " contacts carry a normal force";
+  if (breaking > 0) os << ", " << breaking << " break";
+  if (sliding > 0) os << ", " << sliding << " slide";
+  if (loaded == 0) {
+    os << '\n';
+  } else {
+    const size_t shown = std::min(loaded, kSummaryRows);
+    os << "; the " << (shown == 1 ? "most loaded" : std::to_string(shown) + " most loaded")
+       << " (every contact: --contacts all):\n";
+    for (size_t k = 0; k < shown; ++k)
+      TextContact(assembly, result.contacts[order[k]], force_scale, os);
+  }
+  // Per pair: the pushed part and the part that pushes it, the sum of the
+  // forces on the first.
+  struct Pair {
+    int pushed, pusher;
+    int contacts = 0;
+    Vector3 force = Vector3::Zero();
+  };
+  std::vector<Pair> pairs;
+  // The one pushed: a movable part before a fixed one, the world never.
+  const int n = assembly.num_parts();
+  const auto rank = [&](int part) {
+    return part < 0 ? std::numeric_limits<int>::max() : assembly.part(part).fixed ? n + part : part;
+  };
   for (const ContactReport& cr : result.contacts) {
     const Contact& c = cr.contact;
-    // The force on a from b acts along n: "b pushes a".
-    os << "    " << TextPartName(assembly, c.part_b) << " pushes "
-       << TextPartName(assembly, c.part_a) << " at " << FormatPoint(c.p_WC, dim)
-       << " n=" << FormatPoint(c.n_W, dim) << "  normal "
-       << Fmt("%.6g", cr.normal_force / force_scale);
-    if (c.mu > 0 && dim == 2)
-      os << "  friction " << Fmt("%.6g", cr.friction_force.dot(c.t_W()) / force_scale);
-    else if (c.mu > 0)
-      os << "  friction " << FormatPoint(cr.friction_force / force_scale, dim);
-    if (cr.breaking) os << "  BREAKS";
-    if (cr.sliding) os << "  SLIDES";
-    os << '\n';
+    const bool a_first = rank(c.part_a) < rank(c.part_b);
+    const int pushed = a_first ? c.part_a : c.part_b, pusher = a_first ? c.part_b : c.part_a;
+    const Vector3 on_a = c.n_W * cr.normal_force + cr.friction_force;
+    auto it = std::find_if(pairs.begin(), pairs.end(),
+                           [&](const Pair& p) { return p.pushed == pushed && p.pusher == pusher; });
+    if (it == pairs.end()) it = pairs.insert(pairs.end(), Pair{pushed, pusher});
+    ++it->contacts;
+    it->force += a_first ? on_a : Vector3(-on_a);
+  }
+  std::stable_sort(pairs.begin(), pairs.end(),
+                   [](const Pair& x, const Pair& y) { return x.force.norm() > y.force.norm(); });
+  size_t nonzero = 0;
+  for (const Pair& p : pairs) nonzero += Clean(p.force.norm() / force_scale, roundoff) > 0 ? 1 : 0;
+  if (nonzero == 0) return;
+  const size_t shown = std::min(nonzero, kSummaryRows);
+  os << "  per pair of parts, the resultant of its contact forces (" << force_unit
+     << "): " << (shown < nonzero ? "the " + std::to_string(shown) + " largest of " : std::string())
+     << nonzero << " pair" << (nonzero == 1 ? "" : "s") << " with a force:\n";
+  for (size_t k = 0; k < shown; ++k) {
+    const Pair& p = pairs[k];
+    os << "    " << TextPartName(assembly, p.pusher) << " pushes "
+       << TextPartName(assembly, p.pushed) << " (" << p.contacts << " contact"
+       << (p.contacts == 1 ? "" : "s") << "): " << FormatPoint(p.force / force_scale, dim)
+       << ", magnitude " << Fmt("%.6g", p.force.norm() / force_scale) << '\n';
+  }
+}
+
+// Every contact force, or a summary of them, or none.
+void TextForces(const Assembly& assembly, const StabilityResult& result,
+                const ReportOptions& options, std::ostringstream& os) {
+  const auto [force_scale, force_unit] = ForceScale(assembly, options);
+  switch (options.contacts) {
+    case ContactListing::kNone:
+      return;
+    case ContactListing::kSummary:
+      TextForceSummary(assembly, result, force_scale, force_unit, os);
+      return;
+    case ContactListing::kAll:
+      os << "  contact forces (" << force_unit << "):\n";
+      for (const ContactReport& cr : result.contacts) TextContact(assembly, cr, force_scale, os);
+      return;
   }
 }
 
@@ -295,11 +421,10 @@ void TextMotionsAndForces(const Assembly& assembly, const StabilityResult& resul
 std::string StabilityToText(const Assembly& assembly, const Configuration& config,
                             const StabilityResult& result, const ReportOptions& options) {
   std::ostringstream os;
-  TextHeadline(assembly, result, options, os);
+  TextHeadline(assembly, config, result, options, os);
   TextSummary(assembly, result, os);
-  TextMotionsAndForces(assembly, result, options, os);
-  if (!result.diagnostics.empty()) os << "  diagnostics: " << result.diagnostics << '\n';
-  (void)config;
+  TextMotions(assembly, result, options, os);
+  TextForces(assembly, result, options, os);
   return os.str();
 }
 

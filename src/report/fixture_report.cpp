@@ -60,7 +60,7 @@ std::string FixtureSuggestionToText(const Assembly& assembly, const FixtureSugge
     const SuggestedFixel& s = suggestion.fixels[i];
     os << "  fixel " << i + 1 << ": " << s.fixture.part << " at "
        << FormatPoint(s.fixture.point, dim) << ", normal " << FormatPoint(s.fixture.normal, dim)
-       << " (" << s.face << "), for step " << s.step << ": max force "
+       << " (" << s.face << "), for step " << s.step + 1 << ": max force "
        << Num(s.max_force / force_scale) << ' ' << force_unit << '\n';
   }
   const SimulationResult& v = suggestion.verification;

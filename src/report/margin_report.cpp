@@ -1,7 +1,10 @@
 #include "cairn/report/margin_report.h"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <string>
+#include <vector>
 
 #include "cairn/report/words.h"
 #include "report/report_common.h"
@@ -163,8 +166,50 @@ json MarginToJson(const Assembly& assembly, const MarginRequest& req, const Marg
 
 namespace {
 
-std::string Deg(const std::optional<double>& x) {
-  return x ? Num(*x) + "°" : std::string("none (holds all the way round)");
+// A tilt's critical angle in one sense ("negative", "positive").
+std::string Deg(const std::optional<double>& x, const char* sense) {
+  return x ? Num(*x) + "° (" + sense + " sense)"
+           : std::string("none in the ") + sense + " sense (it holds all the way round)";
+}
+
+// A long list of parts is cut after this many names in the text (the JSON
+// document lists every one).
+constexpr size_t kListedParts = 12;
+
+// "N parts: A, B, ... and K more": `names` cut after kListedParts.
+std::string PartList(const std::vector<std::string>& names) {
+  std::string out = std::to_string(names.size()) + (names.size() == 1 ? " part: " : " parts: ");
+  const size_t shown = std::min(names.size(), kListedParts);
+  for (size_t i = 0; i < shown; ++i) out += (i == 0 ? "" : ", ") + names[i];
+  if (names.size() > shown)
+    out += ", … and " + std::to_string(names.size() - shown) + " more (every one: --json)";
+  return out;
+}
+
+// The mechanism of a side as a line: which side, where it was found (just
+// past the critical value) and what it moves.
+std::string MechanismLine(const Assembly& assembly, const MarginRequest& req, const MarginResult& r,
+                          size_t side) {
+  const MarginMechanism& m = *r.sides[side].mechanism;
+  std::vector<std::string> names;
+  for (int p : m.parts) names.push_back(assembly.part(p).name);
+  std::string where;
+  switch (r.quantity) {
+    case MarginQuantity::kFriction:
+      where = std::string("below it: the mechanism at ") + (r.factor ? "k = " : "mu = ") +
+              Num(m.at) + " (a motion gravity drives and no contact resists)";
+      break;
+    case MarginQuantity::kTilt:
+      where = std::string(side == 0 ? "negative" : "positive") + " sense: the mechanism at " +
+              Num(m.at) + "° (a motion gravity drives and no contact resists)";
+      break;
+    case MarginQuantity::kLoad:
+      where = "past it: the mechanism at a load of " + Num(m.at) + " on " +
+              assembly.part(req.part).name +
+              " (a motion the load and gravity drive and no contact resists)";
+      break;
+  }
+  return "  " + where + " moves " + PartList(names) + '\n';
 }
 
 }  // namespace
@@ -184,32 +229,37 @@ std::string MarginToText(const Assembly& assembly, const MarginRequest& req, con
          << (side && side->critical ? Num(*side->critical) : std::string("none (no friction)"))
          << "  (nominal " << Num(r.nominal) << ")\n";
       if (!r.failing_below.empty()) {
-        os << "  below it (at " << Num(*r.failing_at) << "):";
+        std::vector<std::string> names;
         for (const PartMotion& p : r.failing_below)
-          os << ' ' << assembly.part(p.part).name << ' ' << to_string(p.kind) << ';';
-        os << '\n';
+          names.push_back(assembly.part(p.part).name + ' ' + to_string(p.kind));
+        os << "  below it: the check at " << (r.factor ? "k = " : "mu = ") << Num(*r.failing_at)
+           << " (the contact dynamics from rest) moves " << PartList(names) << '\n';
       }
       break;
     case MarginQuantity::kTilt:
       os << "critical tilt about [" << Num(r.axis.x()) << ", " << Num(r.axis.y()) << ", "
-         << Num(r.axis.z()) << "]: " << Deg(r.sides[0].critical) << " / "
-         << Deg(r.sides[1].critical) << '\n';
+         << Num(r.axis.z()) << "]: " << Deg(r.sides[0].critical, "negative") << " / "
+         << Deg(r.sides[1].critical, "positive") << '\n';
       break;
     case MarginQuantity::kLoad:
-      os << "largest load on " << assembly.part(req.part).name << ": "
-         << (side && side->critical ? Num(*side->critical) + " force units (" +
-                                          Num(*side->critical / r.part_weight) + " of its weight)"
-                                    : std::string("any (the load alone is carried)"))
-         << '\n';
+      os << "largest load on " << assembly.part(req.part).name << ": ";
+      if (!side || !side->critical)
+        os << "any (the load alone is carried)";
+      else if (r.part_weight > 0)
+        os << Num(*side->critical) << " force units (" << Num(*side->critical / r.part_weight)
+           << " of its weight)";
+      else
+        os << Num(*side->critical) << " force units (" << assembly.part(req.part).name
+           << " has no weight: "
+           << (assembly.gravity().norm() > 0 ? "its mass is zero" : "gravity is zero") << ")";
+      os << '\n';
       break;
   }
   if (!r.holds_at_nominal) os << "  the assembly does not stand as given\n";
   for (size_t i = 0; i < r.sides.size(); ++i) {
     const MarginSide& s = r.sides[i];
     if (s.component < 0 || !s.mechanism || !s.mechanism->found) continue;
-    os << "  past it, these move:";
-    for (int p : s.mechanism->parts) os << ' ' << assembly.part(p).name;
-    os << '\n';
+    os << MechanismLine(assembly, req, r, i);
   }
   os << "  method: " << r.method << "; " << r.lps << " LPs; tolerance " << Num(r.tolerance)
      << "; weak stability (rest possible)\n";

@@ -117,7 +117,7 @@ std::string SimulationToText(const Assembly& assembly, const Plan& plan,
     const PlanStep& step = plan.steps[r.step];
     std::string names;
     for (int p : step.remove) names += (names.empty() ? "" : ", ") + assembly.part(p).name;
-    os << "  step " << r.step << " (" << names << ", support " << to_string(step.support)
+    os << "  step " << r.step + 1 << " (" << names << ", support " << to_string(step.support)
        << "): " << to_string(r.verdict) << "  [t = " << r.start_time << ".." << r.end_time << " s, "
        << r.ticks << " time steps, " << r.pivots << " pivots]\n";
     if (r.failure) os << "    " << DescribeFailure(assembly, *r.failure) << '\n';

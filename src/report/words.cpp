@@ -52,7 +52,7 @@ void WriteWhat(const Assembly& a, const MotionFailure& f, std::ostringstream& os
 
 std::string DescribeFailure(const Assembly& a, const MotionFailure& f) {
   std::ostringstream os;
-  os << "t = " << f.time << " s (step " << f.step << ", tick " << f.tick << "): ";
+  os << "t = " << f.time << " s (step " << f.step + 1 << ", tick " << f.tick << "): ";
   WriteWhat(a, f, os);
   for (const ContactReport& c : f.contacts) {
     if (!(c.breaking || c.sliding)) continue;
@@ -80,7 +80,7 @@ std::string FixtureMessage(const Assembly& assembly, const FixtureSuggestion& su
     return std::to_string(k) + (k == 1 ? " fixel makes" : " fixels make") + " the plan stable";
   std::string at;
   if (suggestion.stopped_at)
-    at = "step " + std::to_string(suggestion.stopped_at->step) + " (" +
+    at = "step " + std::to_string(suggestion.stopped_at->step + 1) + " (" +
          DescribeFailure(assembly, *suggestion.stopped_at) + ")";
   return "no fixels found: " + at + suggestion.stop_reason;
 }

@@ -81,6 +81,31 @@ TEST(CliBlocking, ThreeDimensionalJson) {
             (std::vector<std::string>{"L18_1", "L18_2", "L18_3"}));
 }
 
+// A 2-D scene takes a direction of 2 numbers, a 3-D one 3; the other count
+// is refused, saying which the scene takes.
+TEST(CliBlocking, DirectionHasTheScenesDimension) {
+  CliRun r = Cairn("blocking " + ExamplePath("paper_fig1.json") + " --direction 0,1 --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  nlohmann::json doc = nlohmann::json::parse(r.out);
+  ASSERT_EQ(doc["cells"].size(), 1u);
+  EXPECT_EQ(RemovableAt(doc, nlohmann::json::parse("[0, 1]")),
+            (std::vector<std::string>{"C", "D"}));
+  r = Cairn("blocking " + ExamplePath("paper_fig1.json") + " --direction 0,1,0");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_TRUE(r.out.empty()) << r.out;
+  EXPECT_EQ(r.err,
+            "cairn: error: --direction: a 2-D scene takes a direction of 2 numbers X,Y, not 3\n");
+  r = Cairn("blocking " + ExamplePath("jenga.json") + " --direction 0,1");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.err,
+            "cairn: error: --direction: a 3-D scene takes a direction of 3 numbers X,Y,Z, not 2\n");
+  r = Cairn("blocking " + ExamplePath("jenga.json") + " --direction 0,0,1 --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  doc = nlohmann::json::parse(r.out);
+  EXPECT_EQ(RemovableAt(doc, nlohmann::json::parse("[0, 0, 1]")),
+            (std::vector<std::string>{"L18_1", "L18_2", "L18_3"}));
+}
+
 TEST(CliBlocking, UnknownWithoutPartIsBadInput) {
   const CliRun r = Cairn("blocking " + ExamplePath("paper_fig1.json") + " --without Z");
   EXPECT_EQ(r.exit_code, 2);

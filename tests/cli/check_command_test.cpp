@@ -194,5 +194,101 @@ TEST(CheckJson, ThreeDimensionalDocument) {
   for (const auto& [patch, n] : corners) EXPECT_EQ(n, 4) << "patch " << patch;
 }
 
+// Nothing fixed (l_shapes.json: two L-shapes, neither fixed): the verdict
+// stays UNSTABLE (everything falls), and the text and the JSON say why and
+// how to fix parts.
+TEST(CheckNothingFixed, SaysNoPartIsFixedAndHowToFixSome) {
+  CliRun r = Cairn("check " + ExamplePath("l_shapes.json"));
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_NE(r.out.find("UNSTABLE"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("nothing is fixed: no part is fixed and no fixture holds one"),
+            std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("--fixed PART,..."), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("\"fixed\": true"), std::string::npos) << r.out;
+  r = Cairn("check " + ExamplePath("l_shapes.json") + " --json");
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_EQ(nlohmann::json::parse(r.out)["nothing_fixed"], true);
+  // With a part fixed, or in a scene with a fixed part, no such note.
+  r = Cairn("check " + ExamplePath("l_shapes.json") + " --fixed A --json");
+  EXPECT_EQ(nlohmann::json::parse(r.out)["nothing_fixed"], false) << r.err;
+  r = Cairn("check " + ExamplePath("paper_fig1.json"));
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.out.find("nothing is fixed"), std::string::npos) << r.out;
+  // A compas_cra sample stores no support: the note until --supports names one.
+  const std::string cubes = testing::SharedDir() + "/datasets/compas_cra/cubes.json";
+  if (testing::SharedDir().empty() || !std::filesystem::exists(cubes))
+    GTEST_SKIP() << "the shared data (CAIRN_SHARED_DIR) is absent";
+  r = Cairn("check " + cubes + " --format compas --friction 0.84");
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_NE(r.out.find("nothing is fixed"), std::string::npos) << r.out;
+  r = Cairn("check " + cubes + " --format compas --friction 0.84 --supports 0 --json");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(nlohmann::json::parse(r.out)["nothing_fixed"], false);
+}
+
+// The lines of `text` that list a contact or a pair ("X pushes Y").
+size_t PushLines(const std::string& text) {
+  std::istringstream in(text);
+  size_t n = 0;
+  for (std::string line; std::getline(in, line);)
+    if (line.rfind("    ", 0) == 0 && line.find(" pushes ") != std::string::npos) ++n;
+  return n;
+}
+
+// --contacts: the summary (default) lists the most loaded contacts and the
+// pairs' resultants, 10 of each at most; all lists every contact, as the
+// JSON does; none lists none. The solver's notes are said once (no
+// "diagnostics:" line repeating a component's).
+TEST(CheckContacts, SummaryByDefaultEveryContactWithAll) {
+  const std::string wall = ExamplePath("wall.json");
+  const CliRun json = Cairn("check " + wall + " --json");
+  ASSERT_EQ(json.exit_code, 0) << json.err;
+  const size_t contacts = nlohmann::json::parse(json.out)["contacts"].size();
+  ASSERT_GT(contacts, 100u);
+  const CliRun summary = Cairn("check " + wall);
+  ASSERT_EQ(summary.exit_code, 0) << summary.err;
+  EXPECT_NE(summary.out.find(" contacts carry a normal force; the 10 most loaded (every contact: "
+                             "--contacts all):\n"),
+            std::string::npos)
+      << summary.out;
+  EXPECT_NE(summary.out.find("per pair of parts, the resultant of its contact forces (force "
+                             "units): the 10 largest of "),
+            std::string::npos)
+      << summary.out;
+  EXPECT_EQ(PushLines(summary.out), 20u) << summary.out;
+  EXPECT_EQ(summary.out.find("diagnostics:"), std::string::npos) << summary.out;
+  const CliRun all = Cairn("check " + wall + " --contacts all");
+  ASSERT_EQ(all.exit_code, 0) << all.err;
+  EXPECT_EQ(PushLines(all.out), contacts);
+  const CliRun none = Cairn("check " + wall + " --contacts none");
+  ASSERT_EQ(none.exit_code, 0) << none.err;
+  EXPECT_EQ(PushLines(none.out), 0u) << none.out;
+  EXPECT_NE(none.out.find("STABLE"), std::string::npos) << none.out;
+  const CliRun bad = Cairn("check " + wall + " --contacts some");
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.err.find("--contacts"), std::string::npos) << bad.err;
+}
+
+// The pairs' resultants are the sums of their contacts' forces, on the part
+// pushed: the incline carries the whole weight of the block resting on it,
+// straight up (m g = 0.5 × 9.81 = 4.905), friction included.
+TEST(CheckContacts, APairsResultantIsTheSumOfItsContactForces) {
+  const CliRun json = Cairn("check " + ExamplePath("incline.json") + " --json");
+  ASSERT_EQ(json.exit_code, 0) << json.err;
+  const nlohmann::json doc = nlohmann::json::parse(json.out);
+  double weight = 0;
+  for (const auto& part : doc["parts"])
+    if (part["name"] == "block") weight = part["mass"].get<double>() * 9.81;
+  ASSERT_NEAR(weight, 4.905, 1e-9);
+  const CliRun r = Cairn("check " + ExamplePath("incline.json"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("  per pair of parts, the resultant of its contact forces (force units): "
+                       "1 pair with a force:\n"
+                       "    incline pushes block (2 contacts): (0, 4.905), magnitude 4.905\n"),
+            std::string::npos)
+      << r.out;
+}
+
 }  // namespace
 }  // namespace cairn

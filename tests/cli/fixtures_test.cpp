@@ -64,7 +64,7 @@ TEST(SuggestFixturesCli, PaperFig4_TextListsTheFixels) {
   ASSERT_EQ(r.exit_code, 1) << r.err;
   EXPECT_NE(r.out.find("Fixel suggestion (at most 3): FOUND"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("fixel 1: B at (7, "), std::string::npos) << r.out;
-  EXPECT_NE(r.out.find("normal (-1, 0) (edge 1 (7, 0)-(7, 3)), for step 0: max force"),
+  EXPECT_NE(r.out.find("normal (-1, 0) (edge 1 (7, 0)-(7, 3)), for step 1: max force"),
             std::string::npos)
       << r.out;
   EXPECT_NE(r.out.find("is stable"), std::string::npos) << r.out;

@@ -1,4 +1,4 @@
-// Hostile input (issue 15): every reproducer of the issue, run as a user runs
+// Hostile input: every reproducer of a hostile-input round, run as a user runs
 // it (the real binary), with the exit code and the message it must give. Bad
 // input is exit 2 with the file, the JSON path (or the option) and what is
 // wrong, on one line; never a crash (exit ≥ 128), an internal error (4), a

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string>
 
@@ -97,6 +98,74 @@ TEST(CliMargin, BadInput) {
     EXPECT_EQ(r.err.rfind("cairn: error: ", 0), 0u) << args << ": " << r.err;
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
   }
+}
+
+// The summary says what each list of parts is: for the friction margin the
+// check just below μ* (the contact dynamics from rest) and the mechanism;
+// for a tilt each sense, named; a long list is cut after 12 names, with how
+// many more.
+TEST(CliMargin, TextSaysWhatEachListIs) {
+  CliRun r = Cairn("margin " + ExamplePath("incline.json") + " --friction");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("  below it: the check at mu = "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find(" (the contact dynamics from rest) moves 1 part: block slides\n"),
+            std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("  below it: the mechanism at mu = "), std::string::npos) << r.out;
+  r = Cairn("margin " + ExamplePath("wall.json") + " --tilt 0,0,1");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("° (negative sense) / "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("° (positive sense)\n"), std::string::npos) << r.out;
+  const size_t negative = r.out.find("\n  negative sense: the mechanism at -");
+  const size_t positive = r.out.find("\n  positive sense: the mechanism at ");
+  ASSERT_NE(negative, std::string::npos) << r.out;
+  ASSERT_NE(positive, std::string::npos) << r.out;
+  EXPECT_LT(negative, positive);
+  // 35 bricks move each way: 12 named, then how many more.
+  const nlohmann::json doc = Margin(ExamplePath("wall.json") + " --tilt 0,0,1");
+  const size_t moving = doc["certificates"][0]["mechanism"]["parts"].size();
+  ASSERT_GT(moving, 12u);
+  const std::string more = ", … and " + std::to_string(moving - 12) + " more (every one: --json)\n";
+  EXPECT_NE(r.out.find(more, negative), std::string::npos) << r.out;
+  const std::string line = r.out.substr(negative + 1, r.out.find('\n', negative + 1) - negative);
+  EXPECT_EQ(std::count(line.begin(), line.end(), ','), 12) << line;
+  // A sense that holds all the way round says so.
+  r = Cairn("margin " + ExamplePath("jenga.json") + " --tilt 0,0,1");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("none in the negative sense (it holds all the way round) / none in the "
+                       "positive sense"),
+            std::string::npos)
+      << r.out;
+}
+
+// No weight (zero gravity): the load is not given as a ratio of it.
+TEST(CliMargin, LoadWithoutWeightGivesNoRatio) {
+  const CliRun r = Cairn("margin " + ExamplePath("stack3.json") +
+                         " --load A --point 0,1 --direction 1,0 --gravity=0,0");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("(A has no weight: gravity is zero)"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("nan"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("of its weight"), std::string::npos) << r.out;
+}
+
+// A COMPAS file stores no friction: --friction without a value beside
+// another margin is refused, saying that it needs the blocks' μ.
+TEST(CliMargin, CompasFrictionNeedsAValue) {
+  const std::string cubes = testing::SharedDir() + "/datasets/compas_cra/cubes.json";
+  if (testing::SharedDir().empty() || !std::filesystem::exists(cubes))
+    GTEST_SKIP() << "the shared data (CAIRN_SHARED_DIR) is absent";
+  const CliRun r =
+      Cairn("margin " + cubes + " --format compas --supports 0 --tilt 0,1,0 --friction");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_TRUE(r.out.empty()) << r.out;
+  EXPECT_EQ(r.err.rfind("cairn: error: --friction: needs a value with --format compas: the blocks' "
+                        "friction coefficient",
+                        0),
+            0u)
+      << r.err;
+  const CliRun ok = Cairn("margin " + cubes +
+                          " --format compas --supports 0 --tilt 0,1,0 --friction 0.84 --json");
+  EXPECT_EQ(ok.exit_code, 0) << ok.err;
 }
 
 // simulate --margin friction: the least μ for which the plan (Fig. 4, A

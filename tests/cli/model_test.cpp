@@ -1,5 +1,5 @@
 // `cairn check`, `cairn simulate` and `cairn convert` on COMPAS assemblies
-// (issue 4), run as a user runs them: the real binary, its stdout, stderr and
+// run as a user runs them: the real binary, its stdout, stderr and
 // exit code. The shared files are read in place from ../shared/datasets; a
 // test that needs one skips, saying so, when it is absent. The expected
 // verdicts are physics with known answers (../shared/datasets/*/README.md):
@@ -785,7 +785,7 @@ TEST(SceneInterfaces, GivenInterfacesAreTheContacts) {
 
 // Every COMPAS assembly of ../shared at μ = 0.1, 0.3, 0.5, 0.84 and 1.0 (the
 // supports of docs/compas-format.md) gets a verdict, never "solver failure"
-// (issue 13). A stable one is proved by forces that balance every free block
+// A stable one is proved by forces that balance every free block
 // (weight = 9.81 × mass, the equilibrium's postcondition) with `stability`
 // "strong" or "not certified"; an unstable one names the blocks that move and
 // how, and says whether rest was possible at all ("weak": jamming; null: no

@@ -55,7 +55,7 @@ TEST(Simulate, PaperFig1_DCBAStandsAndCFirstFailsWhenCLeaves) {
   EXPECT_EQ(doc["steps"][0]["time_steps"], 2);
 }
 
-// Issue 13: paper Fig. 1 with B lifted first. C rests on B and is free: B
+// Paper Fig. 1 with B lifted first. C rests on B and is free: B
 // pushes it up from the first instant, so the plan is unstable at t = 0 with
 // C named and moving up (exit 1), not infeasible ("B runs into C", exit 3).
 TEST(Simulate, PaperFig1_BFirstPushesCUpAtTimeZero) {

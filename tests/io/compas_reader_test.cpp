@@ -460,7 +460,7 @@ TEST(SharedCompasFiles, TwoBlocksGeometry) {
 // with positive volume; the two-block file's are unit cubes. (The curved
 // files — armadillo, crossvault, cube-curve-*, curve-3-blocks — have quad
 // faces 1e-5 to 4e-4 of the block's size off plane: their import needs a
-// planarity policy, issue 4.)
+// planarity policy.)
 TEST(SharedCompasFiles, FlatFacedBlocksAreValidPolyhedra) {
   int checked = 0;
   for (const char* rel :
@@ -881,7 +881,7 @@ TEST(CompasToModel, FacesWithinHalfTheToleranceAreKept) {
   EXPECT_NO_THROW(CreateCompasAssembly(m, "flat.json"));
 }
 
-// Issue 13: a fault inside a block names the block by its node key, which
+// A fault inside a block names the block by its node key, which
 // plays the part's name: `data.graph.data.node.1 ("1").block...`; a key with a
 // quote and a newline is escaped, so the message stays on one line.
 TEST(ReadCompasScene, FaultsInsideABlockNameTheBlock) {

@@ -32,7 +32,7 @@ TEST(ReadCandidatePaths, ReadsPolylinesAndSteps) {
   EXPECT_DOUBLE_EQ(paths.at(c)[0].path.back().y(), 2.0);
 }
 
-// Issue 13: the key is the part's name; a fault inside one of its paths names
+// The key is the part's name; a fault inside one of its paths names
 // the part after the key, `C ("C")[0].direction`; an unknown part's key is
 // reported bare (the name is the fault), escaped so the message stays on one
 // line.

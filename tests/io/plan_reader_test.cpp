@@ -296,7 +296,7 @@ TEST(ReadPlan, MissingFile) {
   }
 }
 
-// Issue 13: a step is named by the parts it removes, `steps[0] ("B", "D")`,
+// A step is named by the parts it removes, `steps[0] ("B", "D")`,
 // in faults the reader finds and those Plan::Create finds; a fault of the
 // remove list itself is reported at it, the part named in the message.
 TEST(ReadPlan, FaultsOfAStepNameItsParts) {

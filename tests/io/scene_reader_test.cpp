@@ -333,7 +333,7 @@ TEST(ParseSceneJson, RejectsNonFiniteNumbersOfABuiltDocument) {
   }
 }
 
-// Issue 13: a fault inside a part names the part after its JSON path,
+// A fault inside a part names the part after its JSON path,
 // `parts[1] ("A").polygon`, whether the reader or Assembly::Create finds it.
 TEST(ReadScene, FaultsInsideAPartNameThePart) {
   const std::string table =

@@ -1,4 +1,4 @@
-// The factored Lemke on degenerate 3-D contact LCPs (issue 13): components
+// The factored Lemke on degenerate 3-D contact LCPs: components
 // whose contacts are many coplanar points per interface, from the shared
 // COMPAS data sets (skipped when absent). Regressions: before the Harris ratio
 // test and the k/4 refactor schedule each of these ended on a secondary ray

@@ -1,4 +1,4 @@
-// Issue 13, flush joints: a block B is pushed (support "none": the gripper
+// Flush joints: a block B is pushed (support "none": the gripper
 // drives it along the path only, its weight rests on the parts under it) off
 // its movable support S, across a gap, onto a fixed ledge L whose top is
 // flush with S's; and back in assemble mode. In 2-D (examples/flush_joint.json

@@ -253,7 +253,7 @@ TEST(PaperFig14, TheOtherDirectionsAreBlocked) {
   const Assembly a = ReadScene(ExamplePath("paper_fig14.json"));
   // Up pushes S4, which rests on P's right end: S4 is free, so it gives way
   // from the first instant, tipping counter-clockwise about its support on
-  // S3 (issue 13: a push is unstable, not infeasible).
+  // S3 (a push is unstable, not infeasible).
   const SimulationResult up = RunPlan(a, "paper_fig14_up.plan.json");
   ASSERT_EQ(up.verdict, MotionVerdict::kUnstable) << Why(up);
   EXPECT_EQ(up.failure->pushed, up.failure->parts);

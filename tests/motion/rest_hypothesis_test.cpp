@@ -145,7 +145,7 @@ TEST(RestHypothesis, JengaExampleStandsUntilThePulledBlockIsNearlyOut) {
   const double pulled = r.failure->time * plan.speed;  // how far the block has come
   EXPECT_GT(pulled, 0.07) << testing::Brief(*r.failure);
   EXPECT_LT(pulled, kL + kGap + 1e-9) << testing::Brief(*r.failure);
-  // The failure names what moves (issue 13): the pulled block itself, whose
+  // The failure names what moves: the pulled block itself, whose
   // overhanging weight the gripper (support "none") must now carry; nothing
   // else moves, and it is decided, not a solver failure.
   EXPECT_EQ(r.failure->verdict, MotionVerdict::kUnsupported) << testing::Brief(*r.failure);

@@ -125,7 +125,7 @@ TEST(Simulate, DrivingAPartIntoAWallIsInfeasible) {
   EXPECT_EQ(r.failure->parts, (std::vector<int>{2}));
 }
 
-// Issue 13, paper Fig. 1 with B lifted first: C and D rest on B and are
+// Paper Fig. 1 with B lifted first: C and D rest on B and are
 // free, so B pushes them up from the first instant: unstable at t = 0 (not
 // "B runs into C"), C and D riding up with B at the gripper's velocity
 // (analytic: a part resting on a rigidly lifted one, frictionless, moves with

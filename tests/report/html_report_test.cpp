@@ -166,6 +166,35 @@ TEST(SimulationPage, OneFramePerTickWithThePosesAndForcesOfThatTick) {
   }
 }
 
+// The page counts a plan's steps from 1 everywhere: the viewer writes
+// "Step k + 1" for the step of index k (steps[].index) and "step k + 1"
+// beside the time of a frame (frames[].step), and the failure's words, shown
+// as they are, say the same number (paper Fig. 1 with B first fails in the
+// first step, index 0).
+TEST(SimulationPage, TheFailuresWordsCountStepsFromOneAsTheViewerDoes) {
+  const testing::ExampleScene fig1("paper_fig1.json");
+  const Assembly& a = fig1.assembly;
+  const Plan plan = ReadPlan(testing::ExamplePath("plans/paper_fig1_b_first.plan.json"), a);
+  std::vector<SimulationFrame> frames;
+  SimulationOptions options;
+  options.on_analysis = [&](const AnalysisInputs& in) {
+    if (in.judged)
+      frames.push_back({in.step, in.tick, in.time, in.config->present, in.config->poses, {}});
+  };
+  const SimulationResult result = SimulatePlan(a, plan, options);
+  ASSERT_TRUE(result.failure);
+  const json doc = SimulationToJson(a, plan, result, {});
+  const json data = PageData(SimulationPage(a, result, frames, doc, {}));
+  const json& failure = data["result"]["failure"];
+  ASSERT_EQ(failure["step"], 0);  // an index, as steps[].index and frames[].step
+  EXPECT_EQ(data["result"]["steps"][0]["index"], 0);
+  EXPECT_EQ(data["frames"][0]["step"], 0);
+  EXPECT_EQ(failure["description"].get<std::string>().rfind("t = 0 s (step 1, tick 0): ", 0), 0u)
+      << failure["description"];
+  EXPECT_NE(SimulationToText(a, plan, result, {}).find("\n  step 1 (B, support "),
+            std::string::npos);
+}
+
 // The rest state of every node of the listed sequences: the forces at each
 // node balance the weights of its parts (frictionless Fig. 1: the vertical
 // normal forces on the fixed table E carry every present block).

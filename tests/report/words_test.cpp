@@ -61,7 +61,8 @@ TEST(DescribeFailure, NamesWhoPushesWhomAndHowEachPartMoves) {
   // C and D ride up with B (analytic: parts resting on a rigidly lifted one).
   EXPECT_EQ(
       words,
-      "t = 0 s (step 0, tick 0): B pushes C, D: C slides along (0, 1); D slides along (0, 1)");
+      "t = 0 s (step 1, tick 0): B pushes C, D: C slides along (0, 1); D slides along (0, 1)");
+  EXPECT_EQ(r.failure->step, 0);  // the index counts from 0, the words from 1
 
   MotionFailure noted = *r.failure;
   noted.solver_note = "a ray";
@@ -77,11 +78,11 @@ TEST(DescribeFailure, InfeasibleAndUnsupportedSteps) {
   f.tick = 3;
   f.time = 0.25;
   f.parts = {a.FindPart("B"), a.FindPart("C")};
-  EXPECT_EQ(DescribeFailure(a, f), "t = 0.25 s (step 1, tick 3): B runs into C");
+  EXPECT_EQ(DescribeFailure(a, f), "t = 0.25 s (step 2, tick 3): B runs into C");
   f.verdict = MotionVerdict::kUnsupported;
   f.parts = {a.FindPart("B")};
   EXPECT_EQ(DescribeFailure(a, f),
-            "t = 0.25 s (step 1, tick 3): B can no longer rest on the assembly: the gripper must "
+            "t = 0.25 s (step 2, tick 3): B can no longer rest on the assembly: the gripper must "
             "carry it here");
 }
 
@@ -96,7 +97,7 @@ TEST(PathTrialFailure, SaysWhichDirectionFailedOrWhyNoPathCanHelp) {
   t.failure = Failure(MotionVerdict::kInfeasible, 0, {a.FindPart("B")});
   t.failure_mode = PlanMode::kAssemble;
   EXPECT_EQ(PathTrialFailure(a, t),
-            "assembly: t = 0 s (step 0, tick 0): the motion of B is blocked");
+            "assembly: t = 0 s (step 1, tick 0): the motion of B is blocked");
 }
 
 TEST(FixtureMessage, FoundNoneNeededOrWhereAndWhyTheSearchStopped) {
@@ -113,7 +114,7 @@ TEST(FixtureMessage, FoundNoneNeededOrWhereAndWhyTheSearchStopped) {
   s.stopped_at = Failure(MotionVerdict::kInfeasible, 2, {a.FindPart("C")});
   s.stop_reason = " is infeasible: fixels cannot free a blocked motion";
   EXPECT_EQ(FixtureMessage(a, s),
-            "no fixels found: step 2 (t = 0 s (step 2, tick 0): the motion of C is blocked) is "
+            "no fixels found: step 3 (t = 0 s (step 3, tick 0): the motion of C is blocked) is "
             "infeasible: fixels cannot free a blocked motion");
 }
 

@@ -1,4 +1,4 @@
-// Analytic 3-D cases (issue 4, section 4): a box on an incline against the
+// Analytic 3-D cases: a box on an incline against the
 // linearised friction cone, a box overhanging an edge diagonally, a cube
 // propped on a single vertex of a tilted support, a harmonic stack of five
 // boxes. Each verdict is set against a closed-form threshold, on both sides.

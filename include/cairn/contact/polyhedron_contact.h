@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// Contacts between two polyhedra in 3-D (issue 4, §2): the geometric kernel,
+/// Contacts between two polyhedra in 3-D: the geometric kernel,
 /// for two validated Polyhedron placed by rigid poses.
 ///
 /// Convention as in 2-D (docs/notation.md): the normal n_W points from b into

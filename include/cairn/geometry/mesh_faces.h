@@ -2,7 +2,7 @@
 /// @file
 /// From a triangle mesh (a CAD export: OBJ, STL) to planar polygonal faces.
 ///
-/// Contact between polyhedra is computed face against face (issue 4): two
+/// Contact between polyhedra is computed face against face: two
 /// coplanar faces touching give one contact polygon. A mesh splits every face
 /// into triangles, so the same touch would come out as dozens of fragments.
 /// MergeCoplanarTriangles rebuilds the faces: edge-adjacent triangles whose

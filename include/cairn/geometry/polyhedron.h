@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// Closed polyhedra in 3-D (issue 4): validation, outward orientation, exact
+/// Closed polyhedra in 3-D: validation, outward orientation, exact
 /// mass properties. A polyhedron is given as vertices and planar polygonal
 /// faces (any vertex count, convex or not) that close a 2-manifold surface.
 ///

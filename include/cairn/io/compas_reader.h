@@ -1,7 +1,7 @@
 #pragma once
 /// @file
 /// Reading block assemblies in the COMPAS JSON format of `compas_assembly` and
-/// `compas_cra` (ETH Block Research Group), issue 4, in two layers:
+/// `compas_cra` (ETH Block Research Group), in two layers:
 /// ReadCompasAssembly parses the file into its blocks as given (polygonal
 /// faces, either orientation, not validated as solids); CompasToModel and
 /// ReadCompasScene turn them into Cairn's model (one 3-D part per block), with

@@ -2,7 +2,7 @@
 /// @file
 /// Triangle meshes (Wavefront OBJ, STL ASCII or binary, and whatever else
 /// Assimp reads) as polyhedra with planar polygonal faces: the scene format's
-/// `"mesh": "parts/e.obj"` (issue 4).
+/// `"mesh": "parts/e.obj"`.
 ///
 /// The file is read with Assimp (Debian libassimp-dev), identical vertices are
 /// welded, every mesh in the file joins one solid (one part per file), and

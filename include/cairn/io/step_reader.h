@@ -1,7 +1,7 @@
 #pragma once
 /// @file
 /// STEP assemblies (AP203, AP214, AP242: what every CAD system exports) read
-/// directly, with OpenCASCADE (issue 18; docs/step-format.md).
+/// directly, with OpenCASCADE (docs/step-format.md).
 ///
 /// The assembly structure is read through XCAF: each leaf part instance
 /// becomes a part, named by its product name (when one product is used

@@ -14,11 +14,20 @@
 
 namespace cairn {
 
+/// How much of a check's contact forces its text lists (`cairn check
+/// --contacts`); the JSON document always has every contact.
+enum class ContactListing {
+  kSummary,  ///< the most loaded contacts and each pair of parts' resultant
+  kAll,      ///< every contact
+  kNone,     ///< none
+};
+
 /// What the report says besides the result.
 struct ReportOptions {
-  std::string scene_file;             ///< shown in the report
-  std::optional<int> normalize_part;  ///< divide forces by this part's weight m|g|
-  std::vector<int> without;           ///< parts taken away (shown in the report)
+  std::string scene_file;                              ///< shown in the report
+  std::optional<int> normalize_part;                   ///< divide forces by this part's weight m|g|
+  std::vector<int> without;                            ///< parts taken away (shown in the report)
+  ContactListing contacts = ContactListing::kSummary;  ///< check's text only
 };
 
 /// The scale forces are divided by (1, or the weight of the normalising part)

@@ -24,8 +24,9 @@ std::string DescribeMotion(const PartMotion& m, int dimension);
 /// A failure of a plan in one line: when, what (who pushes whom, how each
 /// part moves, which gripped part is unsupported, what runs into what), the
 /// contacts that break or slide, and the solver's note if the LCP could not
-/// be solved: "t = 0.4 s (step 0, tick 2): C tips about (2, 1) clockwise;
-/// contact C-B at (2, 1) breaks".
+/// be solved: "t = 0.4 s (step 1, tick 2): C tips about (2, 1) clockwise;
+/// contact C-B at (2, 1) breaks". Words count a plan's steps from 1, as a
+/// person does (MotionFailure::step, like the JSON's `step`, from 0).
 std::string DescribeFailure(const Assembly& assembly, const MotionFailure& failure);
 
 /// Why a path of the planner is not stable both ways: "disassembly: <the
