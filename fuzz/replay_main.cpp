@@ -2,7 +2,7 @@
 // suite): replays every file of the given corpus folders through
 // LLVMFuzzerTestOneInput, then runs a bounded number of mutations of them
 // (byte flips, insertions, deletions, splices and numbers made extreme: the
-// kinds of change that found issue 15's defects), from a fixed seed so that
+// kinds of change that found the hostile-input defects), from a fixed seed so that
 // a run is the same every time. Usage:
 //   TARGET [--runs N | --seconds S] [--seed S] [--timeout S] [--last FILE] DIR...
 // --seconds runs mutations until that much time has passed (a fuzz round

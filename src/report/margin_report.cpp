@@ -261,8 +261,8 @@ std::string MarginToText(const Assembly& assembly, const MarginRequest& req, con
     if (s.component < 0 || !s.mechanism || !s.mechanism->found) continue;
     os << MechanismLine(assembly, req, r, i);
   }
-  os << "  method: " << r.method << "; " << r.lps << " LPs; tolerance " << Num(r.tolerance)
-     << "; weak stability (rest possible)\n";
+  os << "  method: " << r.method << "; " << r.lps << (r.lps == 1 ? " LP" : " LPs") << "; tolerance "
+     << Num(r.tolerance) << "; weak stability (rest possible)\n";
   return os.str();
 }
 
