@@ -149,8 +149,7 @@ std::string NextPowerOfTen(double tol) {
 // JSON path; parts that overlap by more than the tolerance say that
 // --tolerance raises it.
 Assembly CreateAssembly(const std::function<Assembly()>& create, const AssemblyDef& def,
-                        const ModelArgs& args,
-                        const std::map<std::string, std::string>& set_by) {
+                        const ModelArgs& args, const std::map<std::string, std::string>& set_by) {
   try {
     return create();
   } catch (const InputError& e) {

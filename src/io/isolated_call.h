@@ -18,8 +18,8 @@ namespace cairn::io_internal {
 
 /// The limits of one isolated call.
 struct IsolationLimits {
-  double time_limit = 0;            ///< s of wall time; the child is killed after it
-  std::uint64_t memory_limit = 0;   ///< bytes of address space (RLIMIT_AS); 0: none
+  double time_limit = 0;           ///< s of wall time; the child is killed after it
+  std::uint64_t memory_limit = 0;  ///< bytes of address space (RLIMIT_AS); 0: none
 };
 
 /// How an isolated call ended.

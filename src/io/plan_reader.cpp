@@ -129,8 +129,9 @@ PlanDef ParsePlanJson(const nlohmann::json& doc, const std::string& file, int di
 
 Plan ReadPlan(const std::string& path, const Assembly& assembly, long long max_ticks,
               std::uint64_t max_input_size) {
-  return Plan::Create(ParsePlanJson(io_internal::ReadJsonFile(path, max_input_size), path, assembly.dimension()),
-                      assembly, path, max_ticks);
+  return Plan::Create(
+      ParsePlanJson(io_internal::ReadJsonFile(path, max_input_size), path, assembly.dimension()),
+      assembly, path, max_ticks);
 }
 
 }  // namespace cairn

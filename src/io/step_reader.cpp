@@ -33,9 +33,9 @@
 #include <Message.hxx>
 #include <Message_Messenger.hxx>
 #include <Message_PrinterOStream.hxx>
-#include <Precision.hxx>
 #include <Poly_PolygonOnTriangulation.hxx>
 #include <Poly_Triangulation.hxx>
+#include <Precision.hxx>
 #include <STEPCAFControl_Reader.hxx>
 #include <Standard_Failure.hxx>
 #include <TDF_Label.hxx>
@@ -397,8 +397,7 @@ std::vector<Vector3> ExactPolygon(const TopoDS_Face& face, const Handle(Poly_Tri
 PolyhedronDef ToPolyhedron(const TopoDS_Solid& solid, double deflection, double unit, double size_m,
                            double merge_tol, StepPartReport& report) {
   const BRepMesh_IncrementalMesh mesher(solid, deflection, false, kMeshAngularDeflection, false);
-  if (!mesher.IsDone())
-    throw Standard_Failure("BRepMesh_IncrementalMesh did not finish");
+  if (!mesher.IsDone()) throw Standard_Failure("BRepMesh_IncrementalMesh did not finish");
   Welder welder(kWeldFactor * size_m);
   std::vector<std::array<int, 3>> triangles;
   std::vector<std::vector<int>> polygons;
@@ -498,14 +497,14 @@ StepModel ReadStepModel(const std::string& path, const std::string& text,
 
   // 5. One chordal tolerance (the file's unit) for the whole assembly: the
   // user's within what OpenCASCADE tessellates (Precision::Confusion() of
-  // the file's unit) and below the smallest part's size.
+  // the file's unit), not finer than kMinMeshToleranceFactor of the smallest
+  // part, and below its size.
   const size_t smallest_k =
       static_cast<size_t>(std::min_element(diagonals.begin(), diagonals.end()) - diagonals.begin());
   const double smallest = diagonals[smallest_k];
   if (!(smallest > 0) || !std::isfinite(smallest))
-    throw InputError(path, "",
-                     "part '" + EscapedName(names[smallest_k]) +
-                         "' has no extent (an empty solid?)");
+    throw InputError(
+        path, "", "part '" + EscapedName(names[smallest_k]) + "' has no extent (an empty solid?)");
   const double default_deflection = kDefaultMeshToleranceFactor * smallest;
   const double default_m = default_deflection * unit;
   if (options.mesh_tolerance > 0) {
@@ -513,13 +512,23 @@ StepModel ReadStepModel(const std::string& path, const std::string& text,
       throw InputError("", "--mesh-tolerance",
                        FormatNumber(options.mesh_tolerance) +
                            " m is finer than OpenCASCADE tessellates " + path + ": at least " +
-                           FormatNumber(Precision::Confusion() * unit) + " m (the default is " +
+                           FormatNumber(Precision::Confusion() * unit) +
+                           " m (the default for this file is " + FormatNumber(default_m) + " m)");
+    const double finest = kMinMeshToleranceFactor * smallest;
+    if (!(options.mesh_tolerance / unit >= finest))
+      throw InputError("", "--mesh-tolerance",
+                       FormatNumber(options.mesh_tolerance) + " m is finer than " +
+                           FormatNumber(kMinMeshToleranceFactor) + " of the part '" +
+                           EscapedName(names[smallest_k]) + "' of " + path + " (" +
+                           FormatNumber(smallest * unit) + " m across): at least " +
+                           FormatNumber(finest * unit) + " m (the default for this file is " +
                            FormatNumber(default_m) + " m)");
     if (!(options.mesh_tolerance / unit < smallest))
       throw InputError("", "--mesh-tolerance",
                        FormatNumber(options.mesh_tolerance) + " m is larger than the part '" +
                            EscapedName(names[smallest_k]) + "' of " + path + " (" +
-                           FormatNumber(smallest * unit) + " m across): give less (the default is " +
+                           FormatNumber(smallest * unit) +
+                           " m across): give less (the default for this file is " +
                            FormatNumber(default_m) + " m)");
   }
   const double deflection =
@@ -544,8 +553,7 @@ StepModel ReadStepModel(const std::string& path, const std::string& text,
     const double tol = std::max(ToleranceFactors{}.length * diagonals[k] * unit,
                                 kStepLengthToleranceOfChord * deflection * unit);
     try {
-      part.polyhedron =
-          ToPolyhedron(solids[k], deflection, unit, diagonals[k] * unit, tol, report);
+      part.polyhedron = ToPolyhedron(solids[k], deflection, unit, diagonals[k] * unit, tol, report);
     } catch (const Standard_Failure& e) {
       TessellationFault(path, options, default_m,
                         "part '" + EscapedName(names[k]) + "' cannot be tessellated (" +
@@ -627,8 +635,9 @@ void CheckStepText(const std::string& text, const std::string& path) {
     } else if (c == '/' && i + 1 < n && text[i + 1] == '*') {  // a comment
       const size_t end = text.find("*/", i + 2);
       const size_t stop = end == std::string::npos ? n : end + 2;
-      line += static_cast<size_t>(std::count(text.begin() + static_cast<std::ptrdiff_t>(i),
-                                             text.begin() + static_cast<std::ptrdiff_t>(stop), '\n'));
+      line +=
+          static_cast<size_t>(std::count(text.begin() + static_cast<std::ptrdiff_t>(i),
+                                         text.begin() + static_cast<std::ptrdiff_t>(stop), '\n'));
       i = stop;
     } else if (c == '#') {  // an entity: defined when `=` follows
       size_t j = i + 1;
@@ -661,7 +670,8 @@ void CheckStepText(const std::string& text, const std::string& path) {
       }
       const std::string number = text.substr(i, j - i);
       if (!std::isfinite(std::strtod(number.c_str(), nullptr)))
-        fail(line, entity, "the number " + number + " is not finite (beyond the range of a double)");
+        fail(line, entity,
+             "the number " + number + " is not finite (beyond the range of a double)");
       i = j;
     } else if (c == '.' && i + 1 < n && is_alpha(text[i + 1])) {  // an enumeration .NAME.
       size_t j = i + 1;

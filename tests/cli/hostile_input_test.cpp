@@ -309,8 +309,7 @@ TEST(HostileInputFiles, WhatIsNotARegularFileIsRefusedSayingWhatItIs) {
            {dir + "/loop.json --format asap", "a loop of symbolic links"},
            {dir + "/fifo.json --format asap", "is a FIFO (named pipe)"},
            {long_name + " --format asap", "the file name is too long"},
-           {ExamplePath("stack3.json") + " --max-input-size 100",
-            "stack3.json: the file is "},
+           {ExamplePath("stack3.json") + " --max-input-size 100", "stack3.json: the file is "},
        }) {
     SCOPED_TRACE(c.args);
     ExpectBadInput(Cairn("check " + c.args), {c.message.c_str()});
@@ -325,8 +324,9 @@ TEST(HostileInputFiles, WhatIsNotARegularFileIsRefusedSayingWhatItIs) {
 
 TEST(HostileInputFiles, MaxInputSizeBoundsWhatIsReadAndCanBeRaised) {
   const CliRun small = Cairn("check " + ExamplePath("stack3.json") + " --max-input-size 100");
-  ExpectBadInput(small, {"stack3.json: the file is ", "bytes, more than the maximum input size "
-                                                      "100 bytes (--max-input-size raises it)"});
+  ExpectBadInput(small, {"stack3.json: the file is ",
+                         "bytes, more than the maximum input size "
+                         "100 bytes (--max-input-size raises it)"});
   EXPECT_EQ(Cairn("check " + ExamplePath("stack3.json") + " --max-input-size 64K").exit_code, 0);
   EXPECT_EQ(Cairn("check " + ExamplePath("stack3.json") + " --max-input-size 2G").exit_code, 0);
   for (const char* bad : {"0", "1.5G", "lots", "-5", "1T"}) {

@@ -120,8 +120,8 @@ TEST(ByteSize, ParsesSuffixesOfPowersOf1024) {
   EXPECT_EQ(ParseByteSize("512k"), 512u * 1024);
   EXPECT_EQ(ParseByteSize("3M"), 3u << 20);
   EXPECT_EQ(ParseByteSize("8589934592G"), std::uint64_t{1} << 63);
-  for (const char* bad : {"", "0", "0K", "-1", "1.5G", "1T", "G", "12 M", "99999999999999999999",
-                          "17179869184G"})
+  for (const char* bad :
+       {"", "0", "0K", "-1", "1.5G", "1T", "G", "12 M", "99999999999999999999", "17179869184G"})
     EXPECT_FALSE(ParseByteSize(bad).has_value()) << bad;
   EXPECT_EQ(DescribeByteSize(kDefaultMaxInputSize), "1073741824 bytes (1 GiB)");
   EXPECT_EQ(DescribeByteSize(1), "1 byte");

@@ -217,9 +217,8 @@ TEST(ReadStepAssembly, TextFaultsAreSaidWithTheirLine) {
     std::filesystem::remove(path);
   }
   // Strings, comments and enumerations are not numbers or references.
-  const std::string fine =
-      edited("#7 = PRODUCT('Body','Body','',(#8));",
-             "#7 = PRODUCT('Body','NAN #99 1E999','',(#8)); /* #98 NAN */");
+  const std::string fine = edited("#7 = PRODUCT('Body','Body','',(#8));",
+                                  "#7 = PRODUCT('Body','NAN #99 1E999','',(#8)); /* #98 NAN */");
   const std::string path = WriteStep("cap_fine", fine);
   EXPECT_EQ(InputErrorOf([&] { ReadStepAssembly(path); }), "");
   std::filesystem::remove(path);

@@ -14,8 +14,8 @@
 #include <vector>
 
 #include "cairn/geometry/assembly.h"
-#include "cairn/io/input_file.h"
 #include "cairn/geometry/polyhedron.h"
+#include "cairn/io/input_file.h"
 
 namespace cairn {
 

@@ -7,8 +7,8 @@
 #include <string>
 
 #include "cairn/geometry/assembly.h"
-#include "cairn/io/input_file.h"
 #include "cairn/geometry/plan.h"
+#include "cairn/io/input_file.h"
 
 namespace cairn {
 

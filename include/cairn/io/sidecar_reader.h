@@ -31,7 +31,7 @@ namespace cairn {
 /// (`parts.cap.mass`, `density`), by part name: faults that Assembly::Create
 /// finds in those numbers (a mass out of range or too light beside the
 /// others) are the sidecar's.
-std::map<std::string, std::string> ApplySidecar(const std::string& path, AssemblyDef& def,
-                                                std::uint64_t max_input_size = kDefaultMaxInputSize);
+std::map<std::string, std::string> ApplySidecar(
+    const std::string& path, AssemblyDef& def, std::uint64_t max_input_size = kDefaultMaxInputSize);
 
 }  // namespace cairn

@@ -45,6 +45,13 @@ namespace cairn {
 /// interpenetrating.
 constexpr double kDefaultMeshToleranceFactor = 1e-3;
 
+/// The finest chordal tolerance accepted, as a fraction of the size of the
+/// smallest part: 1/100 of the default. Finer, the curved faces of a part
+/// become millions of facets (OpenCASCADE takes minutes over the pen's parts
+/// at 1e-8 of their size), and the model is no more accurate for it: its
+/// contacts are found to a tenth of the chord anyway.
+constexpr double kMinMeshToleranceFactor = 1e-5;
+
 /// The angular deflection of the tessellation (rad): no facet of a curved
 /// surface turns by more than this, whatever the chordal tolerance.
 constexpr double kMeshAngularDeflection = 0.5;
@@ -69,9 +76,10 @@ constexpr std::uint64_t kStepMemoryLimit = std::uint64_t{8} << 30;
 struct StepReadOptions {
   /// m: the largest distance between a curved surface and its facets; ≤ 0:
   /// kDefaultMeshToleranceFactor × the smallest part's bounding-box diagonal.
-  /// Given (> 0), it must be at least OpenCASCADE's Precision::Confusion()
-  /// (1e-7 of the file's length unit) and less than the smallest part's
-  /// bounding-box diagonal; its faults are reported as `--mesh-tolerance`'s.
+  /// Given (> 0), it must be at least kMinMeshToleranceFactor × the smallest
+  /// part's bounding-box diagonal and OpenCASCADE's Precision::Confusion()
+  /// (1e-7 of the file's length unit), and less than that diagonal; its
+  /// faults are reported as `--mesh-tolerance`'s.
   double mesh_tolerance = 0;
   /// bytes: the largest file read (ReadInputFile).
   std::uint64_t max_input_size = kDefaultMaxInputSize;
