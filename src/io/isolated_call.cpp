@@ -46,10 +46,11 @@ bool WriteAll(int fd, const char* data, size_t size) {
 
 // The child: limits, the work, its result (length first) on `fd`, _exit.
 [[noreturn]] void Child(int fd, const std::function<std::string()>& work,
-                        const IsolationLimits& limits) {
-  // Dies with the parent; the parent's handlers (temporary files to remove
-  // on SIGTERM) are not the child's.
+                        const IsolationLimits& limits, pid_t parent) {
+  // Dies with the parent (also if it died before this line); the parent's
+  // handlers (temporary files to remove on SIGTERM) are not the child's.
   ::prctl(PR_SET_PDEATHSIG, SIGKILL);
+  if (::getppid() != parent) ::_exit(3);
   for (const int s : {SIGTERM, SIGINT, SIGHUP, SIGQUIT, SIGPIPE}) std::signal(s, SIG_DFL);
   const int null = ::open("/dev/null", O_WRONLY | O_CLOEXEC);
   if (null >= 0) {
@@ -86,6 +87,7 @@ IsolatedResult RunIsolated(const std::function<std::string()>& work,
     result.output = std::string("cannot make a pipe: ") + std::strerror(errno);
     return result;
   }
+  const pid_t parent = ::getpid();
   const pid_t pid = ::fork();
   if (pid < 0) {
     const int error = errno;
@@ -97,7 +99,7 @@ IsolatedResult RunIsolated(const std::function<std::string()>& work,
   }
   if (pid == 0) {
     ::close(fds[0]);
-    Child(fds[1], work, limits);
+    Child(fds[1], work, limits, parent);
   }
   ::close(fds[1]);
 
