@@ -151,6 +151,21 @@ void AddModelOptions(CLI::App* cmd, cairn::cli::ModelArgs& model) {
                   "Contacts: detect (found from the shapes, default) or stored (a COMPAS file's "
                   "stored interfaces, for blocks modelled too loosely for exact contacts)")
       ->check(CLI::IsMember({"detect", "stored"}));
+  // Every file the model is read from (docs/cli.md, "Reading the model").
+  cmd->add_option("--max-input-size", model.max_input_size,
+                  "The largest input file read, bytes, with an optional suffix K, M or G "
+                  "(default 1G)")
+      ->transform(CLI::Validator(
+          [](std::string& text) -> std::string {
+            const std::optional<std::uint64_t> bytes = cairn::ParseByteSize(text);
+            if (!bytes)
+              return "must be a positive number of bytes, with an optional suffix K, M or G "
+                     "(e.g. 2G), not '" +
+                     text + "'";
+            text = std::to_string(*bytes);
+            return "";
+          },
+          "BYTES"));
 }
 
 // A subcommand that reads one scene (the positional `scene`) and prints a

@@ -3,8 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <functional>
+#include <map>
 #include <optional>
 #include <ostream>
 #include <sstream>
@@ -49,6 +52,8 @@ void CheckModelFlags(const ModelArgs& args) {
   if (!args.sidecar.empty() && args.format != "step" && args.format != "asap")
     throw InputError("", "--sidecar",
                      "applies to --format step and asap (a scene file says it all itself)");
+  if (args.max_input_size == 0)
+    throw InputError("", "--max-input-size", "must be a positive number of bytes");
   for (double g : args.gravity) {
     if (!std::isfinite(g))
       throw InputError("", "--gravity",
@@ -110,20 +115,62 @@ void NoteApproximations(const std::string& file, const StepModel& step, std::ost
   }
 }
 
-// The definition of a STEP assembly or an ASAP folder, with its sidecar.
-AssemblyDef ReadCadDef(const std::string& file, const ModelArgs& args, std::ostream* notes) {
+// The definition of a STEP assembly or an ASAP folder, with its sidecar;
+// `set_by` gets the sidecar's JSON path of each mass or density it set.
+AssemblyDef ReadCadDef(const std::string& file, const ModelArgs& args, std::ostream* notes,
+                       std::map<std::string, std::string>& set_by) {
+  // The sidecar is checked first: before minutes of reading a large model.
+  if (!args.sidecar.empty()) CheckInputFile(args.sidecar, args.max_input_size);
   AssemblyDef def;
   if (args.format == "step") {
     StepReadOptions options;
     options.mesh_tolerance = args.mesh_tolerance.value_or(0.0);
+    options.max_input_size = args.max_input_size;
     const StepModel step = ReadStepAssembly(file, options);
     if (notes) NoteApproximations(file, step, *notes);
     def = step.def;
   } else {
-    def = ReadAsapAssembly(file);
+    def = ReadAsapAssembly(file, args.max_input_size);
   }
-  if (!args.sidecar.empty()) ApplySidecar(args.sidecar, def);
+  if (!args.sidecar.empty()) set_by = ApplySidecar(args.sidecar, def, args.max_input_size);
   return def;
+}
+
+// The power of ten above `tol` (1e-4 for 1.87702e-05; 1e-5 for 1e-6), as
+// the command line writes it.
+std::string NextPowerOfTen(double tol) {
+  int exponent = static_cast<int>(std::ceil(std::log10(tol)));
+  if (std::pow(10.0, exponent) <= tol * (1 + 1e-9)) ++exponent;
+  return "1e" + std::to_string(exponent);
+}
+
+// Assembly::Create (`create`) with what the model layer knows added to its
+// faults: a mass or density the sidecar set is the sidecar's fault, at its
+// JSON path; parts that overlap by more than the tolerance say that
+// --tolerance raises it.
+Assembly CreateAssembly(const std::function<Assembly()>& create, const AssemblyDef& def,
+                        const ModelArgs& args, const std::map<std::string, std::string>& set_by) {
+  try {
+    return create();
+  } catch (const InputError& e) {
+    for (size_t k = 0; k < def.parts.size() && !set_by.empty(); ++k) {
+      const std::string part = NamedPath("parts[" + std::to_string(k) + "]", def.parts[k].name);
+      const auto it = set_by.find(def.parts[k].name);
+      if (it != set_by.end() &&
+          (e.json_path() == part + ".mass" || e.json_path() == part + ".density"))
+        throw InputError(args.sidecar, it->second, e.message());
+    }
+    const std::string overlap = "by more than the tolerance ";
+    const size_t at = e.message().find(overlap);
+    if (at == std::string::npos) throw;
+    const double tol = std::strtod(e.message().c_str() + at + overlap.size(), nullptr);
+    if (!(tol > 0) || !std::isfinite(tol)) throw;
+    const std::string example = "--tolerance " + NextPowerOfTen(tol);
+    throw InputError(e.file(), e.json_path(),
+                     e.message() + " (raise it with --tolerance" +
+                         (args.format == "scene" ? " or the scene's `tolerance`" : "") + ", e.g. " +
+                         example + ")");
+  }
 }
 
 }  // namespace
@@ -132,16 +179,18 @@ Model LoadModel(const std::string& file, const ModelArgs& args, std::ostream* no
   CheckModelFlags(args);
   if (args.format == "compas") {
     RequireCompasFriction(args);
-    return LoadCompasModel(ReadCompasAssembly(file), file, args);
+    return LoadCompasModel(ReadCompasAssembly(file, args.max_input_size), file, args);
   }
   if (args.interfaces == "stored")
     throw InputError("", "--interfaces",
                      "stored is for --format compas (a scene file gives its interfaces in "
                      "`interfaces`)");
   Model m;
+  std::map<std::string, std::string> set_by;
   try {
-    m.def = args.format == "step" || args.format == "asap" ? ReadCadDef(file, args, notes)
-                                                           : ReadSceneDef(file);
+    m.def = args.format == "step" || args.format == "asap"
+                ? ReadCadDef(file, args, notes, set_by)
+                : ReadSceneDef(file, args.max_input_size);
   } catch (const InputError& e) {
     // A COMPAS file read as a scene misses the version key first: say what
     // to do instead of only what is wrong.
@@ -152,7 +201,7 @@ Model LoadModel(const std::string& file, const ModelArgs& args, std::ostream* no
   if (args.friction) m.def.friction = *args.friction;
   if (args.tolerance) m.def.tolerance = *args.tolerance;
   ApplyModelFlags(args, file, m.def);
-  m.assembly = Assembly::Create(m.def, file);
+  m.assembly = CreateAssembly([&] { return Assembly::Create(m.def, file); }, m.def, args, set_by);
   return m;
 }
 
@@ -168,7 +217,8 @@ Model LoadCompasModel(const CompasAssembly& parsed, const std::string& file,
   ApplyModelFlags(args, file, compas.def);
   Model m;
   m.def = compas.def;
-  m.assembly = CreateCompasAssembly(compas, file);
+  m.assembly =
+      CreateAssembly([&] { return CreateCompasAssembly(compas, file); }, compas.def, args, {});
   return m;
 }
 

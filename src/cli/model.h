@@ -2,6 +2,7 @@
 // What every command does first: read the model with the command line's
 // changes (docs/cli.md, "Reading the model"); and writing output files whole.
 
+#include <cstdint>
 #include <iosfwd>
 #include <optional>
 #include <string>
@@ -9,6 +10,7 @@
 
 #include "cairn/geometry/assembly.h"
 #include "cairn/io/compas_reader.h"
+#include "cairn/io/input_file.h"
 
 namespace cairn::cli {
 
@@ -41,6 +43,9 @@ struct ModelArgs {
   /// --interfaces: "detect" (contacts found from the shapes, the default) or
   /// "stored" (a COMPAS file's stored interfaces: CompasOptions::stored_interfaces).
   std::string interfaces = "detect";
+  /// --max-input-size: bytes, the largest file read (the model, its meshes,
+  /// the sidecar; input_file.h).
+  std::uint64_t max_input_size = kDefaultMaxInputSize;
 };
 
 /// A model read from a file with the command line's changes applied: the
@@ -54,8 +59,10 @@ struct Model {
 /// Reads `file` in `args.format` and applies --sidecar, --friction,
 /// --supports, --tolerance and --gravity. `notes`, when given, gets one line
 /// per part the reader approximated (STEP: curved faces tessellated) and by
-/// how much. @throws InputError: of the file (with its JSON path), or of a
-/// flag (the flag as path).
+/// how much. @throws InputError: of the file (with its JSON path), of the
+/// sidecar (a mass or density it set that the model refuses), or of a flag
+/// (the flag as path). Parts that overlap by more than the length tolerance
+/// say that --tolerance raises it.
 Model LoadModel(const std::string& file, const ModelArgs& args, std::ostream* notes = nullptr);
 
 /// LoadModel for a COMPAS assembly already parsed (ParseCompasAssembly: the

@@ -67,7 +67,8 @@ Planned Search(const PlanArgs& args, const Checkpoint& checkpoint, PlanExecutor*
                                              : SupportChoice::kFull;
   for (const std::string& name : args.keep)
     options.keep.push_back(ResolvePart(assembly, name, "--keep", args.scene));
-  if (!args.paths.empty()) options.given_paths = ReadCandidatePaths(args.paths, assembly);
+  if (!args.paths.empty())
+    options.given_paths = ReadCandidatePaths(args.paths, assembly, args.model.max_input_size);
   options.on_progress = on_progress;
   options.checkpoint = checkpoint;
   options.executor = executor;

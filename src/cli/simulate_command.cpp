@@ -75,7 +75,7 @@ Simulated Simulate(const SimulateArgs& args, const OnTick& on_tick, std::ostream
   RefuseGivenInterfaces(assembly, args.scene,
                         "parts cannot be moved along a plan (check it, with --without for "
                         "subassemblies, or let Cairn find the contacts from the shapes)");
-  Plan plan = ReadPlan(args.plan, assembly, args.max_ticks);
+  Plan plan = ReadPlan(args.plan, assembly, args.max_ticks, args.model.max_input_size);
   ReportOptions report;
   report.scene_file = args.scene;
   report.normalize_part = ResolveNormalize(assembly, args.normalize, args.scene);

@@ -53,11 +53,11 @@ Eigen::Isometry3d FinalPose(const json& state, const std::string& path, const Js
 
 }  // namespace
 
-AssemblyDef ReadAsapAssembly(const std::string& path) {
+AssemblyDef ReadAsapAssembly(const std::string& path, std::uint64_t max_input_size) {
   std::filesystem::path config = path;
-  if (std::filesystem::is_directory(config)) config /= "config.json";
+  if (IsDirectory(path)) config /= "config.json";
   const std::string file = config.string();
-  const json doc = io_internal::ReadJsonFile(file);
+  const json doc = io_internal::ReadJsonFile(file, max_input_size);
   const JsonChecker check(file);
   check.Object(doc, "");
   if (doc.empty()) check.Fail("", "has no parts (an ASAP config.json maps part keys to poses)");
@@ -77,7 +77,9 @@ AssemblyDef ReadAsapAssembly(const std::string& path) {
     p.name = key;
     p.shape_key = "mesh";
     try {
-      p.polyhedron = ReadMesh(mesh);
+      MeshReadOptions options;
+      options.max_input_size = max_input_size;
+      p.polyhedron = ReadMesh(mesh, options);
     } catch (const InputError& e) {
       check.Fail(part_path, "cannot read mesh '" + mesh + "': " + e.message());
     }

@@ -699,16 +699,18 @@ Assembly CreateCompasAssembly(const CompasModel& model, const std::string& file)
   }
 }
 
-Assembly ReadCompasScene(const std::string& path, const CompasOptions& options) {
-  return CreateCompasAssembly(CompasToModel(ReadCompasAssembly(path), options, path), path);
+Assembly ReadCompasScene(const std::string& path, const CompasOptions& options,
+                         std::uint64_t max_input_size) {
+  return CreateCompasAssembly(
+      CompasToModel(ReadCompasAssembly(path, max_input_size), options, path), path);
 }
 
 CompasAssembly ParseCompasAssembly(const json& doc, const std::string& file) {
   return CompasParser(file).Parse(doc);
 }
 
-CompasAssembly ReadCompasAssembly(const std::string& path) {
-  return ParseCompasAssembly(io_internal::ReadJsonFile(path), path);
+CompasAssembly ReadCompasAssembly(const std::string& path, std::uint64_t max_input_size) {
+  return ParseCompasAssembly(io_internal::ReadJsonFile(path, max_input_size), path);
 }
 
 }  // namespace cairn

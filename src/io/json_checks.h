@@ -8,7 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
-#include <fstream>
+#include <cstdint>
 #include <initializer_list>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -20,6 +20,7 @@
 #include "cairn/core/error.h"
 #include "cairn/core/tolerances.h"
 #include "cairn/core/types.h"
+#include "cairn/io/input_file.h"
 
 namespace cairn::io_internal {
 
@@ -313,14 +314,10 @@ inline json ParseJsonText(const std::string& text, const std::string& file) {
   return json::parse(text);
 }
 
-// Reads the file at `path` and parses it (ParseJsonText).
-inline json ReadJsonFile(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path, "", "cannot open the file for reading");
-  std::ostringstream buffer;
-  buffer << in.rdbuf();
-  if (in.bad()) throw InputError(path, "", "cannot read the file");
-  return ParseJsonText(buffer.str(), path);
+// Reads the file at `path` (ReadInputFile: a regular file of at most
+// `max_size` bytes) and parses it (ParseJsonText).
+inline json ReadJsonFile(const std::string& path, std::uint64_t max_size) {
+  return ParseJsonText(ReadInputFile(path, max_size), path);
 }
 
 }  // namespace cairn::io_internal

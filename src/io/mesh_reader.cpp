@@ -5,18 +5,19 @@
 
 #include <algorithm>
 #include <assimp/Importer.hpp>
-#include <filesystem>
 #include <map>
 
 #include "cairn/core/error.h"
 #include "cairn/core/tolerances.h"
+#include "cairn/io/input_file.h"
 
 namespace cairn {
 
 PolyhedronDef ReadMesh(const std::string& path, const MeshReadOptions& options,
                        MeshMergeStats* stats) {
-  if (!std::filesystem::is_regular_file(path))
-    throw InputError(path, "", "cannot read the mesh file: no such file");
+  // Assimp opens the file itself: checked first (a FIFO would block it, a
+  // device would be read without end).
+  CheckInputFile(path, options.max_input_size, "mesh file");
   Assimp::Importer importer;
   // Triangulate polygons, weld identical vertices (STL stores every triangle's
   // corners apart); keep the file's units and frame (no scaling, no axis

@@ -12,8 +12,9 @@ namespace cairn {
 using nlohmann::json;
 
 std::map<int, std::vector<CandidatePath>> ReadCandidatePaths(const std::string& file,
-                                                             const Assembly& assembly) {
-  const json doc = io_internal::ReadJsonFile(file);
+                                                             const Assembly& assembly,
+                                                             std::uint64_t max_input_size) {
+  const json doc = io_internal::ReadJsonFile(file, max_input_size);
   if (!doc.is_object())
     throw InputError(file, "", "must be a JSON object from part name to a list of paths");
   std::map<int, std::vector<CandidatePath>> out;

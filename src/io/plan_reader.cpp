@@ -127,9 +127,11 @@ PlanDef ParsePlanJson(const nlohmann::json& doc, const std::string& file, int di
   return PlanParser(file, dimension).Parse(doc);
 }
 
-Plan ReadPlan(const std::string& path, const Assembly& assembly, long long max_ticks) {
-  return Plan::Create(ParsePlanJson(io_internal::ReadJsonFile(path), path, assembly.dimension()),
-                      assembly, path, max_ticks);
+Plan ReadPlan(const std::string& path, const Assembly& assembly, long long max_ticks,
+              std::uint64_t max_input_size) {
+  return Plan::Create(
+      ParsePlanJson(io_internal::ReadJsonFile(path, max_input_size), path, assembly.dimension()),
+      assembly, path, max_ticks);
 }
 
 }  // namespace cairn

@@ -42,7 +42,8 @@ constexpr std::initializer_list<const char*> kShapeKeys = {"polygon", "box", "po
 // on the way; the first fault throws an InputError with its JSON path.
 class SceneParser : private io_internal::JsonChecker {
  public:
-  explicit SceneParser(const std::string& file) : JsonChecker(file), file_(file) {}
+  SceneParser(const std::string& file, std::uint64_t max_input_size)
+      : JsonChecker(file), file_(file), max_input_size_(max_input_size) {}
 
   AssemblyDef Parse(const json& doc) {
     if (!doc.is_object()) Fail("", "a scene must be a JSON object, not " + Article(doc));
@@ -305,26 +306,32 @@ class SceneParser : private io_internal::JsonChecker {
     const std::filesystem::path base = std::filesystem::path(file_).parent_path();
     const std::string mesh_file = (base / name).lexically_normal().string();
     try {
-      return ReadMesh(mesh_file);
+      MeshReadOptions options;
+      options.max_input_size = max_input_size_;
+      return ReadMesh(mesh_file, options);
     } catch (const InputError& e) {
       Fail(shape_path, "cannot read mesh '" + mesh_file + "': " + e.message());
     }
   }
 
   const std::string& file_;
+  std::uint64_t max_input_size_;
   int dim_ = 2;
 };
 
 }  // namespace
 
-AssemblyDef ParseSceneJson(const nlohmann::json& doc, const std::string& file) {
-  return SceneParser(file).Parse(doc);
+AssemblyDef ParseSceneJson(const nlohmann::json& doc, const std::string& file,
+                           std::uint64_t max_input_size) {
+  return SceneParser(file, max_input_size).Parse(doc);
 }
 
-AssemblyDef ReadSceneDef(const std::string& path) {
-  return ParseSceneJson(io_internal::ReadJsonFile(path), path);
+AssemblyDef ReadSceneDef(const std::string& path, std::uint64_t max_input_size) {
+  return ParseSceneJson(io_internal::ReadJsonFile(path, max_input_size), path, max_input_size);
 }
 
-Assembly ReadScene(const std::string& path) { return Assembly::Create(ReadSceneDef(path), path); }
+Assembly ReadScene(const std::string& path, std::uint64_t max_input_size) {
+  return Assembly::Create(ReadSceneDef(path, max_input_size), path);
+}
 
 }  // namespace cairn

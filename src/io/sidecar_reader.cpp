@@ -24,8 +24,10 @@ double Positive(const JsonChecker& check, const json& j, const std::string& path
 
 }  // namespace
 
-void ApplySidecar(const std::string& path, AssemblyDef& def) {
-  const json doc = io_internal::ReadJsonFile(path);
+std::map<std::string, std::string> ApplySidecar(const std::string& path, AssemblyDef& def,
+                                                std::uint64_t max_input_size) {
+  std::map<std::string, std::string> set_by;
+  const json doc = io_internal::ReadJsonFile(path, max_input_size);
   const JsonChecker check(path);
   check.Object(doc, "");
   check.CheckVersion(doc, "cairn_sidecar", "sidecar");
@@ -39,9 +41,12 @@ void ApplySidecar(const std::string& path, AssemblyDef& def) {
   }
   if (doc.contains("density")) {
     const double rho = Positive(check, doc["density"], "density");
-    for (PartDef& p : def.parts) p.density = rho;
+    for (PartDef& p : def.parts) {
+      p.density = rho;
+      set_by[p.name] = "density";
+    }
   }
-  if (!doc.contains("parts")) return;
+  if (!doc.contains("parts")) return set_by;
   const json& parts = check.Object(doc["parts"], "parts");
   for (const auto& item : parts.items()) {
     const std::string part_path = Child("parts", item.key());
@@ -51,10 +56,22 @@ void ApplySidecar(const std::string& path, AssemblyDef& def) {
     const json& part = check.Object(item.value(), part_path);
     check.CheckKeys(part, part_path, {"fixed", "density", "mass"});
     if (part.contains("fixed")) it->fixed = check.Bool(part["fixed"], Child(part_path, "fixed"));
-    if (part.contains("density"))
+    if (part.contains("density")) {
       it->density = Positive(check, part["density"], Child(part_path, "density"));
-    if (part.contains("mass")) it->mass = Positive(check, part["mass"], Child(part_path, "mass"));
+      set_by[it->name] = Child(part_path, "density");
+    }
+    if (part.contains("mass")) {
+      const std::string mass_path = Child(part_path, "mass");
+      const double m = Positive(check, part["mass"], mass_path);
+      if (m < limits::kMinMass || m > limits::kMaxMass)
+        check.Fail(mass_path, "the part's mass " + FormatNumber(m) + " is out of range (" +
+                                  FormatNumber(limits::kMinMass) + " to " +
+                                  FormatNumber(limits::kMaxMass) + " mass units)");
+      it->mass = m;
+      set_by[it->name] = mass_path;
+    }
   }
+  return set_by;
 }
 
 }  // namespace cairn

@@ -2,7 +2,13 @@
 // docs/step-format.md). The only source of Cairn that includes OpenCASCADE.
 //
 // ReadStepAssembly, as a table of contents:
-//   1. ReadDocument: the file into an XCAF document (names on), its length unit.
+//   0. The file checked and read whole (ReadInputFile), its text checked
+//      (CheckStepText: NUL bytes, numbers that are not finite, references to
+//      entities the file does not define), then everything below in a child
+//      process (RunIsolated: a crash, a hang or a runaway allocation of
+//      OpenCASCADE is an InputError of the file), the model passed back
+//      serialised (ModelWriter, ModelReader).
+//   1. ReadDocument: the text into an XCAF document (names on), its length unit.
 //   2. CollectLeaves: the assembly tree walked from the free shapes; each leaf
 //      instance with its composed location (world = L_root · ... · L_leaf).
 //   3. PartNames: product names, instances of one product numbered.
@@ -29,6 +35,7 @@
 #include <Message_PrinterOStream.hxx>
 #include <Poly_PolygonOnTriangulation.hxx>
 #include <Poly_Triangulation.hxx>
+#include <Precision.hxx>
 #include <STEPCAFControl_Reader.hxx>
 #include <Standard_Failure.hxx>
 #include <TDF_Label.hxx>
@@ -50,15 +57,23 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
+#include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <map>
 #include <mutex>
+#include <new>
+#include <set>
+#include <sstream>
 
 #include "cairn/core/error.h"
 #include "cairn/core/format.h"
 #include "cairn/core/tolerances.h"
 #include "cairn/geometry/mesh_faces.h"
 #include "cairn/geometry/polyhedron.h"
+#include "cairn/io/input_file.h"
+#include "io/isolated_call.h"
 
 // LeakSanitizer (the CI's sanitized build): OpenCASCADE 7.6 (Debian) keeps
 // the tables its STEP session builds once (IFSelect_Editor's, the singleton of
@@ -133,14 +148,16 @@ class Document {
   Handle(TDocStd_Document) doc_;
 };
 
-// 1. The file into `doc`; returns the length unit of the shapes in metres.
-double ReadDocument(const std::string& path, Document& document) {
+// 1. The file's `text` into `doc`; returns the length unit of the shapes in
+// metres.
+double ReadDocument(const std::string& path, const std::string& text, Document& document) {
   STEPCAFControl_Reader reader;
   reader.SetNameMode(true);
   reader.SetColorMode(false);
   reader.SetLayerMode(false);
   reader.SetPropsMode(false);
-  if (reader.ReadFile(path.c_str()) != IFSelect_RetDone)
+  std::istringstream stream(text);
+  if (reader.ChangeReader().ReadStream(path.c_str(), stream) != IFSelect_RetDone)
     throw InputError(path, "", "not a STEP file (OpenCASCADE cannot read it)");
   Handle(TDocStd_Document) doc = document.doc();
   if (!reader.Transfer(doc))
@@ -378,10 +395,9 @@ std::vector<Vector3> ExactPolygon(const TopoDS_Face& face, const Handle(Poly_Tri
 // 6. The polyhedron of one solid (placed, in metres), tessellated to
 // `deflection` (the file's unit).
 PolyhedronDef ToPolyhedron(const TopoDS_Solid& solid, double deflection, double unit, double size_m,
-                           double merge_tol, const std::string& path, StepPartReport& report) {
+                           double merge_tol, StepPartReport& report) {
   const BRepMesh_IncrementalMesh mesher(solid, deflection, false, kMeshAngularDeflection, false);
-  if (!mesher.IsDone())
-    throw InputError(path, "", "part '" + report.name + "' cannot be tessellated");
+  if (!mesher.IsDone()) throw Standard_Failure("BRepMesh_IncrementalMesh did not finish");
   Welder welder(kWeldFactor * size_m);
   std::vector<std::array<int, 3>> triangles;
   std::vector<std::vector<int>> polygons;
@@ -391,9 +407,7 @@ PolyhedronDef ToPolyhedron(const TopoDS_Solid& solid, double deflection, double 
     TopLoc_Location tri_loc;
     const Handle(Poly_Triangulation)& tri = BRep_Tool::Triangulation(face, tri_loc);
     if (tri.IsNull())
-      throw InputError(path, "",
-                       "part '" + report.name + "': face " + std::to_string(face_index) +
-                           " cannot be tessellated");
+      throw Standard_Failure(("face " + std::to_string(face_index) + " has no triangles").c_str());
     if (IsExactPlanar(face)) {
       std::vector<int> polygon;
       for (const Vector3& p : ExactPolygon(face, tri, tri_loc, unit)) {
@@ -434,13 +448,26 @@ PolyhedronDef ToPolyhedron(const TopoDS_Solid& solid, double deflection, double 
   return def;
 }
 
-StepModel ReadStepModel(const std::string& path, const StepReadOptions& options) {
-  if (!std::filesystem::is_regular_file(path))
-    throw InputError(path, "", "cannot read the STEP file: no such file");
+// The chordal tolerance's faults name `--mesh-tolerance` when the user gave
+// one (it is the option's fault); with the default they are the file's, and
+// say that the option exists.
+[[noreturn]] void TessellationFault(const std::string& path, const StepReadOptions& options,
+                                    double default_m, const std::string& what) {
+  if (options.mesh_tolerance > 0)
+    throw InputError("", "--mesh-tolerance",
+                     FormatNumber(options.mesh_tolerance) + " m: " + what + " in " + path +
+                         " (the default for this file is " + FormatNumber(default_m) + " m)");
+  throw InputError(path, "",
+                   what + " (tessellated within the default chordal tolerance " +
+                       FormatNumber(default_m) + " m; --mesh-tolerance sets another)");
+}
+
+StepModel ReadStepModel(const std::string& path, const std::string& text,
+                        const StepReadOptions& options) {
   SilenceOcct();
   Document document;
   StepModel model;
-  model.length_unit = ReadDocument(path, document);
+  model.length_unit = ReadDocument(path, text, document);
   const double unit = model.length_unit;
 
   // 2. Leaves, placed.
@@ -468,12 +495,44 @@ StepModel ReadStepModel(const std::string& path, const StepReadOptions& options)
     diagonals.push_back(Diagonal(solids.back()));
   }
 
-  // 5. One chordal tolerance (the file's unit) for the whole assembly.
-  const double smallest = *std::min_element(diagonals.begin(), diagonals.end());
-  const double deflection = options.mesh_tolerance > 0 ? options.mesh_tolerance / unit
-                                                       : kDefaultMeshToleranceFactor * smallest;
-  if (!(deflection > 0))
-    throw InputError(path, "", "part '" + names[0] + "' has no extent (an empty solid?)");
+  // 5. One chordal tolerance (the file's unit) for the whole assembly: the
+  // user's within what OpenCASCADE tessellates (Precision::Confusion() of
+  // the file's unit), not finer than kMinMeshToleranceFactor of the smallest
+  // part, and below its size.
+  const size_t smallest_k =
+      static_cast<size_t>(std::min_element(diagonals.begin(), diagonals.end()) - diagonals.begin());
+  const double smallest = diagonals[smallest_k];
+  if (!(smallest > 0) || !std::isfinite(smallest))
+    throw InputError(
+        path, "", "part '" + EscapedName(names[smallest_k]) + "' has no extent (an empty solid?)");
+  const double default_deflection = kDefaultMeshToleranceFactor * smallest;
+  const double default_m = default_deflection * unit;
+  if (options.mesh_tolerance > 0) {
+    if (!(options.mesh_tolerance / unit >= Precision::Confusion()))
+      throw InputError("", "--mesh-tolerance",
+                       FormatNumber(options.mesh_tolerance) +
+                           " m is finer than OpenCASCADE tessellates " + path + ": at least " +
+                           FormatNumber(Precision::Confusion() * unit) +
+                           " m (the default for this file is " + FormatNumber(default_m) + " m)");
+    const double finest = kMinMeshToleranceFactor * smallest;
+    if (!(options.mesh_tolerance / unit >= finest))
+      throw InputError("", "--mesh-tolerance",
+                       FormatNumber(options.mesh_tolerance) + " m is finer than " +
+                           FormatNumber(kMinMeshToleranceFactor) + " of the part '" +
+                           EscapedName(names[smallest_k]) + "' of " + path + " (" +
+                           FormatNumber(smallest * unit) + " m across): at least " +
+                           FormatNumber(finest * unit) + " m (the default for this file is " +
+                           FormatNumber(default_m) + " m)");
+    if (!(options.mesh_tolerance / unit < smallest))
+      throw InputError("", "--mesh-tolerance",
+                       FormatNumber(options.mesh_tolerance) + " m is larger than the part '" +
+                           EscapedName(names[smallest_k]) + "' of " + path + " (" +
+                           FormatNumber(smallest * unit) +
+                           " m across): give less (the default for this file is " +
+                           FormatNumber(default_m) + " m)");
+  }
+  const double deflection =
+      options.mesh_tolerance > 0 ? options.mesh_tolerance / unit : default_deflection;
 
   // 6. The parts.
   model.def.name = std::filesystem::path(path).stem().string();
@@ -493,8 +552,15 @@ StepModel ReadStepModel(const std::string& path, const StepReadOptions& options)
     // tessellated parts kStepLengthToleranceOfChord × the chord (below).
     const double tol = std::max(ToleranceFactors{}.length * diagonals[k] * unit,
                                 kStepLengthToleranceOfChord * deflection * unit);
-    part.polyhedron =
-        ToPolyhedron(solids[k], deflection, unit, diagonals[k] * unit, tol, path, report);
+    try {
+      part.polyhedron = ToPolyhedron(solids[k], deflection, unit, diagonals[k] * unit, tol, report);
+    } catch (const Standard_Failure& e) {
+      TessellationFault(path, options, default_m,
+                        "part '" + EscapedName(names[k]) + "' cannot be tessellated (" +
+                            (e.GetMessageString() && *e.GetMessageString() ? e.GetMessageString()
+                                                                           : "OpenCASCADE") +
+                            ")");
+    }
     if (!Polyhedron::Check(*part.polyhedron, tol))
       report.volume = Polyhedron::Create(*part.polyhedron, tol).mass().volume;
     model.def.parts.push_back(std::move(part));
@@ -510,22 +576,325 @@ StepModel ReadStepModel(const std::string& path, const StepReadOptions& options)
                   [](const StepPartReport& r) { return r.approximated; })) {
     model.def.tolerance = kStepLengthToleranceOfChord * deflection * unit;
     model.def.tolerance_option = "--mesh-tolerance";
+    // Each part a valid solid at that tolerance: a tessellation too coarse
+    // (facets that cross) is the chordal tolerance's fault.
+    for (size_t k = 0; k < model.def.parts.size(); ++k) {
+      const auto fault = Polyhedron::Check(*model.def.parts[k].polyhedron, model.def.tolerance);
+      if (fault)
+        TessellationFault(path, options, default_m,
+                          "the tessellation of part '" + EscapedName(names[k]) +
+                              "' is not a valid solid (" + fault->message + ")");
+    }
   }
   return model;
+}
+
+// 0. What OpenCASCADE crashes on or spins on, found in the text first and
+// said with its line: a NUL byte, a number that is not finite (1.E400, NAN,
+// INF), a reference to an entity the file does not define.
+void CheckStepText(const std::string& text, const std::string& path) {
+  const auto line_of = [&](size_t offset) {
+    return 1 + std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(offset), '\n');
+  };
+  if (const size_t nul = text.find('\0'); nul != std::string::npos)
+    throw InputError(path, "",
+                     "a NUL byte at line " + std::to_string(line_of(nul)) +
+                         " (a STEP file is text; is this a binary file?)");
+  const auto fail = [&](size_t line, const std::string& entity, const std::string& what) {
+    throw InputError(path, "",
+                     "line " + std::to_string(line) + (entity.empty() ? "" : " (#" + entity + ")") +
+                         ": " + what);
+  };
+  const auto is_digit = [](char c) { return c >= '0' && c <= '9'; };
+  const auto is_alpha = [](char c) { return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z'); };
+  struct Reference {
+    std::string id, entity;
+    size_t line;
+  };
+  std::set<std::string> defined;
+  std::vector<Reference> references;
+  std::string entity;  // the entity whose definition is being read
+  size_t line = 1;
+  const size_t n = text.size();
+  size_t i = 0;
+  while (i < n) {
+    const char c = text[i];
+    if (c == '\n') {
+      ++line, ++i;
+    } else if (c == '\'' || c == '"') {  // a string or binary: to its end ('' is a quote)
+      for (++i; i < n; ++i) {
+        if (text[i] == '\n') ++line;
+        if (text[i] != c) continue;
+        if (c == '\'' && i + 1 < n && text[i + 1] == '\'') {
+          ++i;
+          continue;
+        }
+        ++i;
+        break;
+      }
+    } else if (c == '/' && i + 1 < n && text[i + 1] == '*') {  // a comment
+      const size_t end = text.find("*/", i + 2);
+      const size_t stop = end == std::string::npos ? n : end + 2;
+      line +=
+          static_cast<size_t>(std::count(text.begin() + static_cast<std::ptrdiff_t>(i),
+                                         text.begin() + static_cast<std::ptrdiff_t>(stop), '\n'));
+      i = stop;
+    } else if (c == '#') {  // an entity: defined when `=` follows
+      size_t j = i + 1;
+      while (j < n && text[j] == '0' && j + 1 < n && is_digit(text[j + 1])) ++j;
+      const size_t start = j;
+      while (j < n && is_digit(text[j])) ++j;
+      const std::string id = text.substr(start, j - start);
+      size_t k = j;
+      while (k < n && (text[k] == ' ' || text[k] == '\t' || text[k] == '\r' || text[k] == '\n'))
+        ++k;
+      if (!id.empty() && k < n && text[k] == '=') {
+        defined.insert(id);
+        entity = id;
+      } else if (!id.empty()) {
+        references.push_back({id, entity, line});
+      }
+      i = j;
+    } else if (is_digit(c) || ((c == '+' || c == '-') && i + 1 < n &&
+                               (is_digit(text[i + 1]) || text[i + 1] == '.'))) {
+      // A number: sign, digits, fraction, exponent.
+      size_t j = i + 1;
+      while (j < n && (is_digit(text[j]) || text[j] == '.')) ++j;
+      if (j < n && (text[j] == 'E' || text[j] == 'e')) {
+        size_t k = j + 1;
+        if (k < n && (text[k] == '+' || text[k] == '-')) ++k;
+        if (k < n && is_digit(text[k])) {
+          while (k < n && is_digit(text[k])) ++k;
+          j = k;
+        }
+      }
+      const std::string number = text.substr(i, j - i);
+      if (!std::isfinite(std::strtod(number.c_str(), nullptr)))
+        fail(line, entity,
+             "the number " + number + " is not finite (beyond the range of a double)");
+      i = j;
+    } else if (c == '.' && i + 1 < n && is_alpha(text[i + 1])) {  // an enumeration .NAME.
+      size_t j = i + 1;
+      while (j < n && (is_alpha(text[j]) || is_digit(text[j]) || text[j] == '_')) ++j;
+      i = j < n && text[j] == '.' ? j + 1 : j;
+    } else if (is_alpha(c) || c == '_') {  // a keyword: an entity's type when `(` follows
+      size_t j = i;
+      while (j < n && (is_alpha(text[j]) || is_digit(text[j]) || text[j] == '_' || text[j] == '-'))
+        ++j;
+      std::string word = text.substr(i, j - i);
+      for (char& ch : word) ch = static_cast<char>(std::toupper(static_cast<unsigned char>(ch)));
+      size_t k = j;
+      while (k < n && (text[k] == ' ' || text[k] == '\t' || text[k] == '\r' || text[k] == '\n'))
+        ++k;
+      if ((word == "NAN" || word == "INF" || word == "INFINITY") && !(k < n && text[k] == '('))
+        fail(line, entity,
+             text.substr(i, j - i) + " is not a number a STEP file can hold (numbers are finite)");
+      i = j;
+    } else {
+      if (c == ';') entity.clear();
+      ++i;
+    }
+  }
+  for (const Reference& r : references)
+    if (!defined.count(r.id))
+      fail(r.line, r.entity, "refers to #" + r.id + ", which the file does not define");
+}
+
+// The child's answer: 'M' and the model, or 'E' and an InputError.
+class Writer {
+ public:
+  void Byte(char c) { out_ += c; }
+  void U64(std::uint64_t x) { out_.append(reinterpret_cast<const char*>(&x), sizeof x); }
+  void F64(double x) { out_.append(reinterpret_cast<const char*>(&x), sizeof x); }
+  void Str(const std::string& s) {
+    U64(s.size());
+    out_ += s;
+  }
+  const std::string& str() const { return out_; }
+
+ private:
+  std::string out_;
+};
+
+// Reads what Writer wrote. @throws std::runtime_error on a short answer.
+class Reader {
+ public:
+  explicit Reader(const std::string& in) : in_(in) {}
+  char Byte() { return Take(1)[0]; }
+  std::uint64_t U64() {
+    std::uint64_t x = 0;
+    std::memcpy(&x, Take(sizeof x), sizeof x);
+    return x;
+  }
+  double F64() {
+    double x = 0;
+    std::memcpy(&x, Take(sizeof x), sizeof x);
+    return x;
+  }
+  std::string Str() {
+    const std::uint64_t size = U64();
+    if (size > in_.size()) throw std::runtime_error("STEP reader: a short answer from its process");
+    return std::string(Take(static_cast<size_t>(size)), static_cast<size_t>(size));
+  }
+  // A count of items of at least `bytes` each: no more than the bytes left.
+  size_t Count(size_t bytes) {
+    const std::uint64_t count = U64();
+    if (count > (in_.size() - pos_) / bytes)
+      throw std::runtime_error("STEP reader: a short answer from its process");
+    return static_cast<size_t>(count);
+  }
+
+ private:
+  const char* Take(size_t size) {
+    if (size > in_.size() - pos_)
+      throw std::runtime_error("STEP reader: a short answer from its process");
+    const char* p = in_.data() + pos_;
+    pos_ += size;
+    return p;
+  }
+  const std::string& in_;
+  size_t pos_ = 0;
+};
+
+void WriteModel(const StepModel& model, Writer& w) {
+  w.Byte('M');
+  w.F64(model.length_unit);
+  w.Str(model.def.name);
+  w.F64(model.def.tolerance);
+  w.Str(model.def.tolerance_option);
+  w.U64(model.def.parts.size());
+  for (size_t k = 0; k < model.def.parts.size(); ++k) {
+    const PartDef& part = model.def.parts[k];
+    w.Str(part.name);
+    w.U64(part.polyhedron->vertices.size());
+    for (const Vector3& v : part.polyhedron->vertices) w.F64(v.x()), w.F64(v.y()), w.F64(v.z());
+    w.U64(part.polyhedron->faces.size());
+    for (const std::vector<int>& face : part.polyhedron->faces) {
+      w.U64(face.size());
+      for (const int v : face) w.U64(static_cast<std::uint64_t>(v));
+    }
+    const StepPartReport& r = model.parts[k];
+    w.Str(r.name);
+    w.Byte(r.approximated ? 1 : 0);
+    w.U64(static_cast<std::uint64_t>(r.exact_faces));
+    w.U64(static_cast<std::uint64_t>(r.tessellated_faces));
+    w.F64(r.mesh_tolerance);
+    w.F64(r.exact_volume);
+    w.F64(r.exact_area);
+    w.F64(r.volume);
+  }
+}
+
+StepModel ReadModel(Reader& r) {
+  StepModel model;
+  model.length_unit = r.F64();
+  model.def.name = r.Str();
+  model.def.tolerance = r.F64();
+  model.def.tolerance_option = r.Str();
+  const size_t parts = r.Count(8);
+  for (size_t k = 0; k < parts; ++k) {
+    PartDef part;
+    part.name = r.Str();
+    PolyhedronDef poly;
+    poly.vertices.resize(r.Count(24));
+    for (Vector3& v : poly.vertices) {
+      const double x = r.F64(), y = r.F64(), z = r.F64();
+      v = Vector3(x, y, z);
+    }
+    poly.faces.resize(r.Count(8));
+    for (std::vector<int>& face : poly.faces) {
+      face.resize(r.Count(8));
+      for (int& v : face) v = static_cast<int>(r.U64());
+    }
+    part.polyhedron = std::move(poly);
+    model.def.parts.push_back(std::move(part));
+    StepPartReport report;
+    report.name = r.Str();
+    report.approximated = r.Byte() != 0;
+    report.exact_faces = static_cast<int>(r.U64());
+    report.tessellated_faces = static_cast<int>(r.U64());
+    report.mesh_tolerance = r.F64();
+    report.exact_volume = r.F64();
+    report.exact_area = r.F64();
+    report.volume = r.F64();
+    model.parts.push_back(report);
+  }
+  return model;
+}
+
+void WriteError(const std::string& file, const std::string& json_path, const std::string& message,
+                Writer& w) {
+  w.Byte('E');
+  w.Str(file);
+  w.Str(json_path);
+  w.Str(message);
+}
+
+// What the child does: the model or the error, serialised. Never throws.
+std::string ReadInChild(const std::string& path, const std::string& text,
+                        const StepReadOptions& options) noexcept {
+  Writer w;
+  try {
+    WriteModel(ReadStepModel(path, text, options), w);
+  } catch (const InputError& e) {
+    w = Writer();
+    WriteError(e.file(), e.json_path(), e.message(), w);
+  } catch (const Standard_Failure& e) {
+    // OpenCASCADE's own exceptions on broken geometry: bad input, not a crash.
+    w = Writer();
+    WriteError(path, "",
+               std::string("OpenCASCADE failed on this file: ") +
+                   (e.GetMessageString() && *e.GetMessageString() ? e.GetMessageString()
+                                                                  : e.DynamicType()->Name()),
+               w);
+  } catch (const std::bad_alloc&) {
+    w = Writer();
+    WriteError(path, "",
+               "OpenCASCADE could not read this file: it needs more memory than the limit, " +
+                   DescribeByteSize(options.memory_limit),
+               w);
+  } catch (const std::exception& e) {
+    w = Writer();
+    WriteError(path, "", std::string("OpenCASCADE could not read this file: ") + e.what(), w);
+  } catch (...) {
+    w = Writer();
+    WriteError(path, "", "OpenCASCADE could not read this file", w);
+  }
+  return w.str();
 }
 
 }  // namespace
 
 StepModel ReadStepAssembly(const std::string& path, const StepReadOptions& options) {
-  try {
-    return ReadStepModel(path, options);
-  } catch (const Standard_Failure& e) {
-    // OpenCASCADE's own exceptions on broken geometry: bad input, not a crash.
-    throw InputError(path, "",
-                     std::string("OpenCASCADE failed on this file: ") +
-                         (e.GetMessageString() && *e.GetMessageString() ? e.GetMessageString()
-                                                                        : e.DynamicType()->Name()));
+  const std::string text = ReadInputFile(path, options.max_input_size, "STEP file");
+  if (options.check_text) CheckStepText(text, path);
+  io_internal::IsolationLimits limits;
+  limits.time_limit = options.time_limit;
+  limits.memory_limit = options.memory_limit;
+  const io_internal::IsolatedResult result =
+      io_internal::RunIsolated([&] { return ReadInChild(path, text, options); }, limits);
+  using Status = io_internal::IsolatedResult::Status;
+  switch (result.status) {
+    case Status::kDone: {
+      Reader r(result.output);
+      if (r.Byte() == 'M') return ReadModel(r);
+      std::string file = r.Str(), json_path = r.Str(), message = r.Str();
+      throw InputError(std::move(file), std::move(json_path), std::move(message));
+    }
+    case Status::kTimedOut:
+      throw InputError(path, "",
+                       "OpenCASCADE could not read this file (it took longer than " +
+                           FormatNumber(options.time_limit) + " s)");
+    case Status::kCrashed:
+      throw InputError(path, "",
+                       "OpenCASCADE could not read this file (it crashed" +
+                           (result.signal ? " with " + io_internal::SignalName(result.signal)
+                                          : ": exit status " + std::to_string(result.exit_code)) +
+                           ")");
+    case Status::kNoFork:
+      break;
   }
+  throw std::runtime_error("STEP reader: " + result.output);
 }
 
 }  // namespace cairn

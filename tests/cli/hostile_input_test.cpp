@@ -279,6 +279,102 @@ std::string WithoutTimes(const std::string& doc) {
   return j.dump();
 }
 
+// --- Input files that are not regular files, or too large: refused at once
+// (a FIFO never waited on, /dev/zero never read), saying what they are;
+// every failure of the file system exit 2 naming the file.
+
+// A fresh folder for one test's files.
+std::string Folder(const std::string& name) {
+  const std::string dir = testing::TempDir(name);
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
+TEST(HostileInputFiles, WhatIsNotARegularFileIsRefusedSayingWhatItIs) {
+  const std::string dir = Folder("hostile_files");
+  std::filesystem::create_directories(dir + "/adir.json");
+  ASSERT_EQ(::mkfifo((dir + "/fifo.json").c_str(), 0600), 0);
+  std::filesystem::create_symlink("loop.json", dir + "/loop.json");
+  const std::string long_name = dir + "/" + std::string(300, 'a') + ".json";
+  struct Case {
+    std::string args, message;
+  };
+  for (const Case& c : std::vector<Case>{
+           {dir + "/adir.json", dir + "/adir.json: is a directory, not a file"},
+           {dir + "/fifo.json", dir + "/fifo.json: is a FIFO (named pipe), not a regular file"},
+           {"/dev/zero", "/dev/zero: is a character device, not a regular file"},
+           {dir + "/loop.json", dir + "/loop.json: cannot open the file: a loop of symbolic links"},
+           {long_name, long_name + ": cannot open the file: the file name is too long"},
+           {dir + "/fifo.json --format compas --friction 0.5", "is a FIFO (named pipe)"},
+           {dir + "/loop.json --format asap", "a loop of symbolic links"},
+           {dir + "/fifo.json --format asap", "is a FIFO (named pipe)"},
+           {long_name + " --format asap", "the file name is too long"},
+           {ExamplePath("stack3.json") + " --max-input-size 100", "stack3.json: the file is "},
+       }) {
+    SCOPED_TRACE(c.args);
+    ExpectBadInput(Cairn("check " + c.args), {c.message.c_str()});
+  }
+  // The other commands read their model alike; simulate's plan too.
+  ExpectBadInput(Cairn("simulate " + dir + "/fifo.json " + dir + "/fifo.json"), {"is a FIFO"});
+  ExpectBadInput(Cairn("simulate " + ExamplePath("paper_fig1.json") + " " + dir + "/adir.json"),
+                 {"adir.json: is a directory"});
+  ExpectBadInput(Cairn("blocking /dev/zero"), {"/dev/zero: is a character device"});
+  std::filesystem::remove_all(dir);
+}
+
+TEST(HostileInputFiles, MaxInputSizeBoundsWhatIsReadAndCanBeRaised) {
+  const CliRun small = Cairn("check " + ExamplePath("stack3.json") + " --max-input-size 100");
+  ExpectBadInput(small, {"stack3.json: the file is ",
+                         "bytes, more than the maximum input size "
+                         "100 bytes (--max-input-size raises it)"});
+  EXPECT_EQ(Cairn("check " + ExamplePath("stack3.json") + " --max-input-size 64K").exit_code, 0);
+  EXPECT_EQ(Cairn("check " + ExamplePath("stack3.json") + " --max-input-size 2G").exit_code, 0);
+  for (const char* bad : {"0", "1.5G", "lots", "-5", "1T"}) {
+    SCOPED_TRACE(bad);
+    const CliRun r = Cairn("check " + ExamplePath("stack3.json") + " --max-input-size " + bad);
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_NE(r.err.find("--max-input-size"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("must be a positive number of bytes"), std::string::npos) << r.err;
+  }
+}
+
+TEST(HostileInputFiles, AMeshThatIsNotARegularFileSaysWhatItIs) {
+  const std::string dir = Folder("hostile_mesh");
+  std::filesystem::create_directories(dir + "/folder.obj");
+  ASSERT_EQ(::mkfifo((dir + "/fifo.obj").c_str(), 0600), 0);
+  std::filesystem::create_symlink("loop.obj", dir + "/loop.obj");
+  for (const std::string& mesh :
+       {std::string("folder.obj"), std::string("fifo.obj"), std::string("loop.obj"),
+        std::string("/dev/zero"), std::string(300, 'a') + ".obj"}) {
+    SCOPED_TRACE(mesh);
+    json doc = {{"cairn", 1},
+                {"parts",
+                 {{{"name", "floor"},
+                   {"fixed", true},
+                   {"box", {{"min", {-2, -2, -1}}, {"max", {3, 3, 0}}}}},
+                  {{"name", "A"}, {"mesh", mesh}}}}};
+    std::ofstream(dir + "/scene.json") << doc.dump();
+    const CliRun r = Cairn("check " + dir + "/scene.json");
+    ExpectBadInput(r, {"scene.json: parts[1] (\"A\").mesh: cannot read mesh '"});
+    EXPECT_EQ(r.err.find("no such file"), std::string::npos) << r.err;
+  }
+  std::filesystem::remove_all(dir);
+}
+
+TEST(HostileInputFiles, ASidecarThatIsAFifoIsRefused) {
+  const std::string shared = testing::SharedDir();
+  if (shared.empty()) GTEST_SKIP() << "shared/datasets not found: skipping the pen";
+  const std::string dir = Folder("hostile_sidecar");
+  ASSERT_EQ(::mkfifo((dir + "/side.json").c_str(), 0600), 0);
+  std::filesystem::create_directories(dir + "/sided.json");
+  const std::string cap = shared + "/datasets/aplan_bourjault_pen_simple/cap.stp";
+  ExpectBadInput(Cairn("check " + cap + " --format step --sidecar " + dir + "/side.json"),
+                 {"side.json: is a FIFO (named pipe), not a regular file"});
+  ExpectBadInput(Cairn("check " + cap + " --format step --sidecar " + dir + "/sided.json"),
+                 {"sided.json: is a directory, not a file"});
+  std::filesystem::remove_all(dir);
+}
+
 TEST(Determinism, PlanGivesTheSameDocumentWithOneOrTwoThreads) {
   for (const std::string& args : {"plan " + ExamplePath("jenga.json") + " --max 2 --json",
                                   "plan " + ExamplePath("paper_fig6.json") + " --json"}) {

@@ -720,6 +720,34 @@ TEST(CompasInterfaces, MisuseExitsTwo) {
 // A scene file's `interfaces`: two boxes that overlap by 1 cm (refused
 // without interfaces) meet on the given square; the upper one stands on it,
 // and falls when the square is moved out from under its centre of mass.
+// Parts that overlap by more than the length tolerance: the message says
+// that --tolerance raises it (and, for a scene, its `tolerance`), with the
+// power of ten above the tolerance as the example; given a larger one, the
+// model loads.
+TEST(ModelTolerance, AnOverlapSaysThatToleranceRaisesIt) {
+  const json scene = {
+      {"cairn", 1},
+      {"parts",
+       {{{"name", "A"}, {"fixed", true}, {"box", {{"min", {0, 0, 0}}, {"max", {1, 1, 1}}}}},
+        {{"name", "B"}, {"box", {{"min", {0, 0, 1 - 2e-5}}, {"max", {1, 1, 2}}}}}}}};
+  const std::string file = testing::TempFile("model_overlap.json", scene.dump());
+  const CliRun r = Cairn("check " + file);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("part 'B' overlaps part 'A' (parts[0]) by more than the tolerance "
+                               "2.44949e-06"));
+  EXPECT_THAT(r.err, HasSubstr("(raise it with --tolerance or the scene's `tolerance`, e.g. "
+                               "--tolerance 1e-5)\n"));
+  EXPECT_EQ(Cairn("check " + file + " --tolerance 1e-4").exit_code, 0);
+  // ASAP's beams, whose meshes interpenetrate by up to ~1e-4 (inches).
+  const std::string shared = testing::SharedDir();
+  if (shared.empty()) GTEST_SKIP() << "shared/datasets not found: skipping the ASAP beam assembly";
+  const CliRun beams = Cairn("check " + shared + "/datasets/asap_beam_assembly --format asap");
+  EXPECT_EQ(beams.exit_code, 2);
+  EXPECT_THAT(beams.err, HasSubstr("part '2' overlaps part '0' (parts[0]) by more than the "
+                                   "tolerance 1.87702e-05"));
+  EXPECT_THAT(beams.err, HasSubstr("(raise it with --tolerance, e.g. --tolerance 1e-4)\n"));
+}
+
 TEST(SceneInterfaces, GivenInterfacesAreTheContacts) {
   const std::string scene = R"({"cairn": 1, "friction": 0.5, "parts": [
     {"name": "base", "fixed": true, "box": {"min": [0, 0, 0], "max": [1, 1, 1]}},

@@ -6,10 +6,13 @@
 // README says; bad STEP input exits 2.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cctype>
 #include <filesystem>
 #include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <random>
 #include <set>
 
 #include "cli/cli_run.h"
@@ -125,6 +128,9 @@ TEST(StepCommand, BadStepInputExitsTwoNamingTheFileAndPart) {
   r = Cairn("blocking " + dir + "/overlap.stp --format step");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("part 'b' overlaps part 'a'"), std::string::npos) << r.err;
+  // ... and says that --tolerance raises the tolerance, with a value above it.
+  EXPECT_NE(r.err.find("(raise it with --tolerance, e.g. --tolerance 1e-"), std::string::npos)
+      << r.err;
   // Flags: --mesh-tolerance belongs to step; --direction needs a direction.
   r = Cairn("check " + dir + "/overlap.stp --mesh-tolerance 0.001");
   EXPECT_EQ(r.exit_code, 2);
@@ -133,6 +139,162 @@ TEST(StepCommand, BadStepInputExitsTwoNamingTheFileAndPart) {
   r = Cairn("blocking " + testing::ExamplePath("stack3.json") + " --direction 0,0,0");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("--direction: must not be the zero vector"), std::string::npos) << r.err;
+  std::filesystem::remove_all(dir);
+}
+
+// A mass or density the sidecar sets that the model refuses is the
+// sidecar's fault, at its JSON path (not the STEP file's `parts[i].mass`).
+TEST(StepCommand, SidecarMassFaultsNameTheSidecar) {
+  std::string scene;
+  const std::string step = PegFiles(scene);
+  const std::string dir = std::filesystem::path(scene).parent_path();
+  struct Case {
+    const char* sidecar;
+    const char* where;
+  };
+  for (const Case& c : {
+           Case{R"({"cairn_sidecar": 1, "parts": {"peg_2": {"mass": 1e40}}})",
+                "side.json: parts.peg_2.mass: the part's mass 1e+40 is out of range"},
+           Case{R"({"cairn_sidecar": 1, "parts": {"peg_2": {"mass": 1e-20}}})",
+                "side.json: parts.peg_2.mass: the part's mass 1e-20 is less than 1/1e+09"},
+           Case{R"({"cairn_sidecar": 1, "density": 1e-40})", "side.json: density: the part's mass"},
+           Case{R"({"cairn_sidecar": 1, "parts": {"peg": {"density": 1e35}}})",
+                "side.json: parts.peg.density: the part's mass"},
+       }) {
+    std::ofstream(dir + "/side.json") << c.sidecar;
+    const auto r = Cairn("check " + step + " --format step --sidecar " + dir + "/side.json");
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_NE(r.err.find(c.where), std::string::npos) << c.sidecar << "\n" << r.err;
+    EXPECT_EQ(r.err.find("pegs.step"), std::string::npos) << r.err;
+  }
+  std::filesystem::remove_all(dir);
+}
+
+// --mesh-tolerance out of what OpenCASCADE tessellates, or so coarse that
+// the facets cross: the option's fault, said as such (the pen's cap.stp).
+TEST(StepCommand, MeshToleranceFaultsNameTheOption) {
+  const std::string shared = testing::SharedDir();
+  if (shared.empty()) GTEST_SKIP() << "shared/datasets not found: skipping the pen's cap.stp";
+  const std::string cap = shared + "/datasets/aplan_bourjault_pen_simple/cap.stp";
+  for (const auto& [tolerance, phrase] : std::vector<std::pair<std::string, std::string>>{
+           {"1e306", "m is larger than the part 'Body' of " + cap},
+           {"1e300", "m is larger than the part 'Body' of " + cap},
+           {"1e-12", "m is finer than OpenCASCADE tessellates " + cap + ": at least 1e-10 m"},
+           {"1e-9", "m is finer than 1e-05 of the part 'Body' of " + cap},
+           {"0.005", "the tessellation of part 'Body' is not a valid solid"}}) {
+    SCOPED_TRACE(tolerance);
+    const auto r = Cairn("check " + cap + " --format step --mesh-tolerance " + tolerance);
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_EQ(r.err.rfind("cairn: error: --mesh-tolerance: ", 0), 0u) << r.err;
+    EXPECT_NE(r.err.find(phrase), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("(the default for this file is"), std::string::npos) << r.err;
+  }
+}
+
+// A STEP file is untrusted input: the pen's part files edited as the
+// reproducers edit them (a dangling reference, NUL bytes, NAN and 1.E400
+// coordinates; read in shared/repro) exit 2 naming the file, never a crash
+// or a hang; and so do a device, a loop of links and a name too long.
+TEST(StepCommand, BrokenStepFilesExitTwoNamingTheFile) {
+  const std::string shared = testing::SharedDir();
+  if (shared.empty()) GTEST_SKIP() << "shared/repro not found: skipping the STEP reproducers";
+  const std::string repro = shared + "/repro/hostile3/";
+  for (const std::string& file : {repro + "step_dangling_ref_segv/head_del_line24.stp",
+                                  repro + "step_dangling_ref_segv/head_del_edge_loop.stp",
+                                  repro + "step_dangling_ref_segv/cartridge_100nul_at_4147.stp",
+                                  repro + "step_dangling_ref_segv/body_nan_inf_point.stp",
+                                  repro + "step_nan_point_hang/body_nan.stp",
+                                  repro + "step_nan_point_hang/body_multi_mutation.stp"}) {
+    SCOPED_TRACE(file);
+    const auto r = Cairn("check " + file + " --format step");
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_EQ(r.err.rfind("cairn: error: " + file + ": ", 0), 0u) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  }
+  const auto r = Cairn("blocking " + repro + "step_nan_point_hang/body_multi_mutation.stp " +
+                       "--format step --direction 1,0,0");
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  const auto z = Cairn("check /dev/zero --format step");
+  EXPECT_EQ(z.exit_code, 2);
+  EXPECT_EQ(z.err, "cairn: error: /dev/zero: is a character device, not a regular file\n");
+  const std::string dir = testing::TempDir("step_paths");
+  std::filesystem::create_directories(dir);
+  std::filesystem::create_symlink("loop.stp", dir + "/loop.stp");
+  const auto loop = Cairn("check " + dir + "/loop.stp --format step");
+  EXPECT_EQ(loop.exit_code, 2);
+  EXPECT_NE(loop.err.find(dir + "/loop.stp: cannot open the STEP file: a loop of symbolic links"),
+            std::string::npos)
+      << loop.err;
+  const std::string long_name = dir + "/" + std::string(300, 'a') + ".stp";
+  const auto named = Cairn("check " + long_name + " --format step");
+  EXPECT_EQ(named.exit_code, 2);
+  EXPECT_NE(named.err.find(long_name + ": cannot open the STEP file: the file name is too long"),
+            std::string::npos)
+      << named.err;
+  std::filesystem::remove_all(dir);
+}
+
+// The pen's part files mutated at random (a fixed seed): a line deleted, NUL
+// bytes inserted, a number replaced by NAN or 1E400. Each gives a verdict
+// (exit 0 or 1: the edit broke nothing that matters; a part file alone has
+// nothing fixed and falls) or exit 2 naming the file: never a crash, an
+// internal error or a hang.
+TEST(StepCommand, MutatedPenFilesGiveAVerdictOrExitTwo) {
+  const std::string shared = testing::SharedDir();
+  if (shared.empty()) GTEST_SKIP() << "shared/datasets not found: skipping the pen's part files";
+  const std::string pen = shared + "/datasets/aplan_bourjault_pen_simple/";
+  const std::vector<std::string> parts = {"body.stp",      "button.stp", "cap.stp",
+                                          "cartridge.stp", "head.stp",   "ink.stp"};
+  const std::string dir = testing::TempDir("step_mutated");
+  std::filesystem::create_directories(dir);
+  std::mt19937 random(20261127);
+  const auto pick = [&](size_t n) {
+    return std::uniform_int_distribution<size_t>(0, n - 1)(random);
+  };
+  int verdicts = 0, exit_two = 0;
+  for (int k = 0; k < 30; ++k) {
+    const std::string part = parts[pick(parts.size())];
+    std::string text = testing::Slurp(pen + part);
+    const int kind = k % 3;
+    if (kind == 0) {  // delete a line
+      std::vector<size_t> starts = {0};
+      for (size_t i = 0; i + 1 < text.size(); ++i)
+        if (text[i] == '\n') starts.push_back(i + 1);
+      const size_t line = pick(starts.size());
+      const size_t end = text.find('\n', starts[line]);
+      text.erase(starts[line],
+                 end == std::string::npos ? std::string::npos : end + 1 - starts[line]);
+    } else if (kind == 1) {  // insert NUL bytes
+      text.insert(pick(text.size()), std::string(1 + pick(100), '\0'));
+    } else {  // a number replaced by NAN or 1E400
+      std::vector<std::pair<size_t, size_t>> numbers;
+      for (size_t i = text.find("DATA;"); i < text.size(); ++i) {
+        if (!std::isdigit(static_cast<unsigned char>(text[i])) || text[i - 1] == '#' ||
+            std::isdigit(static_cast<unsigned char>(text[i - 1])))
+          continue;
+        size_t j = i;
+        while (j < text.size() && (std::isdigit(static_cast<unsigned char>(text[j])) ||
+                                   text[j] == '.' || text[j] == 'E' || text[j] == '-'))
+          ++j;
+        numbers.push_back({i, j - i});
+        i = j;
+      }
+      const auto [at, length] = numbers[pick(numbers.size())];
+      text.replace(at, length, random() % 2 ? "NAN" : "1E400");
+    }
+    const std::string file = dir + "/" + std::to_string(k) + "_" + part;
+    std::ofstream(file, std::ios::binary) << text;
+    SCOPED_TRACE(file);
+    const auto r = Cairn("check " + file + " --format step");
+    EXPECT_TRUE(r.exit_code == 0 || r.exit_code == 1 || r.exit_code == 2)
+        << r.exit_code << ": " << r.err;
+    if (r.exit_code == 2) {
+      EXPECT_NE(r.err.find(file), std::string::npos) << r.err;
+    }
+    (r.exit_code == 2 ? exit_two : verdicts)++;
+  }
+  EXPECT_EQ(verdicts + exit_two, 30);
+  EXPECT_GT(exit_two, 0);  // the mutations do break files
   std::filesystem::remove_all(dir);
 }
 

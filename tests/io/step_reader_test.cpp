@@ -6,10 +6,12 @@
 #include "cairn/io/step_reader.h"
 
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <map>
 
 #include "cairn/core/error.h"
@@ -164,6 +166,110 @@ TEST(ReadStepAssembly, BourjaultPenVolumesWithinTheTessellationTolerance) {
     EXPECT_EQ(again.def.parts[k].polyhedron->vertices, step.def.parts[k].polyhedron->vertices);
 }
 
+// The pen's part file `name` (shared/datasets), or "" when absent.
+std::string PenFile(const std::string& name) {
+  const std::string shared = testing::SharedDir();
+  return shared.empty() ? "" : shared + "/datasets/aplan_bourjault_pen_simple/" + name;
+}
+
+std::string Slurp(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+// `text` written to a fresh temporary .stp file.
+std::string WriteStep(const std::string& name, const std::string& text) {
+  const std::string path = TempPath(name) + ".stp";
+  std::ofstream(path, std::ios::binary) << text;
+  return path;
+}
+
+// What OpenCASCADE crashes or spins on is found in the text first, with its
+// line: each of the pen's cap.stp edited once.
+TEST(ReadStepAssembly, TextFaultsAreSaidWithTheirLine) {
+  const std::string cap = PenFile("cap.stp");
+  if (cap.empty()) GTEST_SKIP() << "shared/datasets not found: skipping the pen's cap.stp";
+  const std::string text = Slurp(cap);
+  const auto edited = [&](const std::string& from, const std::string& to) {
+    std::string t = text;
+    const size_t at = t.find(from);
+    EXPECT_NE(at, std::string::npos) << from;
+    return t.replace(at, from.size(), to);
+  };
+  struct Case {
+    std::string text, phrase;
+  };
+  const std::vector<Case> cases = {
+      {edited("#12 = CARTESIAN_POINT('',(0.,0.,0.));", "#12 = CARTESIAN_POINT('',(NAN,0.,0.));"),
+       "line 24 (#12): NAN is not a number a STEP file can hold"},
+      {edited("#12 = CARTESIAN_POINT('',(0.,0.,0.));", "#12 = CARTESIAN_POINT('',(1.E400,0.,0.));"),
+       "line 24 (#12): the number 1.E400 is not finite"},
+      {edited("#12 = CARTESIAN_POINT('',(0.,0.,0.));", "#12 = CARTESIAN_POINT('',(-inf,0.,0.));"),
+       "line 24 (#12): inf is not a number"},
+      {edited("#12 = CARTESIAN_POINT('',(0.,0.,0.));", ""),
+       "line 23 (#11): refers to #12, which the file does not define"},
+      {edited("#13 = DIRECTION", std::string("#13 = \0DIRECTION", 16)), "a NUL byte at line 25"},
+  };
+  for (const Case& c : cases) {
+    const std::string path = WriteStep("cap_edited", c.text);
+    const std::string why = InputErrorOf([&] { ReadStepAssembly(path); });
+    EXPECT_NE(why.find(path + ": " + c.phrase), std::string::npos) << why;
+    std::filesystem::remove(path);
+  }
+  // Strings, comments and enumerations are not numbers or references.
+  const std::string fine = edited("#7 = PRODUCT('Body','Body','',(#8));",
+                                  "#7 = PRODUCT('Body','NAN #99 1E999','',(#8)); /* #98 NAN */");
+  const std::string path = WriteStep("cap_fine", fine);
+  EXPECT_EQ(InputErrorOf([&] { ReadStepAssembly(path); }), "");
+  std::filesystem::remove(path);
+}
+
+// Past the text's checks, OpenCASCADE runs in a process of its own: its
+// crash on a dangling reference and its endless loop on a NAN coordinate are
+// InputErrors of the file (the repro files of shared/repro, read there).
+TEST(ReadStepAssembly, OpenCascadeCrashesAndHangsAreInputErrors) {
+  const std::string shared = testing::SharedDir();
+  if (shared.empty()) GTEST_SKIP() << "shared/repro not found: skipping OpenCASCADE's crashes";
+  StepReadOptions unchecked;
+  unchecked.check_text = false;
+  const std::string crash = shared + "/repro/hostile3/step_dangling_ref_segv/head_del_line24.stp";
+  const std::string why = InputErrorOf([&] { ReadStepAssembly(crash, unchecked); });
+  EXPECT_NE(why.find(crash + ": OpenCASCADE could not read this file (it crashed"),
+            std::string::npos)
+      << why;
+  unchecked.time_limit = 2;
+  const std::string hang = shared + "/repro/hostile3/step_nan_point_hang/body_nan.stp";
+  EXPECT_EQ(InputErrorOf([&] { ReadStepAssembly(hang, unchecked); }),
+            hang + ": OpenCASCADE could not read this file (it took longer than 2 s)");
+  // Checked, both say what is wrong with their line.
+  EXPECT_NE(InputErrorOf([&] { ReadStepAssembly(crash); }).find("which the file does not define"),
+            std::string::npos);
+  EXPECT_NE(InputErrorOf([&] { ReadStepAssembly(hang); }).find("NAN is not a number"),
+            std::string::npos);
+}
+
+// What is not a regular file is refused before OpenCASCADE sees it.
+TEST(ReadStepAssembly, RefusesWhatIsNotARegularFile) {
+  EXPECT_EQ(InputErrorOf([] { ReadStepAssembly("/dev/zero"); }),
+            "/dev/zero: is a character device, not a regular file");
+  const std::string loop = TempPath("loop") + ".stp";
+  std::filesystem::create_symlink(loop, loop);
+  EXPECT_NE(InputErrorOf([&] { ReadStepAssembly(loop); }).find("a loop of symbolic links"),
+            std::string::npos);
+  std::filesystem::remove(loop);
+  const std::string dir = TempPath("folder");
+  std::filesystem::create_directories(dir);
+  EXPECT_EQ(InputErrorOf([&] { ReadStepAssembly(dir); }), dir + ": is a directory, not a file");
+  StepReadOptions small;
+  small.max_input_size = 10;
+  const std::string cap = PenFile("cap.stp");
+  if (!cap.empty()) {
+    EXPECT_NE(InputErrorOf([&] { ReadStepAssembly(cap, small); }).find("maximum input size"),
+              std::string::npos);
+  }
+  std::filesystem::remove_all(dir);
+}
+
 // ASAP's folder: the meshes placed by config.json's final_state.
 TEST(ReadAsapAssembly, PlacesTheBeamAssemblyMeshes) {
   const std::string shared = testing::SharedDir();
@@ -198,6 +304,36 @@ TEST(ReadAsapAssembly, PlacesTheBeamAssemblyMeshes) {
   std::ofstream(dir + "/config.json") << R"({"0": {"initial_state": [0, 0, 0, 0, 0, 0]}})";
   EXPECT_NE(InputErrorOf([&] { ReadAsapAssembly(dir); }).find("0.final_state: required key"),
             std::string::npos);
+  std::filesystem::remove_all(dir);
+}
+
+// An ASAP folder whose config.json or mesh is a FIFO or a loop of links: an
+// InputError naming the file, never a wait or an internal error.
+TEST(ReadAsapAssembly, ConfigAndMeshesMustBeRegularFiles) {
+  const std::string dir = TempPath("asap_hostile");
+  std::filesystem::create_directories(dir);
+  ASSERT_EQ(::mkfifo((dir + "/config.json").c_str(), 0600), 0);
+  EXPECT_EQ(InputErrorOf([&] { ReadAsapAssembly(dir); }),
+            dir + "/config.json: is a FIFO (named pipe), not a regular file");
+  std::filesystem::remove(dir + "/config.json");
+  std::filesystem::create_symlink("config.json", dir + "/config.json");
+  EXPECT_NE(InputErrorOf([&] { ReadAsapAssembly(dir); }).find("a loop of symbolic links"),
+            std::string::npos);
+  std::filesystem::remove(dir + "/config.json");
+  std::ofstream(dir + "/config.json") << R"({"0": {"final_state": [0, 0, 0, 0, 0, 0]}})";
+  std::filesystem::create_symlink("0.obj", dir + "/0.obj");
+  const std::string why = InputErrorOf([&] { ReadAsapAssembly(dir); });
+  EXPECT_NE(why.find(dir + "/config.json: 0: cannot read mesh"), std::string::npos) << why;
+  EXPECT_NE(why.find("a loop of symbolic links"), std::string::npos) << why;
+  std::filesystem::remove(dir + "/0.obj");
+  ASSERT_EQ(::mkfifo((dir + "/0.obj").c_str(), 0600), 0);
+  EXPECT_NE(InputErrorOf([&] { ReadAsapAssembly(dir); }).find("is a FIFO"), std::string::npos);
+  // A folder that is a loop of links itself.
+  const std::string loop = TempPath("asap_loop");
+  std::filesystem::create_symlink(loop, loop);
+  EXPECT_NE(InputErrorOf([&] { ReadAsapAssembly(loop); }).find("a loop of symbolic links"),
+            std::string::npos);
+  std::filesystem::remove(loop);
   std::filesystem::remove_all(dir);
 }
 

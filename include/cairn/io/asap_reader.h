@@ -14,6 +14,7 @@
 #include <string>
 
 #include "cairn/geometry/assembly.h"
+#include "cairn/io/input_file.h"
 
 namespace cairn {
 
@@ -21,6 +22,9 @@ namespace cairn {
 /// are read with ReadMesh (coplanar triangles merged into faces).
 /// @throws InputError naming the file and the JSON path: not an object of
 /// parts, a part without `final_state` of 6 numbers, a mesh missing or bad.
-AssemblyDef ReadAsapAssembly(const std::string& path);
+/// config.json and every mesh are regular files of at most `max_input_size`
+/// bytes (input_file.h).
+AssemblyDef ReadAsapAssembly(const std::string& path,
+                             std::uint64_t max_input_size = kDefaultMaxInputSize);
 
 }  // namespace cairn

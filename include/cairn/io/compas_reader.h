@@ -15,6 +15,7 @@
 
 #include "cairn/geometry/assembly.h"
 #include "cairn/geometry/polyhedron.h"
+#include "cairn/io/input_file.h"
 
 namespace cairn {
 
@@ -94,7 +95,9 @@ CompasAssembly ParseCompasAssembly(const nlohmann::json& doc, const std::string&
 /// Reads and parses a COMPAS assembly file. @throws InputError (unreadable
 /// file, JSON syntax error with its line and column, repeated keys, or any
 /// fault of ParseCompasAssembly).
-CompasAssembly ReadCompasAssembly(const std::string& path);
+/// The file is a regular file of at most `max_input_size` bytes (ReadInputFile).
+CompasAssembly ReadCompasAssembly(const std::string& path,
+                                  std::uint64_t max_input_size = kDefaultMaxInputSize);
 
 /// What a COMPAS file does not say.
 struct CompasOptions {
@@ -173,6 +176,7 @@ Assembly CreateCompasAssembly(const CompasModel& model, const std::string& file)
 
 /// ReadCompasAssembly, CompasToModel and CreateCompasAssembly: the validated
 /// Assembly of a COMPAS file. @throws InputError.
-Assembly ReadCompasScene(const std::string& path, const CompasOptions& options);
+Assembly ReadCompasScene(const std::string& path, const CompasOptions& options,
+                         std::uint64_t max_input_size = kDefaultMaxInputSize);
 
 }  // namespace cairn

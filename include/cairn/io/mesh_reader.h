@@ -13,6 +13,7 @@
 #include <string>
 
 #include "cairn/geometry/mesh_faces.h"
+#include "cairn/io/input_file.h"
 
 namespace cairn {
 
@@ -24,10 +25,14 @@ struct MeshReadOptions {
   /// length (the file's units): largest distance of a vertex from its face's
   /// plane; ≤ 0 means 1e-6 × the diagonal of the mesh's bounding box.
   double length_tol = 0;
+  /// bytes: the largest mesh file read (CheckInputFile).
+  std::uint64_t max_input_size = kDefaultMaxInputSize;
 };
 
 /// Reads `path` and returns its faces. @throws InputError(path, "", why) when
-/// the file cannot be read, has no triangles, or is not a mesh.
+/// the file is not a regular file of at most `options.max_input_size` bytes
+/// (CheckInputFile: a folder, a FIFO, a device, a loop of links, ...), cannot
+/// be read, has no triangles, or is not a mesh.
 PolyhedronDef ReadMesh(const std::string& path, const MeshReadOptions& options = {},
                        MeshMergeStats* stats = nullptr);
 

@@ -13,6 +13,7 @@
 
 #include "cairn/geometry/assembly.h"
 #include "cairn/geometry/plan.h"
+#include "cairn/io/input_file.h"
 
 namespace cairn {
 
@@ -22,7 +23,8 @@ namespace cairn {
 /// (NamedPath: `C ("C")[2].path[1]`; an unknown part's key bare, `Q`):
 /// unreadable file, JSON syntax, unknown, fixed or tool parts, empty lists, a
 /// `remove` key, and every fault of a plan step.
-std::map<int, std::vector<CandidatePath>> ReadCandidatePaths(const std::string& file,
-                                                             const Assembly& assembly);
+std::map<int, std::vector<CandidatePath>> ReadCandidatePaths(
+    const std::string& file, const Assembly& assembly,
+    std::uint64_t max_input_size = kDefaultMaxInputSize);
 
 }  // namespace cairn

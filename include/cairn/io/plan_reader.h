@@ -8,6 +8,7 @@
 
 #include "cairn/geometry/assembly.h"
 #include "cairn/geometry/plan.h"
+#include "cairn/io/input_file.h"
 
 namespace cairn {
 
@@ -21,8 +22,10 @@ PlanDef ParsePlanJson(const nlohmann::json& doc, const std::string& file, int di
 /// Reads and parses a plan file, then validates it against `assembly` with
 /// Plan::Create. @throws InputError (unreadable file, JSON syntax error with
 /// its line and column, a key repeated in one object, or any fault of
-/// ParsePlanJson and Plan::Create).
+/// ParsePlanJson and Plan::Create). The file is a regular file of at most
+/// `max_input_size` bytes (ReadInputFile).
 Plan ReadPlan(const std::string& path, const Assembly& assembly,
-              long long max_ticks = Plan::kDefaultMaxTicks);
+              long long max_ticks = Plan::kDefaultMaxTicks,
+              std::uint64_t max_input_size = kDefaultMaxInputSize);
 
 }  // namespace cairn

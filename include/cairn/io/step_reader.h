@@ -17,13 +17,24 @@
 /// (MergeCoplanarTriangles). Each part says whether it was approximated and by
 /// how much (StepPartReport).
 ///
+/// A STEP file is untrusted input, and OpenCASCADE crashes or never returns
+/// on some broken files (a reference to an entity the file does not define,
+/// NUL bytes, a coordinate NAN or 1.E400). The text is checked first for
+/// those (each said with its line); then the reading, the transfer and the
+/// tessellation run in a child process limited to kStepTimeLimit of wall time
+/// and kStepMemoryLimit of address space, which passes the parts back: a
+/// crash, a hang or a runaway allocation there is an InputError naming the
+/// file ("OpenCASCADE could not read this file (it crashed with SIGSEGV)").
+///
 /// OpenCASCADE stays behind this header: nothing of it is visible to the
 /// stages or programs that include it.
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
 #include "cairn/geometry/assembly.h"
+#include "cairn/io/input_file.h"
 
 namespace cairn {
 
@@ -33,6 +44,13 @@ namespace cairn {
 /// (a pin in its hole) are tessellated alike and touch instead of
 /// interpenetrating.
 constexpr double kDefaultMeshToleranceFactor = 1e-3;
+
+/// The finest chordal tolerance accepted, as a fraction of the size of the
+/// smallest part: 1/100 of the default. Finer, the curved faces of a part
+/// become millions of facets (OpenCASCADE takes minutes over the pen's parts
+/// at 1e-8 of their size), and the model is no more accurate for it: its
+/// contacts are found to a tenth of the chord anyway.
+constexpr double kMinMeshToleranceFactor = 1e-5;
 
 /// The angular deflection of the tessellation (rad): no facet of a curved
 /// surface turns by more than this, whatever the chordal tolerance.
@@ -44,11 +62,35 @@ constexpr double kMeshAngularDeflection = 0.5;
 /// microns. Models without tessellated parts keep the scene default.
 constexpr double kStepLengthToleranceOfChord = 0.1;
 
+/// s: the wall time OpenCASCADE may take to read, transfer and tessellate one
+/// STEP file; its process is killed after it. The pen's parts take well under
+/// a second each; assemblies of thousands of parts, tens of seconds.
+constexpr double kStepTimeLimit = 300;
+
+/// bytes: the address space of the process that reads a STEP file (RLIMIT_AS;
+/// not applied in builds with AddressSanitizer, whose shadow memory takes
+/// terabytes of address space): 8 GiB.
+constexpr std::uint64_t kStepMemoryLimit = std::uint64_t{8} << 30;
+
 /// How a STEP file is read.
 struct StepReadOptions {
   /// m: the largest distance between a curved surface and its facets; ≤ 0:
   /// kDefaultMeshToleranceFactor × the smallest part's bounding-box diagonal.
+  /// Given (> 0), it must be at least kMinMeshToleranceFactor × the smallest
+  /// part's bounding-box diagonal and OpenCASCADE's Precision::Confusion()
+  /// (1e-7 of the file's length unit), and less than that diagonal; its
+  /// faults are reported as `--mesh-tolerance`'s.
   double mesh_tolerance = 0;
+  /// bytes: the largest file read (ReadInputFile).
+  std::uint64_t max_input_size = kDefaultMaxInputSize;
+  /// s: the wall-time limit of the reading process (kStepTimeLimit).
+  double time_limit = kStepTimeLimit;
+  /// bytes: its address-space limit (kStepMemoryLimit); 0: none.
+  std::uint64_t memory_limit = kStepMemoryLimit;
+  /// Check the text before OpenCASCADE reads it (NUL bytes, numbers that are
+  /// not finite, references to undefined entities). false leaves only the
+  /// process's limits between a broken file and OpenCASCADE (their tests).
+  bool check_text = true;
 };
 
 /// What reading did to one part.
@@ -73,8 +115,11 @@ struct StepModel {
 };
 
 /// Reads `path`. @throws InputError naming the file (and the part): not a
-/// STEP file, no solids, a part with an open shell or several solids, a
-/// tessellation that fails.
+/// regular file of at most `options.max_input_size` bytes, a fault of its
+/// text (with its line), not a STEP file, no solids, a part with an open shell
+/// or several solids, OpenCASCADE crashed or took longer than the limit;
+/// naming `--mesh-tolerance` when that was given: out of range, or a
+/// tessellation that fails or is not a valid solid.
 StepModel ReadStepAssembly(const std::string& path, const StepReadOptions& options = {});
 
 }  // namespace cairn
