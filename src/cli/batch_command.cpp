@@ -17,6 +17,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <mutex>
 #include <new>
 #include <optional>
@@ -26,6 +27,7 @@
 #include <thread>
 
 #include "cairn/core/error.h"
+#include "cairn/io/input_file.h"
 #include "cairn/mechanics/rest_solution.h"
 #include "cli/margin_command.h"
 #include "cli/mpi.h"
@@ -97,16 +99,11 @@ std::string Article(const json& j) { return io_internal::JsonChecker::Article(j)
 // reaches into a read), a device such as /dev/zero would never end. A folder
 // is let through where `folder_ok` (an ASAP model). Nothing is said of a
 // path that does not exist: its reader says so.
-void RefuseSpecialFile(const std::string& path, bool folder_ok, const std::string& what) {
+void RefuseSpecialFile(const std::string& path, bool folder_ok) {
   std::error_code ec;
-  const std::filesystem::file_status st = std::filesystem::status(path, ec);
-  if (ec || !std::filesystem::exists(st) || std::filesystem::is_regular_file(st)) return;
-  if (folder_ok && std::filesystem::is_directory(st)) return;
-  const char* kind = std::filesystem::is_directory(st) ? "a folder"
-                     : std::filesystem::is_fifo(st)    ? "a FIFO"
-                     : std::filesystem::is_socket(st)  ? "a socket"
-                                                       : "a device";
-  throw InputError(path, "", std::string("is ") + kind + ", not a regular file: " + what);
+  if (!std::filesystem::exists(path, ec)) return;  // absent: said where it is read
+  if (folder_ok && IsDirectory(path)) return;
+  CheckInputFile(path, std::numeric_limits<std::uint64_t>::max());
 }
 
 // ---- JOBS -------------------------------------------------------------------
@@ -121,7 +118,7 @@ struct Job {
 // file bad input: such a job could not be recorded, nor found again on
 // resume. Everything else about a job is its own error, recorded in RESULTS.
 std::vector<Job> ReadJobs(const std::string& path) {
-  RefuseSpecialFile(path, false, "the jobs file is read line by line");
+  RefuseSpecialFile(path, false);
   std::ifstream in(path);
   if (!in) throw InputError(path, "", "cannot read the jobs file");
   std::vector<Job> jobs;
@@ -254,9 +251,9 @@ std::vector<std::string> JobCommandLine(const json& job) {
     }
   }
   // What the job reads must be a regular file (a FIFO would block the batch).
-  RefuseSpecialFile(model, asap, "a model is read from a file (or an ASAP folder)");
+  RefuseSpecialFile(model, asap);
   for (const std::string& f : files)
-    if (!f.empty()) RefuseSpecialFile(f, false, "the job reads it as a file");
+    if (!f.empty()) RefuseSpecialFile(f, false);
   // A plan job runs on one thread unless it says otherwise: the batch's
   // workers already fill the cores.
   if (name == "plan" && !threads) args.push_back("--threads=1");

@@ -366,10 +366,11 @@ TEST(BatchCli, FifoAsJobsResultsOrAJobsModel_RefusedNotBlocked) {
   const std::string cairn = "timeout 60 " + testing::CliPath() + " ";
   const CliRun jobs = testing::RunCommand(cairn + "batch " + fifo + " -o " + dir + "/r1");
   EXPECT_EQ(jobs.exit_code, 2) << jobs.err;
-  EXPECT_NE(jobs.err.find(fifo + ": is a FIFO, not a regular file"), std::string::npos) << jobs.err;
+  EXPECT_NE(jobs.err.find(fifo + ": is a FIFO (named pipe), not a regular file"), std::string::npos)
+      << jobs.err;
   const CliRun dev = Cairn("batch /dev/zero -o " + dir + "/r1");
   EXPECT_EQ(dev.exit_code, 2) << dev.err;
-  EXPECT_NE(dev.err.find("/dev/zero: is a device, not a regular file"), std::string::npos)
+  EXPECT_NE(dev.err.find("/dev/zero: is a character device, not a regular file"), std::string::npos)
       << dev.err;
   const CliRun results = testing::RunCommand(cairn + "batch " + dir + "/jobs.jsonl -o " + fifo);
   EXPECT_EQ(results.exit_code, 2) << results.err;
@@ -393,7 +394,8 @@ TEST(BatchCli, FifoAsJobsResultsOrAJobsModel_RefusedNotBlocked) {
   for (size_t k = 0; k < 2; ++k) {
     json bad = json::parse(lines[k]);
     EXPECT_EQ(bad["exit"], 2) << lines[k];
-    EXPECT_NE(bad.value("error", std::string()).find(fifo + ": is a FIFO, not a regular file"),
+    EXPECT_NE(bad.value("error", std::string())
+                  .find(fifo + ": is a FIFO (named pipe), not a regular file"),
               std::string::npos)
         << lines[k];
   }
