@@ -441,8 +441,10 @@ void TiltMargin(const Assembly& assembly, const std::vector<ContactLcp>& lcps,
 // k*), so the steps are safeguarded: a probe past k* stands and becomes hi;
 // when Newton's factor is at or past hi, the factor just below hi is tried
 // once (it fails when k* = hi), then bisection until a new lo brings a new
-// tangent; two slow steps in a row also bisect. Every end is verified: hi by
-// an equilibrium whose friction use is hi, lo by a positive deficit.
+// tangent; two slow steps in a row also bisect. Every end is proved: hi by
+// an equilibrium whose friction use is hi, lo by a mechanism or by the
+// equilibrium LP finding none (a positive deficit alone is not a proof: see
+// NewtonFriction).
 
 struct FrictionBracket {
   std::optional<double> hi;  // least k found feasible (verified); empty: none up to k_max
@@ -610,7 +612,7 @@ void FrictionMargin(const AssemblyDef& def, const Configuration& config, MarginR
     FrictionBracket b = NewtonFriction(lcp, k_max, &cm.lps);
     cm.critical.push_back(b.hi);
     cm.holds_at_nominal = b.hi && *b.hi <= r.nominal;
-    any_friction_needed = any_friction_needed || b.lo_proved;
+    any_friction_needed = any_friction_needed || !b.hi || *b.hi > 0;
     if (unbounded) continue;  // a component no friction holds decides already
     if (!b.hi) {
       // No friction up to the largest allowed holds this component.
@@ -632,7 +634,7 @@ void FrictionMargin(const AssemblyDef& def, const Configuration& config, MarginR
     if (*b.hi > 0) side.mechanism = FrictionMechanism(lcp, b);
   }
   // Strong stability: a frictionless equilibrium in every component (k* = 0
-  // everywhere) certifies it at every μ; any infeasible probe rules it out.
+  // everywhere, proved by it) certifies it at every μ.
   r.strong_all = !any_friction_needed && !unbounded;
   // Which parts move just below μ*, and how: the check there (at the
   // proved lower end, where the bracket is wider: kMinFriction).

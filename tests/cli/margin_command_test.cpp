@@ -294,12 +294,13 @@ TEST_P(CompasFrictionMargin, LowerEndProvedByAFailingCheck) {
   const double tolerance = m["tolerance"].get<double>();
   const double failing_at = m["failing_at"].get<double>();
   EXPECT_LT(failing_at, mu);
-  EXPECT_FALSE(stands(failing_at)) << "mu* " << mu;
   if (mu > 1e-6) {
+    // (Then failing_at = μ*(1 − 1e-3) fails too: feasibility is monotone.)
     EXPECT_LE(tolerance, 1e-6 * mu);
     EXPECT_FALSE(stands(mu * (1 - 1e-5))) << "mu* " << mu;
   } else {
     EXPECT_EQ(tolerance, mu - failing_at);
+    EXPECT_FALSE(stands(failing_at)) << "mu* " << mu;
   }
   EXPECT_TRUE(stands(mu * (1 + 1e-5))) << "mu* " << mu;
 }
@@ -333,14 +334,24 @@ INSTANTIATE_TEST_SUITE_P(
         CompasCase{"compas_cra/shelf-s2.json", "--supports 0"},
         CompasCase{"compas_cra/shelf-s3.json", "--supports 0"},
         CompasCase{"compas_cra/snake.json", "--supports 0"},
-        CompasCase{"compas_cra/bridge.json", "--supports 0,1"},
-        CompasCase{"compas_cra/armadillo_cra.json", "--interfaces stored"}),
+        CompasCase{"compas_cra/bridge.json", "--supports 0,1"}),
     [](const ::testing::TestParamInfo<CompasCase>& param_info) {
       std::string name = param_info.param.file + param_info.param.options;
       for (char& ch : name)
         if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
       return name;
     });
+
+// The Armadillo vault (399 stones, 5031 contacts): 20 s in Release, but 56 s
+// of CPU in the sanitized build (over 3 minutes on a loaded 2-core machine),
+// so it is kept out of the regular run. Run it with
+// --gtest_also_run_disabled_tests --gtest_filter='*armadillo*'.
+INSTANTIATE_TEST_SUITE_P(DISABLED_Slow, CompasFrictionMargin,
+                         ::testing::Values(CompasCase{"compas_cra/armadillo_cra.json",
+                                                      "--interfaces stored"}),
+                         [](const ::testing::TestParamInfo<CompasCase>&) {
+                           return std::string("compas_cra_armadillo_cra_json");
+                         });
 
 // The shared files that are not models Cairn loads (armadillo.json: stones
 // overlapping at every tolerance, without its stored interfaces; wall.json:
