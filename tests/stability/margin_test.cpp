@@ -135,8 +135,10 @@ TEST(Margin, InclineCriticalFrictionIsTanTheta) {
 // friction it lacks is its weight's tangential part, m g sin θ, less the
 // pyramid's k μ m g cos θ, in units of its weight (the largest load). So
 // φ(k) = sin θ − k cos θ up to tan θ, its slope is −cos θ, Newton's first
-// step from 0 lands on tan θ, and the margin takes three LPs: k = 0, tan θ,
-// and the factor just below it.
+// step from 0 lands on tan θ, and the margin takes four LPs: the deficit at
+// k = 0, tan θ and the factor just below it, and the equilibrium LP that
+// proves that factor fails (its deficit, 4e-7 of the weight, is too little
+// work for the mechanism's check to tell it from the LP's tolerance).
 TEST(Margin, InclineFrictionDeficitIsLinearAndNewtonLandsOnTanTheta) {
   const double theta = 20.0 / kDeg;
   const Scene s = Example("incline.json", 1.0);
@@ -156,7 +158,7 @@ TEST(Margin, InclineFrictionDeficitIsLinearAndNewtonLandsOnTanTheta) {
   EXPECT_LT(at.equilibrium.residual, 1e-9);
   const MarginResult r = s.Margin(Friction());
   EXPECT_NEAR(*r.sides[0].critical, std::tan(theta), 1e-6);
-  EXPECT_EQ(r.lps, 3);
+  EXPECT_EQ(r.lps, 4);
 }
 
 // A box of width w on a table tilted by θ: with friction enough not to slide
