@@ -6,6 +6,7 @@
 
 #include "cairn/core/error.h"
 #include "cairn/core/format.h"
+#include "cairn/core/tolerances.h"
 #include "cairn/core/unit_vector.h"
 #include "cairn/report/margin_report.h"
 #include "cli/command.h"
@@ -57,6 +58,10 @@ MarginRequest ResolveMarginQuery(const Assembly& assembly, const MarginQuery& q,
     if (q.point.empty()) throw InputError(file, "--point", "is required with --load");
     if (q.direction.empty()) throw InputError(file, "--direction", "is required with --load");
     req.point = ReadVector(q.point, dim, "--point", file);
+    if (req.point.cwiseAbs().maxCoeff() > limits::kMaxCoordinate)
+      throw InputError(file, "--point",
+                       "must be within the scene's coordinate range, |x| <= " +
+                           FormatNumber(limits::kMaxCoordinate));
     const std::optional<Vector3> direction =
         UnitVector(ReadVector(q.direction, dim, "--direction", file));
     if (!direction) throw InputError(file, "--direction", "must not be the zero vector");

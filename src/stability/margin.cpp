@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "cairn/core/error.h"
+#include "cairn/core/format.h"
 #include "cairn/core/tolerances.h"
 #include "cairn/core/unit_vector.h"
 #include "cairn/mechanics/margin_lp.h"
@@ -670,6 +671,10 @@ void CheckRequest(const Assembly& assembly, const Configuration& config, const M
     if (!UnitVector(req.direction))
       throw InputError("", "--direction", "must be a finite, non-zero vector");
     if (!req.point.allFinite()) throw InputError("", "--point", "must be finite");
+    if (req.point.cwiseAbs().maxCoeff() > limits::kMaxCoordinate)
+      throw InputError("", "--point",
+                       "must be within the scene's coordinate range, |x| <= " +
+                           FormatNumber(limits::kMaxCoordinate));
     if (!assembly.is_3d() && (req.direction.z() != 0 || req.point.z() != 0))
       throw InputError("", "--direction", "a 2-D scene takes 2 numbers");
   }

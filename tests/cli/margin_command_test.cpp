@@ -199,6 +199,8 @@ TEST(CliMargin, DirectionsAtEveryScale) {
          "--direction: must not be the zero vector"},
         {"margin " + stack + " --load A --point 0,1 --direction inf,1",
          "--direction: must be finite numbers"},
+        {"margin " + stack + " --load A --point 1e300,1 --direction 1,1",
+         "--point: must be within the scene's coordinate range, |x| <= 1e+12"},
         {"blocking " + fig9 + " --direction 0,0,0", "--direction: must not be the zero vector"},
         {"blocking " + fig9 + " --direction -inf,0,0", "--direction"},
         {"blocking " + fig9 + " --direction nan,0,0", "--direction"}}) {
