@@ -560,5 +560,33 @@ TEST(Margin, FrictionZeroWhereItStandsFrictionless) {
   for (const Vector3& f : r.sides[0].equilibrium->friction_force) EXPECT_EQ(f, Vector3::Zero());
 }
 
+// compas_cra's H: a bar between two fixed posts, touching only their
+// vertical faces. It stands at every μ > 0 (squeezed, with forces of about
+// 1/μ loads) and not at 0. Below μ 1e-6 those forces' roundoff approaches
+// the re-check's bound, and the margin stops there: μ* ≤ 1e-6, the bracket
+// from 0 (proved: no frictionless equilibrium) to μ*, the check at 0.
+TEST(Margin, FrictionOfAJammedBarStopsAtTheLeastResolved) {
+  if (SharedDir().empty()) GTEST_SKIP() << "../shared (the COMPAS datasets) is absent";
+  const std::string path = SharedDir() + "/datasets/compas_cra/H.json";
+  CompasOptions options;
+  options.friction = 0.84;
+  CompasModel model = CompasToModel(ReadCompasAssembly(path), options, path);
+  for (PartDef& p : model.def.parts) p.fixed = p.name == "0" || p.name == "1";
+  const Scene s(model.def);
+  const MarginResult r = s.Margin(Friction());
+  ASSERT_TRUE(r.solved) << r.message;
+  ASSERT_TRUE(r.sides[0].critical.has_value());
+  const double mu = *r.sides[0].critical;
+  EXPECT_GT(mu, 0);
+  EXPECT_LE(mu, 1e-6);
+  EXPECT_EQ(r.tolerance, mu);
+  EXPECT_EQ(r.failing_at, 0.0);
+  EXPECT_EQ(r.strong_all, false);
+  EXPECT_FALSE(CheckStable(ScaleFriction(s.def, 0.0)));
+  EXPECT_TRUE(CheckStable(ScaleFriction(s.def, mu / 0.84 * 1.001)));
+  ASSERT_TRUE(r.sides[0].mechanism.has_value());
+  EXPECT_TRUE(r.sides[0].mechanism->found);
+}
+
 }  // namespace
 }  // namespace cairn
