@@ -474,6 +474,10 @@ FrictionBracket NewtonFriction(const ContactLcp& lcp, double k_max, int* lps) {
   // steps); `proved` is the greatest factor proved to fail.
   double lo = 0, phi_lo = 0, slope_lo = 0;
   std::vector<Vector6> motion_lo;
+  // A component whose margin LPs go to the interior-point method.
+  int columns = 0;
+  for (int f : lcp.friction_of) columns += f < 0 ? 1 : lcp.num_directions;
+  const bool large = columns + 1 >= kMarginBarrierColumns;
   bool proved_any = false;
   double proved = 0;
   // A factor proved to stand: hi is the friction use ρ ≤ k of its verified
@@ -506,14 +510,22 @@ FrictionBracket NewtonFriction(const ContactLcp& lcp, double k_max, int* lps) {
       return Probe::kFails;
     }
     if (d.exists) return stands(k, std::move(d.equilibrium));
-    bool fails = d.deficit > 0 && VerifyMechanism(WithFrictionFactor(lcp, k), d.motion).found;
-    if (!fails) {
+    const ContactLcp at_k = WithFrictionFactor(lcp, k);
+    bool fails = d.deficit > 0 && VerifyMechanism(at_k, d.motion).found;
+    if (!fails && (k == 0 || !large)) {
       EquilibriumOptions options;
       options.frictionless = k == 0;
-      StaticEquilibrium e = FindStaticEquilibrium(WithFrictionFactor(lcp, k), options);
+      StaticEquilibrium e = FindStaticEquilibrium(at_k, options);
       ++*lps;
       if (e.solved && e.exists) return stands(k, std::move(e));
       fails = e.solved;
+    } else if (!fails) {
+      // A large component near k*: the equilibrium LP is slow to decide there
+      // (on the cross vault 1e-9 below k* its simplex ran for seconds and its
+      // forces failed the re-check); the mechanism LP may prove it fails, and
+      // otherwise the factor stays undecided.
+      fails = FindMechanism(at_k).found;
+      ++*lps;
     }
     if (k >= lo) {
       lo = k;
@@ -541,15 +553,15 @@ FrictionBracket NewtonFriction(const ContactLcp& lcp, double k_max, int* lps) {
     // hi or its steps are slow, or when lo's deficit gives no step (a
     // deficit at the LP's tolerance, or the factor just above lo failed).
     // Where the bracket closed on an undecided lo, factors further below hi
-    // (by 10, 100, 1000 times the tolerance) until one is proved to fail.
+    // (by 1, 10, 100, 1000 times the tolerance) until one is proved to fail.
     if (!out.hi && lo >= k_max) break;  // undecided at the largest factor
     const double newton = slope_lo < 0 && phi_lo > 0 && crept != lo
                               ? lo + phi_lo / -slope_lo
                               : std::numeric_limits<double>::infinity();
     double k = newton;
     if (within(lo)) {
-      k = std::max(proved, *out.hi * (1 - std::pow(10.0, ++proofs) * kFrictionTolerance));
-      if (proofs > 3) k = proved;  // prove nothing closer: the tolerance is hi − proved
+      k = std::max(proved, *out.hi * (1 - std::pow(10.0, proofs++) * kFrictionTolerance));
+      if (proofs > 4) k = proved;  // prove nothing closer: the tolerance is hi − proved
       if (k == proved) break;
       lo = proved;  // the undecided lo no longer steers
     } else if (out.hi && !(newton < *out.hi) && confirmed != lo) {
