@@ -533,8 +533,8 @@ TEST(Margin, RejectsNonsense) {
 // compas_cra's cube-curve-short on its stored (curved, triangulated)
 // interfaces stands without friction: the check's frictionless equilibrium
 // LP finds one. The friction deficit LP, solved by the interior-point
-// method there, gives φ(0) = 1.7e-9, its objective's tolerance; read as a
-// failure, it made μ* 0.0437741. The margin is 0, proved by that
+// method there, gives φ(0) = 1.7e-9, its objective's tolerance: read as a
+// failure, it would put μ* at 0.0437741. The margin is 0, proved by that
 // equilibrium, and strong stability holds at every μ.
 TEST(Margin, FrictionZeroWhereItStandsFrictionless) {
   if (SharedDir().empty()) GTEST_SKIP() << "../shared (the COMPAS datasets) is absent";
