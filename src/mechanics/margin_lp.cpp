@@ -36,16 +36,27 @@ constexpr double kMaxGeneratorLoads = 1e6;
 // with crossover; the cross vault's tilt margin takes 1.2 s so, 1.9 s with
 // crossover.
 // Solves `lp` from scratch (see above). Returns the method's name.
-const char* SolveFresh(ClpSimplex& lp, int ncols) {
+//
+// The interior-point method gets the parameter s (column `s_col`) boxed to
+// ±`s_box`: where the LP is unbounded, Clp 1.17's predictor-corrector
+// aborts the process ("dual off to infinity"; compas_cra's cube-curve-short
+// tilted about x). An optimum on the box is not taken.
+const char* SolveFresh(ClpSimplex& lp, int ncols, int s_col, double s_box) {
   lp.setPrimalTolerance(kSimplexPrimalTolerance);
   if (ncols >= kMarginBarrierColumns) {
+    const double lo = lp.columnLower()[s_col], hi = lp.columnUpper()[s_col];
+    lp.setColumnLower(s_col, std::max(lo, -s_box));
+    lp.setColumnUpper(s_col, std::min(hi, s_box));
     ClpSolve how;
     how.setSolveType(ClpSolve::useBarrierNoCross);
     how.setPresolveType(ClpSolve::presolveOff);
     lp.initialSolve(how);
+    lp.setColumnLower(s_col, lo);
+    lp.setColumnUpper(s_col, hi);
     // Only its optimum is taken: a claim of infeasibility or unboundedness
     // is left to the simplex, which proves it.
-    if (lp.status() == 0) return "barrier";
+    const double s = lp.primalColumnSolution()[s_col];
+    if (lp.status() == 0 && std::abs(s) < 0.5 * s_box) return "barrier";
     lp.allSlackBasis(true);
   }
   lp.dual();
@@ -132,9 +143,11 @@ LoadParameterResult OptimizeLoadParameter(const ContactLcp& lcp, const std::vect
   LoadParameterResult out;
   EquilibriumLp e = MakeEquilibriumLp(lcp, frictionless);
   const int ng = static_cast<int>(e.generators.size());
+  double s_coefficient = 0;  // the largest entry of s's column
   for (size_t b = 0; b < lcp.bodies.size(); ++b) {
     const Vector6 w = e.P[b] * load[b] / e.load_scale;
     for (int k = 0; k < 6; ++k) e.a.Add(6 * static_cast<int>(b) + k, ng, w[k]);
+    s_coefficient = std::max(s_coefficient, w.cwiseAbs().maxCoeff());
   }
   const int ncols = ng + 1;
   std::vector<double> col_lo(ncols, 0.0), col_hi(ncols, COIN_DBL_MAX), cost(ncols, 0.0);
@@ -144,7 +157,9 @@ LoadParameterResult OptimizeLoadParameter(const ContactLcp& lcp, const std::vect
   lp.setLogLevel(0);
   lp.loadProblem(e.a.Matrix(e.nrows, ncols), col_lo.data(), col_hi.data(), cost.data(),
                  e.rhs.data(), e.rhs.data());
-  out.method = SolveFresh(lp, ncols);
+  // The interior-point method's box on s: a load of kMaxGeneratorLoads.
+  const double s_box = kMaxGeneratorLoads / std::max(s_coefficient, 1e-300);
+  out.method = SolveFresh(lp, ncols, ng, s_box);
   out.iterations += lp.numberIterations();
   if (ReadOptimum(lcp, load, frictionless, e, lp, ng, out)) return out;
   // The barrier's optimum lies inside the optimal face, within its tolerance

@@ -372,5 +372,18 @@ TEST(CliMargin, CompasFilesThatDoNotLoadExitTwo) {
   }
 }
 
+// compas_cra's cube-curve-short (its faces split, 80) tilted about x: the
+// tilt LP has no finite end, where Clp's interior-point method aborted the
+// process ("dual off to infinity"). The parameter is boxed for it, and the
+// simplex decides: it holds all the way round, both ways.
+TEST(CliMargin, CompasTiltWithNoEndDoesNotAbort) {
+  if (SharedDir().empty()) GTEST_SKIP() << "../shared (the COMPAS datasets) is absent";
+  const nlohmann::json m = Margin(SharedDir() +
+                                  "/datasets/compas_cra/cube-curve-short.json --format compas "
+                                  "--supports 0 --friction 0.84 --tilt 1,0,0");
+  EXPECT_EQ(m["critical_deg"], nlohmann::json::parse("[null, null]"));
+  EXPECT_EQ(m["holds_at_nominal"], true);
+}
+
 }  // namespace
 }  // namespace cairn
