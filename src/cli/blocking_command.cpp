@@ -2,9 +2,11 @@
 // the parts that can be taken out along its directions.
 #include "cli/blocking_command.h"
 
+#include <optional>
 #include <ostream>
 
 #include "cairn/core/error.h"
+#include "cairn/core/unit_vector.h"
 #include "cairn/planning/blocking.h"
 #include "cairn/report/blocking_report.h"
 #include "cli/command.h"
@@ -24,8 +26,9 @@ Vector3 DirectionFlag(const std::vector<double>& xyz, const Assembly& assembly) 
                          ", not " + std::to_string(xyz.size()));
   const Vector3 d(xyz[0], xyz[1], dim == 3 ? xyz[2] : 0.0);
   if (!d.allFinite()) throw InputError("", "--direction", "must have finite components");
-  if (!(d.norm() > 0)) throw InputError("", "--direction", "must not be the zero vector");
-  return d;
+  const std::optional<Vector3> unit = UnitVector(d);
+  if (!unit) throw InputError("", "--direction", "must not be the zero vector");
+  return *unit;
 }
 
 struct Computed {

@@ -1,10 +1,13 @@
 #include "cli/margin_command.h"
 
 #include <cmath>
+#include <optional>
 #include <ostream>
 
 #include "cairn/core/error.h"
 #include "cairn/core/format.h"
+#include "cairn/core/tolerances.h"
+#include "cairn/core/unit_vector.h"
 #include "cairn/report/margin_report.h"
 #include "cli/command.h"
 
@@ -42,8 +45,9 @@ MarginRequest ResolveMarginQuery(const Assembly& assembly, const MarginQuery& q,
     if (q.tilt.size() != 3)
       throw InputError(file, "--tilt",
                        "takes an axis of 3 comma-separated numbers (2-D scenes: 0,0,1)");
-    req.axis = ReadVector(q.tilt, 3, "--tilt", file);
-    if (!(req.axis.norm() > 0)) throw InputError(file, "--tilt", "the axis must not be zero");
+    const std::optional<Vector3> axis = UnitVector(ReadVector(q.tilt, 3, "--tilt", file));
+    if (!axis) throw InputError(file, "--tilt", "the axis must not be zero");
+    req.axis = *axis;
     if (!assembly.is_3d() && (req.axis.x() != 0 || req.axis.y() != 0))
       throw InputError(file, "--tilt",
                        "a 2-D scene turns in its plane: the axis must be 0,0,1 or 0,0,-1");
@@ -54,9 +58,14 @@ MarginRequest ResolveMarginQuery(const Assembly& assembly, const MarginQuery& q,
     if (q.point.empty()) throw InputError(file, "--point", "is required with --load");
     if (q.direction.empty()) throw InputError(file, "--direction", "is required with --load");
     req.point = ReadVector(q.point, dim, "--point", file);
-    req.direction = ReadVector(q.direction, dim, "--direction", file);
-    if (!(req.direction.norm() > 0))
-      throw InputError(file, "--direction", "must not be the zero vector");
+    if (req.point.cwiseAbs().maxCoeff() > limits::kMaxCoordinate)
+      throw InputError(file, "--point",
+                       "must be within the scene's coordinate range, |x| <= " +
+                           FormatNumber(limits::kMaxCoordinate));
+    const std::optional<Vector3> direction =
+        UnitVector(ReadVector(q.direction, dim, "--direction", file));
+    if (!direction) throw InputError(file, "--direction", "must not be the zero vector");
+    req.direction = *direction;
     if (assembly.part(req.part).fixed)
       throw InputError(file, "--load",
                        "part \"" + q.load + "\" is fixed: a load on it goes to the ground");

@@ -22,6 +22,12 @@ using equilibrium_internal::Triplets;
 
 namespace {
 
+// The largest generator amount of the margin LP's last attempt, in units of
+// the largest load (dimensionless): a force this large leaves a roundoff of
+// 1e-10 of the load in the balance, far below the re-check's 1e-7; a vertex
+// with a self-stress of 1e9 loads fails it (Fig. 6 tilted in its plane).
+constexpr double kMaxGeneratorLoads = 1e6;
+
 // A margin LP (with an objective) from kMarginBarrierColumns columns on goes
 // to the interior-point method without crossover; below, the dual simplex.
 // Measured (bench/margin_bench --tilt; docs/benchmarks.md, "Margins"): the
@@ -30,16 +36,27 @@ namespace {
 // with crossover; the cross vault's tilt margin takes 1.2 s so, 1.9 s with
 // crossover.
 // Solves `lp` from scratch (see above). Returns the method's name.
-const char* SolveFresh(ClpSimplex& lp, int ncols) {
+//
+// The interior-point method gets the parameter s (column `s_col`) boxed to
+// ±`s_box`: where the LP is unbounded, Clp 1.17's predictor-corrector
+// aborts the process ("dual off to infinity"; compas_cra's cube-curve-short
+// tilted about x). An optimum on the box is not taken.
+const char* SolveFresh(ClpSimplex& lp, int ncols, int s_col, double s_box) {
   lp.setPrimalTolerance(kSimplexPrimalTolerance);
   if (ncols >= kMarginBarrierColumns) {
+    const double lo = lp.columnLower()[s_col], hi = lp.columnUpper()[s_col];
+    lp.setColumnLower(s_col, std::max(lo, -s_box));
+    lp.setColumnUpper(s_col, std::min(hi, s_box));
     ClpSolve how;
     how.setSolveType(ClpSolve::useBarrierNoCross);
     how.setPresolveType(ClpSolve::presolveOff);
     lp.initialSolve(how);
+    lp.setColumnLower(s_col, lo);
+    lp.setColumnUpper(s_col, hi);
     // Only its optimum is taken: a claim of infeasibility or unboundedness
     // is left to the simplex, which proves it.
-    if (lp.status() == 0) return "barrier";
+    const double s = lp.primalColumnSolution()[s_col];
+    if (lp.status() == 0 && std::abs(s) < 0.5 * s_box) return "barrier";
     lp.allSlackBasis(true);
   }
   lp.dual();
@@ -126,9 +143,11 @@ LoadParameterResult OptimizeLoadParameter(const ContactLcp& lcp, const std::vect
   LoadParameterResult out;
   EquilibriumLp e = MakeEquilibriumLp(lcp, frictionless);
   const int ng = static_cast<int>(e.generators.size());
+  double s_coefficient = 0;  // the largest entry of s's column
   for (size_t b = 0; b < lcp.bodies.size(); ++b) {
     const Vector6 w = e.P[b] * load[b] / e.load_scale;
     for (int k = 0; k < 6; ++k) e.a.Add(6 * static_cast<int>(b) + k, ng, w[k]);
+    s_coefficient = std::max(s_coefficient, w.cwiseAbs().maxCoeff());
   }
   const int ncols = ng + 1;
   std::vector<double> col_lo(ncols, 0.0), col_hi(ncols, COIN_DBL_MAX), cost(ncols, 0.0);
@@ -138,17 +157,36 @@ LoadParameterResult OptimizeLoadParameter(const ContactLcp& lcp, const std::vect
   lp.setLogLevel(0);
   lp.loadProblem(e.a.Matrix(e.nrows, ncols), col_lo.data(), col_hi.data(), cost.data(),
                  e.rhs.data(), e.rhs.data());
-  out.method = SolveFresh(lp, ncols);
+  // The interior-point method's box on s: a load of kMaxGeneratorLoads.
+  const double s_box = kMaxGeneratorLoads / std::max(s_coefficient, 1e-300);
+  out.method = SolveFresh(lp, ncols, ng, s_box);
+  out.iterations += lp.numberIterations();
+  if (ReadOptimum(lcp, load, frictionless, e, lp, ng, out)) return out;
   // The barrier's optimum lies inside the optimal face, within its tolerance
   // of the end: should its forces fail the re-check, the dual simplex's
   // vertex is read instead.
-  for (bool retry = std::string(out.method) == "barrier";; retry = false) {
-    out.iterations += lp.numberIterations();
-    if (ReadOptimum(lcp, load, frictionless, e, lp, ng, out) || !retry) return out;
+  if (std::string(out.method) == "barrier") {
     lp.allSlackBasis(true);
     lp.dual();
     out.method = "dual simplex";
+    out.iterations += lp.numberIterations();
+    if (ReadOptimum(lcp, load, frictionless, e, lp, ng, out)) return out;
   }
+  // A vertex can carry a self-stress (two parts squeezed between parallel
+  // faces, which no load resists) of any size: at 1e9 loads its roundoff
+  // alone moves the end by 1e-7 and fails the re-check. Every amount bounded
+  // by kMaxGeneratorLoads, the dual simplex's vertex carries none that large.
+  // Only its optimum is taken (the bounds could cut an equilibrium off).
+  const std::string first_message = out.message;
+  for (int j = 0; j < ng; ++j) lp.setColumnUpper(j, kMaxGeneratorLoads);
+  lp.allSlackBasis(true);
+  lp.dual();
+  out.method = "dual simplex, bounded forces";
+  out.iterations += lp.numberIterations();
+  if (lp.status() == 0 && ReadOptimum(lcp, load, frictionless, e, lp, ng, out)) return out;
+  out.status = LoadParameterResult::Status::kFailed;
+  out.message = first_message;
+  return out;
 }
 
 double FrictionUse(const ContactLcp& lcp, const StaticEquilibrium& e) {
@@ -188,9 +226,11 @@ double FrictionUse(const ContactLcp& lcp, const StaticEquilibrium& e) {
 namespace {
 
 // A deficit below this (in units of the largest load, dimensionless) is 0:
-// the LP's answer is read as an equilibrium at k and re-checked. Above it
-// the component does not stand at k. The interior-point method's relative
-// gap is 1e-8.
+// the LP's answer is read as an equilibrium at k and re-checked. A deficit
+// above it does not prove that the component fails at k: the interior-point
+// method's objective is good to its gap (1e-8 relative), and on compas_cra's
+// cube-curve-short, which stands without friction, it gives φ(0) = 1.7e-9.
+// The caller proves a failing factor (stability/margin.cpp).
 constexpr double kDeficitZero = 1e-9;
 
 }  // namespace

@@ -70,6 +70,7 @@
 #include <limits>
 #include <map>
 #include <numbers>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -79,6 +80,7 @@
 #include "cairn/contact/detect_contacts.h"
 #include "cairn/core/check.h"
 #include "cairn/core/tolerances.h"
+#include "cairn/core/unit_vector.h"
 
 namespace cairn {
 
@@ -165,7 +167,7 @@ std::vector<Vector3> PreferredAxes(const Assembly& assembly) {
     axes.push_back(-Vector3::Unit(a));
   }
   const Vector3& g = assembly.gravity();
-  const Vector3 up = g.norm() > 0 ? Vector3(-g / g.norm()) : Vector3::Zero();
+  const Vector3 up = -UnitVector(g).value_or(Vector3::Zero());
   std::stable_sort(axes.begin(), axes.end(), [&](const Vector3& a, const Vector3& b) {
     return a.dot(up) > b.dot(up) + numeric::kRoundoff;
   });
@@ -1004,10 +1006,11 @@ BlockingGraph ComputeBlockingGraph(const Assembly& assembly, const Configuration
   if (!assembly.is_3d()) d.z() = 0;
   std::ostringstream given;
   given << "(" << direction.x() << ", " << direction.y() << ", " << direction.z() << ")";
+  const std::optional<Vector3> unit = UnitVector(d);
   CAIRN_THROW_UNLESS(
-      d.allFinite() && d.norm() > 0,
+      unit.has_value(),
       "ComputeBlockingGraph: the direction must be finite and nonzero, got " + given.str());
-  d.normalize();
+  d = *unit;
   const Scene sc = BuildScene(assembly, config);
   BlockingGraph g = EmptyGraph(sc, d, kind);
   for (const PartPair& pair : sc.pairs) {
@@ -1025,9 +1028,10 @@ Ndbg ComputeBlockingAt(const Assembly& assembly, const Configuration& config,
                        const Vector3& direction) {
   Vector3 d = direction;
   if (!assembly.is_3d()) d.z() = 0;
-  CAIRN_THROW_UNLESS(d.allFinite() && d.norm() > 0,
+  const std::optional<Vector3> unit = UnitVector(d);
+  CAIRN_THROW_UNLESS(unit.has_value(),
                      "ComputeBlockingAt: the direction must be finite and nonzero");
-  d.normalize();
+  d = *unit;
   const Scene sc = BuildScene(assembly, config);
   Ndbg out;
   out.dimension = sc.dim;

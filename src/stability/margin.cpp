@@ -7,7 +7,9 @@
 #include <utility>
 
 #include "cairn/core/error.h"
+#include "cairn/core/format.h"
 #include "cairn/core/tolerances.h"
+#include "cairn/core/unit_vector.h"
 #include "cairn/mechanics/margin_lp.h"
 #include "cairn/mechanics/static_equilibrium.h"
 
@@ -18,6 +20,14 @@ namespace {
 // The friction margin stops when its bracket [lo, hi] is narrower than this
 // fraction of hi (dimensionless).
 constexpr double kFrictionTolerance = 1e-6;
+// The least friction coefficient the margin resolves (dimensionless): where
+// a component stands by jamming (compas_cra's H: a bar squeezed between two
+// posts stands at every μ > 0, not at 0), its equilibrium at μ needs forces
+// of about 1/μ loads, and below this their roundoff approaches the
+// equilibrium re-check's bound (1e-7 of the load). Once hi is below it the
+// search stops: μ* is in [lo, hi] (lo proved, often 0) and `tolerance` says
+// so.
+constexpr double kMinFriction = 1e-6;
 // A guard on the friction margin's steps (each at least halves the bracket
 // once Newton's steps are slow; 3–12 are taken on the examples and the
 // vaults, up to 44 where the safeguard bisects, COMPAS's A.json).
@@ -304,12 +314,13 @@ std::optional<double> TiltBisect(const ContactLcp& lcp, const Vector3& g, const 
 void TiltMargin(const Assembly& assembly, const std::vector<ContactLcp>& lcps,
                 const MarginRequest& req, MarginResult& r) {
   const Vector3 g = assembly.gravity();
-  const Vector3 a = req.axis.normalized();
+  const Vector3 a = *UnitVector(req.axis);  // CheckRequest refused a zero axis
   r.axis = a;
-  const bool exact = std::abs(a.dot(g.normalized())) <= kPerpendicular;
+  const Vector3 down = UnitVector(g).value_or(Vector3::Zero());
+  const bool exact = std::abs(a.dot(down)) <= kPerpendicular;
   // An axis along gravity turns the assembly without changing its load: it
   // holds at every angle or at none.
-  const bool along = std::abs(a.dot(g.normalized())) >= 1 - kPerpendicular;
+  const bool along = std::abs(a.dot(down)) >= 1 - kPerpendicular;
   r.method = exact   ? "parametric equilibrium LP in tan θ (exact)"
              : along ? "axis along gravity: the turn leaves the load unchanged (exact)"
                      : "scan by 5° and bisection over equilibrium LPs";
@@ -431,97 +442,163 @@ void TiltMargin(const Assembly& assembly, const std::vector<ContactLcp>& lcps,
 // k*), so the steps are safeguarded: a probe past k* stands and becomes hi;
 // when Newton's factor is at or past hi, the factor just below hi is tried
 // once (it fails when k* = hi), then bisection until a new lo brings a new
-// tangent; two slow steps in a row also bisect. Every end is verified: hi by
-// an equilibrium whose friction use is hi, lo by a positive deficit.
+// tangent; two slow steps in a row also bisect. Every end is proved: hi by
+// an equilibrium whose friction use is hi, lo by a mechanism or by the
+// equilibrium LP finding none (a positive deficit alone is not a proof: see
+// NewtonFriction).
 
 struct FrictionBracket {
   std::optional<double> hi;  // least k found feasible (verified); empty: none up to k_max
   double lo = 0;             // greatest k proved infeasible (0 when none was)
-  bool lo_proved = false;    // some probe at lo was infeasible (φ(lo) > 0)
+  bool lo_proved = false;    // some probe at lo was proved infeasible
   StaticEquilibrium at_hi;
   // The deficit LP's dual motion at lo (a mechanism there, unverified).
   std::vector<Vector6> motion_at_lo;
 };
 
+// What one probe of the friction margin proved at a factor.
+enum class Probe {
+  kStands,     // an equilibrium, re-checked from its forces
+  kFails,      // a mechanism, or the equilibrium LP finds none
+  kUndecided,  // a positive deficit that neither proves nor refutes
+};
+
 FrictionBracket NewtonFriction(const ContactLcp& lcp, double k_max, int* lps) {
   FrictionBracket out;
   FrictionDeficitLp deficit(lcp);
-  double phi_lo = 0, slope_lo = 0;
-  // One probe: a verified equilibrium tightens hi to its friction use ρ ≤ k
-  // (the same forces stand from ρ on); a positive deficit moves lo to k.
+  // Below this factor a jammed component's equilibrium needs forces of
+  // 1/(k μ) loads (a squeeze), beyond what its re-check can tell from
+  // roundoff: the search stops once hi is there (kMinFriction).
+  const double k_floor = kMinFriction * k_max / limits::kMaxFriction;
+  // `lo` may rest on an undecided probe (its deficit still steers Newton's
+  // steps); `proved` is the greatest factor proved to fail.
+  double lo = 0, phi_lo = 0, slope_lo = 0;
+  std::vector<Vector6> motion_lo;
+  // A component whose margin LPs go to the interior-point method.
+  int columns = 0;
+  for (int f : lcp.friction_of) columns += f < 0 ? 1 : lcp.num_directions;
+  const bool large = columns + 1 >= kMarginBarrierColumns;
+  bool proved_any = false;
+  double proved = 0;
+  // A factor proved to stand: hi is the friction use ρ ≤ k of its verified
+  // equilibrium (the same forces stand from ρ on).
+  const auto stands = [&](double k, StaticEquilibrium e) {
+    out.hi = std::max(proved, std::min(k, FrictionUse(lcp, e)));
+    out.at_hi = std::move(e);
+    if (lo > *out.hi) {  // an undecided lo that stands after all
+      lo = proved;
+      phi_lo = slope_lo = 0;
+      motion_lo.clear();
+    }
+    return Probe::kStands;
+  };
+  // One probe. The bracket's ends move on proofs: hi on an equilibrium
+  // re-checked from its forces; `proved` on a positive deficit whose dual
+  // motion passes the mechanism's check at k (VerifyMechanism), or else on
+  // the equilibrium LP at k finding none (at k = 0: the frictionless
+  // equilibrium, the question `cairn check` asks at μ = 0). A deficit is the
+  // optimum of an LP solved to its solver's tolerance (the interior-point
+  // method's objective is good to its gap): near 0 it proves nothing.
   const auto probe = [&](double k) {
     FrictionDeficit d = deficit.Solve(k);
     if (!d.solved)
       throw std::runtime_error("friction deficit LP failed at factor " + std::to_string(k) + ": " +
                                d.message);
     if (std::isinf(d.deficit)) {  // no factor holds
-      out.lo = k_max;
-      out.lo_proved = true;
-      return;
+      lo = proved = k_max;
+      proved_any = true;
+      return Probe::kFails;
     }
-    if (d.exists) {
-      out.hi = std::max(out.lo, std::min(k, FrictionUse(lcp, d.equilibrium)));
-      out.at_hi = std::move(d.equilibrium);
-      return;
+    if (d.exists) return stands(k, std::move(d.equilibrium));
+    const ContactLcp at_k = WithFrictionFactor(lcp, k);
+    bool fails = d.deficit > 0 && VerifyMechanism(at_k, d.motion).found;
+    if (!fails && (k == 0 || !large)) {
+      EquilibriumOptions options;
+      options.frictionless = k == 0;
+      StaticEquilibrium e = FindStaticEquilibrium(at_k, options);
+      ++*lps;
+      if (e.solved && e.exists) return stands(k, std::move(e));
+      fails = e.solved;
+    } else if (!fails) {
+      // A large component near k*: the equilibrium LP is slow to decide there
+      // (on the cross vault 1e-9 below k* its simplex ran for seconds and its
+      // forces failed the re-check); the mechanism LP may prove it fails, and
+      // otherwise the factor stays undecided.
+      fails = FindMechanism(at_k).found;
+      ++*lps;
     }
-    if (d.deficit > 0) {
-      out.lo = k;
-      out.lo_proved = true;
-      out.motion_at_lo = std::move(d.motion);
+    if (k >= lo) {
+      lo = k;
       phi_lo = d.deficit, slope_lo = d.slope;
-      return;
+      motion_lo = std::move(d.motion);
     }
-    // φ ≈ 0 but its forces failed the re-check: the equilibrium LP decides.
-    StaticEquilibrium e = FindStaticEquilibrium(WithFrictionFactor(lcp, k));
-    if (!e.solved || !e.exists)
-      throw std::runtime_error("the friction deficit vanishes at factor " + std::to_string(k) +
-                               " but no equilibrium is found there");
-    out.hi = std::max(out.lo, std::min(k, FrictionUse(lcp, e)));
-    out.at_hi = std::move(e);
+    if (!fails) return Probe::kUndecided;
+    proved = std::max(proved, k);
+    proved_any = true;
+    return Probe::kFails;
   };
-  // 1. Frictionless? Then k* = 0.
+  // 1. Frictionless? Then k* = 0, proved by that equilibrium.
   probe(0.0);
   int slow = 0;           // steps in a row that left over half the bracket
   double confirmed = -1;  // the lo from which the factor below hi was tried
-  const auto done = [&] { return out.hi && *out.hi - out.lo <= kFrictionTolerance * *out.hi; };
-  for (int i = 0; i < kMaxFrictionSteps && !done() && (out.hi || out.lo < k_max); ++i) {
+  double crept = -1;      // the last factor tried just above lo (lo when it failed)
+  int proofs = 0;         // factors below hi tried to prove an undecided lo
+  const auto within = [&](double below) {
+    return out.hi && (*out.hi - below <= kFrictionTolerance * *out.hi || *out.hi <= k_floor);
+  };
+  for (int i = 0; i < kMaxFrictionSteps && !within(proved) && (out.hi || proved < k_max); ++i) {
     // 2. The next factor: Newton's from lo (a lower estimate of k*); once it
     // is within the tolerance of lo, a factor just above it, which should
     // stand and close the bracket; a bisection when Newton's factor is past
-    // hi or its steps are slow.
-    const double newton =
-        slope_lo < 0 ? out.lo + phi_lo / -slope_lo : std::numeric_limits<double>::infinity();
+    // hi or its steps are slow, or when lo's deficit gives no step (a
+    // deficit at the LP's tolerance, or the factor just above lo failed).
+    // Where the bracket closed on an undecided lo, factors further below hi
+    // (by 1, 10, 100, 1000 times the tolerance) until one is proved to fail.
+    if (!out.hi && lo >= k_max) break;  // undecided at the largest factor
+    const double newton = slope_lo < 0 && phi_lo > 0 && crept != lo
+                              ? lo + phi_lo / -slope_lo
+                              : std::numeric_limits<double>::infinity();
     double k = newton;
-    if (out.hi && !(newton < *out.hi) && confirmed != out.lo) {
+    if (within(lo)) {
+      k = std::max(proved, *out.hi * (1 - std::pow(10.0, proofs++) * kFrictionTolerance));
+      if (proofs > 4) k = proved;  // prove nothing closer: the tolerance is hi − proved
+      if (k == proved) break;
+      lo = proved;  // the undecided lo no longer steers
+    } else if (out.hi && !(newton < *out.hi) && confirmed != lo) {
       // Newton's factor is hi itself (or past it): k* = hi, unless the
       // factor just below hi stands too.
-      k = std::max(out.lo, *out.hi * (1 - 0.9 * kFrictionTolerance));
-      confirmed = out.lo;
-    } else if (out.hi && (!(newton < *out.hi) || slow >= 2))
-      k = 0.5 * (out.lo + *out.hi);
-    else if (!out.hi && !(newton < k_max))
+      k = std::max(lo, *out.hi * (1 - 0.9 * kFrictionTolerance));
+      confirmed = lo;
+    } else if (out.hi && (!(newton < *out.hi) || slow >= 2)) {
+      k = 0.5 * (lo + *out.hi);
+    } else if (!out.hi && !(newton < k_max)) {
       k = k_max;
-    else if (newton - out.lo <= 0.4 * kFrictionTolerance * newton)
-      k = out.lo + 0.9 * kFrictionTolerance * newton;
-    const double before = out.hi ? *out.hi - out.lo : 0;
+    } else if (newton - lo <= 0.4 * kFrictionTolerance * newton) {
+      k = lo + 0.9 * kFrictionTolerance * newton;
+      crept = k;
+    }
+    const double before = out.hi ? *out.hi - lo : 0;
     probe(k);
-    slow = before > 0 && *out.hi - out.lo > 0.5 * before ? slow + 1 : 0;
+    slow = before > 0 && *out.hi - lo > 0.5 * before ? slow + 1 : 0;
   }
   *lps += deficit.lps();
+  out.lo = proved;
+  out.lo_proved = proved_any;
+  if (lo == proved) out.motion_at_lo = std::move(motion_lo);
   return out;
 }
 
 // The mechanism just below k*: the deficit LP's own dual motion at lo (the
 // greatest factor proved failing, within the tolerance of k*) when it passes
-// the mechanism's check there; else the mechanism LP kPastStep below k*
-// (near k* gravity does so little work along the motion that the check's
-// slack can refuse it).
+// the mechanism's check there; else the mechanism LP kPastStep below k*, or
+// at lo where the bracket is wider than that (near k* gravity does so little
+// work along the motion that the check's slack can refuse it).
 MarginMechanism FrictionMechanism(const ContactLcp& lcp, const FrictionBracket& b) {
-  if (b.lo_proved && b.lo > 0 && b.lo >= *b.hi * (1 - kPastStep) && !b.motion_at_lo.empty()) {
+  if (b.lo_proved && !b.motion_at_lo.empty()) {
     const Mechanism m = VerifyMechanism(WithFrictionFactor(lcp, b.lo), b.motion_at_lo);
     if (m.found) return ToCertificate(lcp, m, b.lo);
   }
-  const double past = *b.hi * (1 - kPastStep);
+  const double past = std::min(*b.hi * (1 - kPastStep), b.lo_proved ? b.lo : *b.hi);
   return ToCertificate(lcp, FindMechanism(WithFrictionFactor(lcp, past)), past);
 }
 
@@ -541,13 +618,14 @@ void FrictionMargin(const AssemblyDef& def, const Configuration& config, MarginR
   r.sides.resize(1);
   MarginSide& side = r.sides[0];
   bool any_friction_needed = false, unbounded = false;
+  double deciding_lo = 0;  // the deciding component's greatest factor proved to fail
   for (size_t c = 0; c < lcps.size(); ++c) {
     const ContactLcp& lcp = lcps[c];
     ComponentMargin& cm = r.components[c];
     FrictionBracket b = NewtonFriction(lcp, k_max, &cm.lps);
     cm.critical.push_back(b.hi);
     cm.holds_at_nominal = b.hi && *b.hi <= r.nominal;
-    any_friction_needed = any_friction_needed || b.lo_proved;
+    any_friction_needed = any_friction_needed || !b.hi || *b.hi > 0;
     if (unbounded) continue;  // a component no friction holds decides already
     if (!b.hi) {
       // No friction up to the largest allowed holds this component.
@@ -563,16 +641,18 @@ void FrictionMargin(const AssemblyDef& def, const Configuration& config, MarginR
     // The component that needs the most friction decides.
     side.component = static_cast<int>(c);
     side.critical = b.hi;
+    deciding_lo = b.lo;
     side.equilibrium = ToCertificate(WithFrictionFactor(lcp, *b.hi), b.at_hi, *b.hi);
     side.mechanism.reset();
     if (*b.hi > 0) side.mechanism = FrictionMechanism(lcp, b);
   }
   // Strong stability: a frictionless equilibrium in every component (k* = 0
-  // everywhere) certifies it at every μ; any infeasible probe rules it out.
+  // everywhere, proved by it) certifies it at every μ.
   r.strong_all = !any_friction_needed && !unbounded;
-  // Which parts move just below μ*, and how: the check there.
+  // Which parts move just below μ*, and how: the check there (at the
+  // proved lower end, where the bracket is wider: kMinFriction).
   if (side.critical && *side.critical > 0) {
-    const double below = *side.critical * (1 - kPastStep);
+    const double below = std::min(*side.critical * (1 - kPastStep), deciding_lo);
     r.failing_at = below;
     const Assembly weaker = Assembly::Create(ScaleFriction(base, below));
     StabilityOptions options;
@@ -585,8 +665,8 @@ void FrictionMargin(const AssemblyDef& def, const Configuration& config, MarginR
 
 void CheckRequest(const Assembly& assembly, const Configuration& config, const MarginRequest& req) {
   if (req.quantity == MarginQuantity::kTilt) {
-    if (!(req.axis.norm() > 0) || !req.axis.allFinite())
-      throw InputError("", "--tilt", "the axis must be a non-zero vector");
+    if (!UnitVector(req.axis))
+      throw InputError("", "--tilt", "the axis must be a finite, non-zero vector");
     if (!assembly.is_3d() && (req.axis.x() != 0 || req.axis.y() != 0))
       throw InputError("", "--tilt",
                        "a 2-D scene turns in its plane: the axis must be 0,0,1 or 0,0,-1");
@@ -600,9 +680,13 @@ void CheckRequest(const Assembly& assembly, const Configuration& config, const M
                        "part \"" + name + "\" is fixed: a load on it goes to the ground");
     if (!config.present[req.part])
       throw InputError("", "--load", "part \"" + name + "\" is taken away (--without)");
-    if (!(req.direction.norm() > 0) || !req.direction.allFinite())
-      throw InputError("", "--direction", "must be a non-zero vector");
+    if (!UnitVector(req.direction))
+      throw InputError("", "--direction", "must be a finite, non-zero vector");
     if (!req.point.allFinite()) throw InputError("", "--point", "must be finite");
+    if (req.point.cwiseAbs().maxCoeff() > limits::kMaxCoordinate)
+      throw InputError("", "--point",
+                       "must be within the scene's coordinate range, |x| <= " +
+                           FormatNumber(limits::kMaxCoordinate));
     if (!assembly.is_3d() && (req.direction.z() != 0 || req.point.z() != 0))
       throw InputError("", "--direction", "a 2-D scene takes 2 numbers");
   }
@@ -645,7 +729,7 @@ MarginResult ComputeMargin(const AssemblyDef& def, const Assembly& assembly,
                            const Configuration& config, const MarginRequest& request) {
   MarginRequest req = request;
   CheckRequest(assembly, config, req);
-  if (req.quantity == MarginQuantity::kLoad) req.direction.normalize();
+  if (req.quantity == MarginQuantity::kLoad) req.direction = *UnitVector(req.direction);
   MarginResult r;
   r.quantity = req.quantity;
   // 1. The components, as the check splits them.

@@ -135,8 +135,10 @@ TEST(Margin, InclineCriticalFrictionIsTanTheta) {
 // friction it lacks is its weight's tangential part, m g sin θ, less the
 // pyramid's k μ m g cos θ, in units of its weight (the largest load). So
 // φ(k) = sin θ − k cos θ up to tan θ, its slope is −cos θ, Newton's first
-// step from 0 lands on tan θ, and the margin takes three LPs: k = 0, tan θ,
-// and the factor just below it.
+// step from 0 lands on tan θ, and the margin takes four LPs: the deficit at
+// k = 0, tan θ and the factor just below it, and the equilibrium LP that
+// proves that factor fails (its deficit, 4e-7 of the weight, is too little
+// work for the mechanism's check to tell it from the LP's tolerance).
 TEST(Margin, InclineFrictionDeficitIsLinearAndNewtonLandsOnTanTheta) {
   const double theta = 20.0 / kDeg;
   const Scene s = Example("incline.json", 1.0);
@@ -156,7 +158,7 @@ TEST(Margin, InclineFrictionDeficitIsLinearAndNewtonLandsOnTanTheta) {
   EXPECT_LT(at.equilibrium.residual, 1e-9);
   const MarginResult r = s.Margin(Friction());
   EXPECT_NEAR(*r.sides[0].critical, std::tan(theta), 1e-6);
-  EXPECT_EQ(r.lps, 3);
+  EXPECT_EQ(r.lps, 4);
 }
 
 // A box of width w on a table tilted by θ: with friction enough not to slide
@@ -526,6 +528,64 @@ TEST(Margin, RejectsNonsense) {
   req.direction = {0, 0, 0};
   EXPECT_THROW(s.Margin(req), InputError);
   EXPECT_THROW(s.Margin(Tilt({1, 0, 0})), InputError);  // 2-D: only about z
+}
+
+// compas_cra's cube-curve-short on its stored (curved, triangulated)
+// interfaces stands without friction: the check's frictionless equilibrium
+// LP finds one. The friction deficit LP, solved by the interior-point
+// method there, gives φ(0) = 1.7e-9, its objective's tolerance: read as a
+// failure, it would put μ* at 0.0437741. The margin is 0, proved by that
+// equilibrium, and strong stability holds at every μ.
+TEST(Margin, FrictionZeroWhereItStandsFrictionless) {
+  if (SharedDir().empty()) GTEST_SKIP() << "../shared (the COMPAS datasets) is absent";
+  const std::string path = SharedDir() + "/datasets/compas_cra/cube-curve-short.json";
+  CompasOptions options;
+  options.friction = 0.84;
+  options.stored_interfaces = true;
+  CompasModel model = CompasToModel(ReadCompasAssembly(path), options, path);
+  for (PartDef& p : model.def.parts) p.fixed = p.name == "0";
+  const Scene s(model.def);
+  EquilibriumOptions frictionless;
+  frictionless.frictionless = true;
+  for (const ContactLcp& lcp : BuildComponentLcps(s.assembly, s.config()))
+    ASSERT_TRUE(FindStaticEquilibrium(lcp, frictionless).exists);
+  const MarginResult r = s.Margin(Friction());
+  ASSERT_TRUE(r.solved) << r.message;
+  ASSERT_TRUE(r.sides[0].critical.has_value());
+  EXPECT_EQ(*r.sides[0].critical, 0.0);
+  EXPECT_EQ(r.strong_all, true);
+  EXPECT_TRUE(r.holds_at_nominal);
+  EXPECT_FALSE(r.failing_at.has_value());
+  ASSERT_TRUE(r.sides[0].equilibrium.has_value());
+  for (const Vector3& f : r.sides[0].equilibrium->friction_force) EXPECT_EQ(f, Vector3::Zero());
+}
+
+// compas_cra's H: a bar between two fixed posts, touching only their
+// vertical faces. It stands at every μ > 0 (squeezed, with forces of about
+// 1/μ loads) and not at 0. Below μ 1e-6 those forces' roundoff approaches
+// the re-check's bound, and the margin stops there: μ* ≤ 1e-6, the bracket
+// from 0 (proved: no frictionless equilibrium) to μ*, the check at 0.
+TEST(Margin, FrictionOfAJammedBarStopsAtTheLeastResolved) {
+  if (SharedDir().empty()) GTEST_SKIP() << "../shared (the COMPAS datasets) is absent";
+  const std::string path = SharedDir() + "/datasets/compas_cra/H.json";
+  CompasOptions options;
+  options.friction = 0.84;
+  CompasModel model = CompasToModel(ReadCompasAssembly(path), options, path);
+  for (PartDef& p : model.def.parts) p.fixed = p.name == "0" || p.name == "1";
+  const Scene s(model.def);
+  const MarginResult r = s.Margin(Friction());
+  ASSERT_TRUE(r.solved) << r.message;
+  ASSERT_TRUE(r.sides[0].critical.has_value());
+  const double mu = *r.sides[0].critical;
+  EXPECT_GT(mu, 0);
+  EXPECT_LE(mu, 1e-6);
+  EXPECT_EQ(r.tolerance, mu);
+  EXPECT_EQ(r.failing_at, 0.0);
+  EXPECT_EQ(r.strong_all, false);
+  EXPECT_FALSE(CheckStable(ScaleFriction(s.def, 0.0)));
+  EXPECT_TRUE(CheckStable(ScaleFriction(s.def, mu / 0.84 * 1.001)));
+  ASSERT_TRUE(r.sides[0].mechanism.has_value());
+  EXPECT_TRUE(r.sides[0].mechanism->found);
 }
 
 }  // namespace

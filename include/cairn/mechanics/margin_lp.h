@@ -106,11 +106,13 @@ double FrictionUse(const ContactLcp& lcp, const StaticEquilibrium& e);
 /// W_j(k) = J_jᵀ (n + k μ_c d_i) the pyramid's edges, T_ci = J_cᵀ d_i, in
 /// units of the largest load. φ(k) = 0 exactly when the component stands at
 /// k (the x of the LP's answer are then such an equilibrium), φ(k) > 0 when
-/// it does not. Unlike the feasibility LP, whose interior vanishes as k → k*
-/// (the interior-point method ran out of its 60 iterations there), this one
-/// is strictly feasible on either side of k*, so the interior-point method
-/// reaches an answer there too, if slowly (100–750 iterations on the
-/// Armadillo vault: docs/benchmarks.md).
+/// it does not. The LP's φ is good to its solver's tolerance only (the
+/// interior-point method's gap, 1e-8 relative): a small positive `deficit`
+/// is not a proof of failure. The dual `motion` checked as a mechanism
+/// (VerifyMechanism), or the equilibrium LP at k, proves it. Unlike the feasibility LP, whose
+/// interior vanishes as k → k* (the interior-point method ran out of its 60 iterations there), this
+/// one is strictly feasible on either side of k*, so the interior-point method reaches an answer
+/// there too, if slowly (100–750 iterations on the Armadillo vault: docs/benchmarks.md).
 ///
 /// φ is non-increasing in k. By the envelope theorem, raising k by δ turns
 /// generator (c, i) by δ μ_c T_ci; a contact's normal force may go to any of

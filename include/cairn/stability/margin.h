@@ -116,8 +116,9 @@ struct MarginResult {
   /// bracket, or the LP's relative feasibility tolerance times the value.
   double tolerance = 0;
   int lps = 0;  ///< linear programs solved (all components, certificates excluded)
-  /// kFriction: the check just below μ*: its μ (or factor), and the moving
-  /// parts with how they move.
+  /// kFriction: the check just below μ* (at μ*(1 − 1e-3), or at the
+  /// greatest factor proved to fail where the bracket is wider: μ* below
+  /// 1e-6): its μ (or factor), and the moving parts with how they move.
   std::optional<double> failing_at;
   std::vector<PartMotion> failing_below;
   /// kFriction: every component has a frictionless equilibrium (strongly
@@ -128,7 +129,9 @@ struct MarginResult {
 /// Computes the margin of `config` (see the file comment). `def` is the
 /// model's definition (the friction margin rebuilds the assembly with scaled
 /// friction). @throws InputError for a request that makes no sense (a fixed
-/// or absent part, a zero axis or direction, a 2-D tilt off z).
+/// or absent part, a zero or non-finite axis or direction, a point beyond
+/// the scene's coordinate range, a 2-D tilt off z). The axis and direction
+/// may have any finite length (UnitVector).
 MarginResult ComputeMargin(const AssemblyDef& def, const Assembly& assembly,
                            const Configuration& config, const MarginRequest& request);
 
