@@ -570,21 +570,117 @@ void VertexEdgeEvents(const Vector2& p, const Vector2& d, const Vector2& q0, con
     out.push_back(t);
 }
 
+// VertexEdgeEvents of every vertex of `ps` moving along d and every edge of
+// `q`, the same times, skipping the pairs that cannot give one. With
+// c(x) = d × x, a vertex p crosses the line of edge (q0, q1) at the edge's
+// parameter s = (c(p) − c(q0)) / (c(q1) − c(q0)), so only vertices whose c
+// lies between c(q0) and c(q1) (widened by the parameter slack, and by far
+// more than roundoff) can; edges parallel to d are tested with every vertex.
+void PolygonEvents(const Polygon& ps, const Vector2& d, const Polygon& q, double tol,
+                   std::vector<double>& out) {
+  // Relative to the coordinates: far above the roundoff of c and s.
+  constexpr double kCSlack = 1e-9;
+  const int np = static_cast<int>(ps.size()), nq = static_cast<int>(q.size());
+  std::vector<double> c(np);
+  double scale = 1;
+  for (int i = 0; i < np; ++i) {
+    c[i] = Cross2(d, ps[i]);
+    scale = std::max(scale, ps[i].cwiseAbs().maxCoeff());
+  }
+  for (const Vector2& v : q) scale = std::max(scale, v.cwiseAbs().maxCoeff());
+  for (int k = 0; k < nq; ++k) {
+    const Vector2 &q0 = q[k], &q1 = q[(k + 1) % nq];
+    const Vector2 e = q1 - q0;
+    const double den = Cross2(d, e);
+    if (std::abs(den) <= numeric::kRoundoff * e.norm()) {  // parallel (VertexEdgeEvents' test)
+      for (const Vector2& p : ps) VertexEdgeEvents(p, d, q0, q1, tol, out);
+      continue;
+    }
+    const double c0 = Cross2(d, q0), c1 = Cross2(d, q1);
+    const double widen = numeric::kParameterSlack * std::abs(den) + kCSlack * scale;
+    const double lo = std::min(c0, c1) - widen, hi = std::max(c0, c1) + widen;
+    for (int i = 0; i < np; ++i)
+      if (c[i] >= lo && c[i] <= hi) VertexEdgeEvents(ps[i], d, q0, q1, tol, out);
+  }
+}
+
+// FindOverlap(a, b, tol).has_value(), by the same tests, skipping those that
+// bounding boxes show cannot pass: a point deeper than tol inside a polygon
+// lies inside its box by more than tol (skipped: closer than tol / 2 to the
+// box's sides, far beyond roundoff), and two edges that cross properly cross
+// at a point of both boxes. FindOverlap tests every vertex and every pair of
+// edges (O(n_a · n_b)); the swept test of a many-sided part calls it once or
+// more per direction, and its vertices and edges are mostly nowhere near the
+// other part.
+bool Overlaps2(const Polygon& a, const Polygon& b, double tol) {
+  const auto [a_lo, a_hi] = BoundingBox(a);
+  const auto [b_lo, b_hi] = BoundingBox(b);
+  const double margin = 0.5 * tol;
+  const auto deep_in_box = [margin](const Vector2& p, const Vector2& lo, const Vector2& hi) {
+    return p.x() > lo.x() + margin && p.x() < hi.x() - margin && p.y() > lo.y() + margin &&
+           p.y() < hi.y() - margin;
+  };
+  // SignedDepth(poly, p) > tol: inside (the cheap test first), then deep.
+  const auto deeper = [tol](const Polygon& poly, const Vector2& p) {
+    return ContainsPoint(poly, p) && DistanceToBoundary(poly, p) > tol;
+  };
+  // (a) a vertex of one deep inside the other.
+  for (const Vector2& v : a)
+    if (deep_in_box(v, b_lo, b_hi) && deeper(b, v)) return true;
+  for (const Vector2& v : b)
+    if (deep_in_box(v, a_lo, a_hi) && deeper(a, v)) return true;
+  // (b) two edges crossing properly: each edge's box meets the other polygon's.
+  const auto edge_box = [](const Polygon& p, int i) {
+    const Vector2 &p0 = p[i], &p1 = p[(i + 1) % static_cast<int>(p.size())];
+    return std::pair<Vector2, Vector2>(p0.cwiseMin(p1), p0.cwiseMax(p1));
+  };
+  const auto boxes_meet = [tol](const std::pair<Vector2, Vector2>& x, const Vector2& lo,
+                                const Vector2& hi) {
+    return x.first.x() <= hi.x() + tol && x.second.x() >= lo.x() - tol &&
+           x.first.y() <= hi.y() + tol && x.second.y() >= lo.y() - tol;
+  };
+  const int na = static_cast<int>(a.size()), nb = static_cast<int>(b.size());
+  std::vector<int> near_b, near_a;  // a's edges near b's box, b's edges near a's box
+  for (int i = 0; i < na; ++i)
+    if (boxes_meet(edge_box(a, i), b_lo, b_hi)) near_b.push_back(i);
+  for (int j = 0; j < nb; ++j)
+    if (boxes_meet(edge_box(b, j), a_lo, a_hi)) near_a.push_back(j);
+  for (const int i : near_b) {
+    const auto box_i = edge_box(a, i);
+    for (const int j : near_a)
+      if (boxes_meet(edge_box(b, j), box_i.first, box_i.second) &&
+          SegmentsCrossProperly(a[i], a[(i + 1) % na], b[j], b[(j + 1) % nb], tol))
+        return true;
+  }
+  // (c) coincident shapes: a point just inside an edge's midpoint of one deep
+  // inside the other. That point is 2 tol from the midpoint, so a midpoint
+  // outside the box grown by 2 tol cannot give one.
+  const auto midpoint_inside = [&](const Polygon& p, const Polygon& q, const Vector2& lo,
+                                   const Vector2& hi) {
+    const int n = static_cast<int>(p.size());
+    const Vector2 grow = Vector2::Constant(2.0 * tol + margin);
+    for (int i = 0; i < n; ++i) {
+      const Vector2 mid = 0.5 * (p[i] + p[(i + 1) % n]);
+      if (!deep_in_box(mid, lo - grow, hi + grow)) continue;
+      const Vector2 m = mid - 2.0 * tol * EdgeNormal(p, i);
+      if (deep_in_box(m, lo, hi) && deeper(q, m)) return true;
+    }
+    return false;
+  };
+  return midpoint_inside(a, b, b_lo, b_hi) || midpoint_inside(b, a, a_lo, a_hi);
+}
+
 // Step 3c, 2-D: a moving along d, b still, either non-convex.
 bool EventSweptOverlap2(const Shape& a, const Shape& b, const Vector3& d3, double tol) {
   const Vector2 d = d3.head<2>();
   std::vector<double> events;
-  const int na = static_cast<int>(a.poly.size()), nb = static_cast<int>(b.poly.size());
-  for (const Vector2& p : a.poly)
-    for (int k = 0; k < nb; ++k)
-      VertexEdgeEvents(p, d, b.poly[k], b.poly[(k + 1) % nb], tol, events);
-  for (const Vector2& p : b.poly)
-    for (int k = 0; k < na; ++k)
-      VertexEdgeEvents(p, -d, a.poly[k], a.poly[(k + 1) % na], tol, events);
+  const int na = static_cast<int>(a.poly.size());
+  PolygonEvents(a.poly, d, b.poly, tol, events);
+  PolygonEvents(b.poly, -d, a.poly, tol, events);
   Polygon moved = a.poly;
   return AnyIntervalOverlaps(events, tol, [&](double t) {
     for (int k = 0; k < na; ++k) moved[k] = a.poly[k] + t * d;
-    return FindOverlap(moved, b.poly, tol).has_value();
+    return Overlaps2(moved, b.poly, tol);
   });
 }
 
