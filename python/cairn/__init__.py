@@ -15,6 +15,7 @@ JSON path and what is wrong.
 
 import io
 import json
+import operator
 import os
 import tempfile
 
@@ -43,6 +44,14 @@ __all__ = [
 _FORMATS = ("scene", "compas")
 _INTERFACES = ("detect", "stored")
 
+# The whole numbers the CLI's options accept (src/cli/main.cpp), for the
+# keywords that are those options: (least, most).
+_INT_MAX = 2**31 - 1  # the C++ int they are passed as
+_MAX_FIXELS = (1, 20)  # simulate --max-fixels
+_ALLOW_FIXTURES = (0, 20)  # plan --allow-fixtures
+_NON_NEGATIVE = (0, _INT_MAX)  # plan --max, --threads
+_MAX_TICKS = (0, 2**63 - 1)  # simulate --max-ticks (a C++ long long)
+
 
 def __getattr__(name):
     # cairn.plot on first use (it imports matplotlib only when it draws), so
@@ -59,6 +68,62 @@ def _input_error(where, message, file=""):
     e = InputError(": ".join(x for x in (file, where, message) if x))
     e.file, e.json_path, e.message = file, where, message
     return e
+
+
+def _whole(value, what, limits):
+    """A whole-number keyword argument (an int, a numpy integer, or a float
+    with a whole value; not a bool) within `limits` (least, most), as the
+    CLI's option of the same name accepts; else an InputError naming it."""
+    lo, hi = limits
+    wanted = (f"a whole number from {lo} to {hi}" if hi < _INT_MAX
+              else f"a whole number ≥ {lo}")
+    if isinstance(value, (bool, np.bool_)):
+        raise _input_error(what, f"must be {wanted}, not {value!r}")
+    try:
+        number = operator.index(value)
+    except TypeError:
+        if isinstance(value, (float, np.floating)) and float(value).is_integer():
+            number = int(value)
+        else:
+            raise _input_error(what, f"must be {wanted}, not {value!r}") from None
+    if number < lo or number > hi:
+        raise _input_error(what, f"must be {wanted} (got {number})")
+    return number
+
+
+def _flag(value, what):
+    """A yes/no keyword argument: a bool (or numpy bool, or 0 or 1); else an
+    InputError naming it."""
+    if isinstance(value, (bool, np.bool_)):
+        return bool(value)
+    if isinstance(value, (int, np.integer)) and value in (0, 1):
+        return bool(value)
+    raise _input_error(what, f"must be True or False, not {value!r}")
+
+
+def _number(value, what):
+    """A real-number keyword argument as a float; else an InputError naming
+    it (whether the number is allowed is the C++ side's to say, as the CLI's)."""
+    if isinstance(value, (bool, np.bool_, str, bytes)):
+        raise _input_error(what, f"must be a number, not {value!r}")
+    try:
+        return float(value)
+    except (TypeError, ValueError):
+        raise _input_error(what, f"must be a number, not {value!r}") from None
+
+
+def _numbers(value, what):
+    """A sequence of numbers (a vector) as a list of floats; [] for None;
+    else an InputError naming the keyword."""
+    if value is None:
+        return []
+    if isinstance(value, (str, bytes)):
+        raise _input_error(what, f"must be a sequence of numbers, not {value!r}")
+    try:
+        items = list(value)
+    except TypeError:
+        raise _input_error(what, f"must be a sequence of numbers, not {value!r}") from None
+    return [_number(x, what) for x in items]
 
 
 def _names(value, what):
@@ -80,10 +145,10 @@ def _model_options(friction, supports, gravity, tolerance, interfaces):
     if interfaces not in _INTERFACES:
         raise _input_error("interfaces", f"must be one of {_INTERFACES}, not {interfaces!r}")
     return dict(
-        friction=None if friction is None else float(friction),
+        friction=None if friction is None else _number(friction, "friction"),
         supports=_names(supports, "supports"),
-        gravity=[] if gravity is None else [float(g) for g in gravity],
-        tolerance=None if tolerance is None else float(tolerance),
+        gravity=_numbers(gravity, "gravity"),
+        tolerance=None if tolerance is None else _number(tolerance, "tolerance"),
         interfaces=interfaces,
     )
 
@@ -211,11 +276,13 @@ def simulate(m, plan, continue_after_failure=False, normalize=None, suggest_fixt
         plan_file, plan_text = "plan", _dumps(plan)
     else:
         plan_file, plan_text = os.fspath(plan), ""
-    doc_text, csv = _cairn.simulate(m, plan_file, plan_text, bool(continue_after_failure),
-                                    _normalize(normalize), bool(suggest_fixtures),
-                                    int(max_fixels),
+    doc_text, csv = _cairn.simulate(m, plan_file, plan_text,
+                                    _flag(continue_after_failure, "continue_after_failure"),
+                                    _normalize(normalize),
+                                    _flag(suggest_fixtures, "suggest_fixtures"),
+                                    _whole(max_fixels, "max_fixels", _MAX_FIXELS),
                                     _cairn.DEFAULT_MAX_TICKS if max_ticks is None
-                                    else int(max_ticks))
+                                    else _whole(max_ticks, "max_ticks", _MAX_TICKS))
     doc = json.loads(doc_text)
     doc["timeline"] = read_timeline(io.StringIO(csv))
     return doc
@@ -230,8 +297,10 @@ def plan(m, max=None, single_parts=False, paths=None, allow_fixtures=0, keep=Non
     ``keep``: parts never removed; ``support``: "full", "none" or "both"."""
     _check_model(m)
     keep = _names(keep, "keep")
-    args = (int(max or 0), bool(single_parts))
-    rest = (int(allow_fixtures), keep, str(support), int(threads))
+    args = (0 if max is None else _whole(max, "max", _NON_NEGATIVE),
+            _flag(single_parts, "single_parts"))
+    rest = (_whole(allow_fixtures, "allow_fixtures", _ALLOW_FIXTURES), keep, str(support),
+            _whole(threads, "threads", _NON_NEGATIVE))
     if isinstance(paths, dict):
         # The candidate-paths reader reads files: the dict goes through one.
         with tempfile.TemporaryDirectory() as tmp:
@@ -244,14 +313,19 @@ def plan(m, max=None, single_parts=False, paths=None, allow_fixtures=0, keep=Non
 
 def blocking(m, direction=None, without=None):
     """``cairn blocking --json``: the nondirectional blocking graph. With a
-    ``direction`` (2 or 3 numbers), ``cells`` holds only the cell of the
-    arrangement that contains it: which parts can leave along it and which
-    block which."""
+    ``direction`` (2 numbers in 2-D, 3 in 3-D), ``cairn blocking --json
+    --direction``: ``cells`` holds the one cell at that direction, which parts
+    can leave along it and which block which."""
     _check_model(m)
-    doc = json.loads(_cairn.blocking(m, _names(without, "without")))
+    d = []
     if direction is not None:
-        doc["cells"] = [_cell_of(doc, np.asarray(direction, dtype=float))]
-    return doc
+        d = _numbers(direction, "direction")
+        if len(d) != m.dimension and not (m.dimension == 2 and len(d) == 3):
+            raise _input_error("direction", f"must have {m.dimension} numbers in a "
+                                            f"{m.dimension}-D scene, not {len(d)}")
+        if len(d) == 2:
+            d.append(0.0)  # the command's X,Y,Z
+    return json.loads(_cairn.blocking(m, _names(without, "without"), d))
 
 
 def margin(m, friction=False, tilt=None, load=None, point=None, direction=None, without=None):
@@ -267,47 +341,10 @@ def margin(m, friction=False, tilt=None, load=None, point=None, direction=None, 
     Raises InputError for no quantity or two, an unknown or fixed part, or a
     wrong count of numbers."""
     _check_model(m)
-
-    def numbers(value, what):
-        if value is None:
-            return []
-        try:
-            return [float(x) for x in value]
-        except (TypeError, ValueError):
-            raise _input_error(what, f"must be a sequence of numbers, not {value!r}") from None
-
-    return json.loads(_cairn.margin(m, bool(friction), numbers(tilt, "tilt"),
-                                    "" if load is None else str(load), numbers(point, "point"),
-                                    numbers(direction, "direction"),
+    return json.loads(_cairn.margin(m, _flag(friction, "friction"), _numbers(tilt, "tilt"),
+                                    "" if load is None else str(load), _numbers(point, "point"),
+                                    _numbers(direction, "direction"),
                                     _names(without, "without")))
-
-
-def _cell_of(doc, d):
-    dim = doc["dimension"]
-    if d.shape != (dim,) or not np.all(np.isfinite(d)) or not np.any(d):
-        raise _input_error("direction", f"must be {dim} finite numbers, not all zero "
-                                        f"(got {d.tolist()})")
-    d = d / np.linalg.norm(d)
-    cells = doc["cells"]
-    if dim == 3:
-        signs = [0 if abs(s) <= 1e-9 else (1 if s > 0 else -1)
-                 for s in (np.asarray(doc["normals"], dtype=float).reshape(-1, 3) @ d)]
-        for c in cells:
-            if c["signs"] == signs:
-                return c
-        raise _input_error("direction", f"no cell of the arrangement has the signs {signs}")
-    angle = float(np.degrees(np.arctan2(d[1], d[0]))) % 360.0
-    for c in cells:  # critical directions first: they are single angles
-        a, b = c["angles_deg"]
-        if c["dimension"] == 0 and min(abs(angle - a), 360 - abs(angle - a)) <= 1e-7:
-            return c
-    for c in cells:
-        a, b = c["angles_deg"]
-        if c["dimension"] == 0:
-            continue
-        if (a <= b and a <= angle <= b) or (a > b and (angle >= a or angle <= b)):
-            return c
-    raise _input_error("direction", f"no cell contains {angle} degrees")
 
 
 _INT_COLUMNS = ("step", "tick", "patch")

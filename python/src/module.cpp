@@ -28,11 +28,12 @@
 #include "cairn/report/blocking_report.h"
 #include "cairn/report/check_report.h"
 #include "cairn/report/fixture_report.h"
-#include "cairn/report/margin_report.h"  // cairn.margin
+#include "cairn/report/margin_report.h"
 #include "cairn/report/plan_report.h"
 #include "cairn/report/simulation_report.h"
 #include "cairn/stability/analyze.h"
-#include "cli/margin_command.h"  // cairn.margin
+#include "cli/blocking_command.h"
+#include "cli/margin_command.h"
 #include "cli/model.h"
 
 namespace py = pybind11;
@@ -48,6 +49,31 @@ struct PyModel {
   std::string file;
 };
 using ModelPtr = std::shared_ptr<PyModel>;
+
+// What a cairn.Model that no loader made says: `cairn.Model.__new__` without
+// a loader leaves the object without a model (pybind11 would otherwise hand
+// out its unconstructed memory).
+constexpr const char* kNoModel =
+    "this cairn.Model holds no model: make models with cairn.load(file) or "
+    "cairn.from_compas(data), not cairn.Model.__new__";
+
+// The model of a Python object given as a cairn.Model: a TypeError (never a
+// crash) when it is something else, or a Model that no loader filled.
+const PyModel& ModelOf(const py::handle& obj) {
+  if (!py::isinstance<PyModel>(obj))
+    throw py::type_error(
+        std::string("expected a cairn.Model (cairn.load, cairn.from_compas), not ") +
+        std::string(py::str(py::type::handle_of(obj).attr("__name__"))));
+  // A holder that was never constructed does not cast (pybind11 checks it):
+  // no value is read.
+  ModelPtr p;
+  try {
+    p = obj.cast<ModelPtr>();
+  } catch (const py::cast_error&) {
+  }
+  if (!p) throw py::type_error(kNoModel);
+  return *p;  // owned by `obj`, which the caller holds
+}
 
 // The model options of every command (docs/cli.md, "Reading the model").
 cli::ModelArgs MakeModelArgs(const std::string& format, std::optional<double> friction,
@@ -95,8 +121,9 @@ ModelPtr FromCompas(const std::string& text, const std::string& name,
 }
 
 // `cairn check --json`.
-std::string Check(const PyModel& m, const std::vector<std::string>& without,
+std::string Check(const py::object& model, const std::vector<std::string>& without,
                   const std::string& normalize) {
+  const PyModel& m = ModelOf(model);
   py::gil_scoped_release release;
   const Assembly& assembly = m.model.assembly;
   ReportOptions report;
@@ -110,11 +137,12 @@ std::string Check(const PyModel& m, const std::vector<std::string>& without,
 }
 
 // `cairn simulate --json` and the `--timeline` CSV of the same run.
-std::pair<std::string, std::string> Simulate(const PyModel& m, const std::string& plan_file,
+std::pair<std::string, std::string> Simulate(const py::object& model, const std::string& plan_file,
                                              const std::string& plan_text,
                                              bool continue_after_failure,
                                              const std::string& normalize, bool suggest_fixtures,
                                              int max_fixels, long long max_ticks) {
+  const PyModel& m = ModelOf(model);
   py::gil_scoped_release release;
   const Assembly& assembly = m.model.assembly;
   cli::RefuseGivenInterfaces(assembly, m.file,
@@ -148,9 +176,11 @@ std::pair<std::string, std::string> Simulate(const PyModel& m, const std::string
 }
 
 // `cairn plan --json`.
-std::string PlanSequences(const PyModel& m, int max, bool single_parts, const std::string& paths,
-                          int allow_fixtures, const std::vector<std::string>& keep,
-                          const std::string& support, int threads) {
+std::string PlanSequences(const py::object& model, int max, bool single_parts,
+                          const std::string& paths, int allow_fixtures,
+                          const std::vector<std::string>& keep, const std::string& support,
+                          int threads) {
+  const PyModel& m = ModelOf(model);
   py::gil_scoped_release release;
   const Assembly& assembly = m.model.assembly;
   cli::RefuseGivenInterfaces(assembly, m.file,
@@ -174,21 +204,27 @@ std::string PlanSequences(const PyModel& m, int max, bool single_parts, const st
 }
 
 // `cairn blocking --json`.
-std::string Blocking(const PyModel& m, const std::vector<std::string>& without) {
+std::string Blocking(const py::object& model, const std::vector<std::string>& without,
+                     const std::vector<double>& direction) {
+  const PyModel& m = ModelOf(model);
   py::gil_scoped_release release;
   const Assembly& assembly = m.model.assembly;
   ReportOptions report;
   report.scene_file = m.file;
   const Configuration config = cli::WithoutParts(assembly, without, m.file, report.without);
-  return NdbgToJson(assembly, ComputeNdbg(assembly, config), report).dump(2);
+  // With a direction, `cairn blocking --direction`: its resolver (which
+  // names the option "direction" here) and the one cell at it.
+  if (direction.empty()) return NdbgToJson(assembly, ComputeNdbg(assembly, config), report).dump(2);
+  const Vector3 d = cli::BlockingDirection(direction, assembly, "direction");
+  return NdbgToJson(assembly, ComputeBlockingAt(assembly, config, d), report).dump(2);
 }
 
-// ---- cairn.margin ----
 // `cairn margin --json`: friction (a flag), tilt (an axis) or load (a part,
 // a point, a direction), as the CLI's --friction, --tilt, --load.
-std::string Margin(const PyModel& m, bool friction, const std::vector<double>& tilt,
+std::string Margin(const py::object& model, bool friction, const std::vector<double>& tilt,
                    const std::string& load, const std::vector<double>& point,
                    const std::vector<double>& direction, const std::vector<std::string>& without) {
+  const PyModel& m = ModelOf(model);
   py::gil_scoped_release release;
   const Assembly& assembly = m.model.assembly;
   ReportOptions report;
@@ -199,7 +235,6 @@ std::string Margin(const PyModel& m, bool friction, const std::vector<double>& t
   const MarginResult result = ComputeMargin(m.model.def, assembly, config, request);
   return MarginToJson(assembly, request, result, report).dump(2);
 }
-// ---- end cairn.margin ----
 
 }  // namespace
 }  // namespace cairn::python
@@ -224,41 +259,51 @@ PYBIND11_MODULE(_cairn, m) {
     }
   });
 
-  py::class_<PyModel, std::shared_ptr<PyModel>>(m, "Model")
+  // Models come from cairn.load and cairn.from_compas only: no __init__, and
+  // a __new__ that refuses (instances made by C++ do not call it). Every
+  // attribute and function reads the model through ModelOf all the same.
+  py::class_<PyModel, std::shared_ptr<PyModel>> model(m, "Model");
+  model.attr("__new__") = py::staticmethod(py::cpp_function(
+      [](const py::args&, const py::kwargs&) -> py::object { throw py::type_error(kNoModel); },
+      py::name("__new__")));
+  model
       .def("__repr__",
-           [](const PyModel& self) {
-             const cairn::Assembly& a = self.model.assembly;
-             return "<cairn.Model " + cairn::JsonQuoted(self.model.def.name) + " (" +
+           [](const py::object& self) {
+             const PyModel& s = ModelOf(self);
+             const cairn::Assembly& a = s.model.assembly;
+             return "<cairn.Model " + cairn::JsonQuoted(s.model.def.name) + " (" +
                     std::to_string(a.dimension()) + "-D, " + std::to_string(a.num_parts()) +
-                    " parts) from " + cairn::JsonQuoted(self.file) + ">";
+                    " parts) from " + cairn::JsonQuoted(s.file) + ">";
            })
-      .def_property_readonly("file", [](const PyModel& self) { return self.file; })
-      .def_property_readonly("name", [](const PyModel& self) { return self.model.def.name; })
-      .def_property_readonly("dimension",
-                             [](const PyModel& self) { return self.model.assembly.dimension(); })
+      .def_property_readonly("file", [](const py::object& self) { return ModelOf(self).file; })
+      .def_property_readonly("name",
+                             [](const py::object& self) { return ModelOf(self).model.def.name; })
+      .def_property_readonly(
+          "dimension",
+          [](const py::object& self) { return ModelOf(self).model.assembly.dimension(); })
       .def_property_readonly("parts",
-                             [](const PyModel& self) {
+                             [](const py::object& self) {
                                std::vector<std::string> names;
-                               const cairn::Assembly& a = self.model.assembly;
+                               const cairn::Assembly& a = ModelOf(self).model.assembly;
                                for (int i = 0; i < a.num_parts(); ++i)
                                  names.push_back(a.part(i).name);
                                return names;
                              })
       .def_property_readonly("fixed",
-                             [](const PyModel& self) {
+                             [](const py::object& self) {
                                std::vector<std::string> names;
-                               const cairn::Assembly& a = self.model.assembly;
+                               const cairn::Assembly& a = ModelOf(self).model.assembly;
                                for (int i = 0; i < a.num_parts(); ++i)
                                  if (a.part(i).fixed) names.push_back(a.part(i).name);
                                return names;
                              })
       .def_property_readonly(
           "has_interfaces",
-          [](const PyModel& self) { return self.model.assembly.has_interfaces(); })
+          [](const py::object& self) { return ModelOf(self).model.assembly.has_interfaces(); })
       // Each part's vertices in the assembled pose, `dimension` numbers each
       // (2-D: the polygon in order), for drawing (cairn.plot.scene).
-      .def_property_readonly("vertices", [](const PyModel& self) {
-        const cairn::Assembly& a = self.model.assembly;
+      .def_property_readonly("vertices", [](const py::object& self) {
+        const cairn::Assembly& a = ModelOf(self).model.assembly;
         const cairn::Configuration config = cairn::Configuration::Assembled(a);
         std::vector<std::vector<std::vector<double>>> parts;
         for (int i = 0; i < a.num_parts(); ++i) {
@@ -284,7 +329,7 @@ PYBIND11_MODULE(_cairn, m) {
   m.def("plan", &PlanSequences, py::arg("model"), py::arg("max"), py::arg("single_parts"),
         py::arg("paths"), py::arg("allow_fixtures"), py::arg("keep"), py::arg("support"),
         py::arg("threads"));
-  m.def("blocking", &Blocking, py::arg("model"), py::arg("without"));
+  m.def("blocking", &Blocking, py::arg("model"), py::arg("without"), py::arg("direction"));
   m.def("margin", &Margin, py::arg("model"), py::arg("friction"), py::arg("tilt"), py::arg("load"),
         py::arg("point"), py::arg("direction"), py::arg("without"));
 }

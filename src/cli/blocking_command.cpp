@@ -37,7 +37,8 @@ struct Computed {
   Ndbg ndbg;
 };
 
-Computed Compute(const BlockingArgs& args, std::ostream* notes = nullptr) {
+Computed Compute(const BlockingArgs& args, const Checkpoint& checkpoint,
+                 std::ostream* notes = nullptr) {
   Assembly assembly = LoadModel(args.scene, args.model, notes).assembly;
   ReportOptions report;
   report.scene_file = args.scene;
@@ -45,21 +46,32 @@ Computed Compute(const BlockingArgs& args, std::ostream* notes = nullptr) {
   const Configuration config = WithoutParts(assembly, args.without, args.scene, report.without);
   // One direction (the classic ±x, ±y, ±z questions), or every cell.
   Ndbg ndbg = args.direction.empty()
-                  ? ComputeNdbg(assembly, config)
-                  : ComputeBlockingAt(assembly, config, DirectionFlag(args.direction, assembly));
+                  ? ComputeNdbg(assembly, config, checkpoint)
+                  : ComputeBlockingAt(assembly, config, DirectionFlag(args.direction, assembly),
+                                      checkpoint);
   return {std::move(assembly), std::move(report), std::move(ndbg)};
 }
 
 }  // namespace
 
-CommandDocument BlockingDocument(const BlockingArgs& args) {
-  const Computed c = Compute(args);
+Vector3 BlockingDirection(const std::vector<double>& xyz, const Assembly& assembly,
+                          const std::string& option) {
+  try {
+    return DirectionFlag(xyz, assembly);
+  } catch (const InputError& e) {
+    if (option == "--direction") throw;
+    throw InputError(e.file(), option, e.message());
+  }
+}
+
+CommandDocument BlockingDocument(const BlockingArgs& args, const Checkpoint& checkpoint) {
+  const Computed c = Compute(args, checkpoint);
   return {NdbgToJson(c.assembly, c.ndbg, c.report), kExitStable};
 }
 
 int RunBlocking(const BlockingArgs& args, std::ostream& out, std::ostream& err) {
   return RunGuarded(err, [&]() -> int {
-    const Computed c = Compute(args, &err);
+    const Computed c = Compute(args, {}, &err);
     if (args.json)
       out << NdbgToJson(c.assembly, c.ndbg, c.report).dump(2) << '\n';
     else

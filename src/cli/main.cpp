@@ -387,7 +387,7 @@ cairn::cli::JobCommand ParseJob(const std::vector<std::string>& args) {
   if (*parser.sim)
     return [p](const cli::Checkpoint& c) { return cli::SimulateDocument(p->sim, c); };
   if (*parser.blocking)
-    return [p](const cli::Checkpoint&) { return cli::BlockingDocument(p->blocking); };
+    return [p](const cli::Checkpoint& c) { return cli::BlockingDocument(p->blocking, c); };
   if (*parser.plan) return [p](const cli::Checkpoint& c) { return cli::PlanDocument(p->plan, c); };
   if (*parser.margin)
     return [p](const cli::Checkpoint&) { return cli::MarginJobDocument(p->margin); };

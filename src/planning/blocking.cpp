@@ -27,7 +27,9 @@
 //         overlap deeper than tol exactly where every axis does, so i → j
 //         iff the intersection of those intervals with t > 0 is not empty
 //         (for convex polytopes the penetration depth is the smallest
-//         projected overlap over exactly these axes);
+//         projected overlap over exactly these axes). The inequalities'
+//         constants depend on the pair alone: found once per pair, a test
+//         at one direction costs one product per axis;
 //      c. otherwise (non-convex parts) events: the overlap of i + t d and j
 //         can only start or stop when a vertex of one crosses an edge (2-D)
 //         or face (3-D) of the other, or (3-D) an edge of one crosses an
@@ -48,7 +50,12 @@
 //    between two of them, and keeps only the candidates where a bit changes.
 //    The union of the kept candidates cuts the circle; walking the cells
 //    and each pair's list side by side gives every cell's graphs without
-//    re-evaluating anything. At a critical direction the infinitesimal
+//    re-evaluating anything. A convex pair's relation to infinity holds on
+//    one open arc of directions (the cone of the eroded Minkowski
+//    difference), so among its candidates and arc middles it holds on one
+//    run: a point inside it, one outside and two bisections find the run
+//    with O(log n) swept tests instead of n (a free n-gon beside a block has
+//    thousands of candidates). At a critical direction the infinitesimal
 //    relation treats d · n_k as 0 when the direction is a perpendicular of
 //    n_k (the cluster it fell into), so a slot's direction is free exactly.
 //
@@ -67,6 +74,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <map>
 #include <numbers>
@@ -74,6 +82,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <tuple>
 #include <utility>
 
 #include "cairn/contact/contact.h"
@@ -101,6 +110,8 @@ bool BlockingGraph::Blocks(int i, int j) const {
 }
 
 namespace {
+
+using Checkpoint = std::function<void()>;
 
 constexpr double kTwoPi = 2.0 * std::numbers::pi;
 constexpr double kInf = std::numeric_limits<double>::infinity();
@@ -152,6 +163,11 @@ struct Scene {
   std::vector<Vector3> normals;  // distinct contact normals, one of each ± pair
   std::vector<PartPair> pairs;   // present pairs, not both fixed, in (i, j) order
   std::vector<Vector3> axes;     // world axis directions, preferred first
+  Checkpoint checkpoint;         // polled all through; may throw
+
+  void Poll() const {
+    if (checkpoint) checkpoint();
+  }
 };
 
 // +1, 0 or −1: the side of the plane ⟂ n that d is on, within tol.
@@ -181,11 +197,48 @@ void AddUnique(std::vector<Vector3>& out, const Vector3& v, double tol) {
   out.push_back(v);
 }
 
+// AddUnique of each of `vs` in turn, for vectors in the plane (a polygon's
+// edge normals, thousands of them on a fine polygon): the same vectors kept,
+// found by comparing each only with the kept ones whose angle modulo π is
+// within the tolerance (|u × v| ≤ tol means |sin(θ_u − θ_v)| ≤ tol), not
+// with all of them.
+std::vector<Vector3> UniqueAxes2d(const std::vector<Vector3>& vs, double tol, const Scene& sc) {
+  // Wider than asin(tol) by far more than atan2's roundoff.
+  constexpr double kWindowSlack = 1e-9;  // radians
+  const double window = std::asin(std::min(tol, 1.0)) + kWindowSlack;
+  std::vector<Vector3> out;
+  std::multimap<double, int> by_angle;  // angle modulo π in [0, π) → index in out
+  const auto near_one = [&](double lo, double hi, const Vector3& v) {
+    for (auto it = by_angle.lower_bound(lo); it != by_angle.end() && it->first <= hi; ++it)
+      if (out[it->second].cross(v).norm() <= tol) return true;
+    return false;
+  };
+  for (const Vector3& v : vs) {
+    sc.Poll();
+    // A zero vector is parallel to everything: dropped after the first kept
+    // one; kept first, it drops everything after it.
+    if (!out.empty() && out[0].norm() == 0) break;
+    if (v.norm() == 0) {
+      if (out.empty()) out.push_back(v);
+      continue;
+    }
+    double a = std::atan2(v.y(), v.x());
+    a = std::fmod(a + std::numbers::pi, std::numbers::pi);  // [0, π)
+    if (near_one(a - window, a + window, v) ||
+        near_one(a - window + std::numbers::pi, a + window + std::numbers::pi, v) ||
+        near_one(a - window - std::numbers::pi, a + window - std::numbers::pi, v))
+      continue;
+    by_angle.emplace(a, static_cast<int>(out.size()));
+    out.push_back(v);
+  }
+  return out;
+}
+
 // Step 1: the shapes, the distinct normals and the pairs with their contacts.
 // A 2-D part's world polygon; when convex (a simple counter-clockwise
 // polygon that never turns right), its edge normals as separating axes.
 void PlaceShape2d(const Assembly& assembly, const Configuration& config, int i,
-                  const Tolerances& tol, Shape& s) {
+                  const Tolerances& tol, const Scene& sc, Shape& s) {
   s.poly = config.WorldPolygon(assembly, i);
   s.verts.clear();
   for (const Vector2& v : s.poly) s.verts.push_back(Embed(v));
@@ -196,8 +249,11 @@ void PlaceShape2d(const Assembly& assembly, const Configuration& config, int i,
     const Vector2 &a = s.poly[k], &b = s.poly[(k + 1) % m], &c = s.poly[(k + 2) % m];
     s.convex = LineSide(a, b, c) >= -tol.length;
   }
-  if (s.convex)
-    for (int k = 0; k < m; ++k) AddUnique(s.axes, Embed(EdgeNormal(s.poly, k)), tol.angle);
+  if (s.convex) {
+    std::vector<Vector3> normals;
+    for (int k = 0; k < m; ++k) normals.push_back(Embed(EdgeNormal(s.poly, k)));
+    s.axes = UniqueAxes2d(normals, tol.angle, sc);
+  }
 }
 
 // A 3-D part's world transform, triangles and edges; when convex (every
@@ -282,7 +338,8 @@ void AddPairsAndNormals(const Assembly& assembly, const Configuration& config,
   }
 }
 
-Scene BuildScene(const Assembly& assembly, const Configuration& config) {
+Scene BuildScene(const Assembly& assembly, const Configuration& config,
+                 const Checkpoint& checkpoint) {
   const int n = assembly.num_parts();
   CAIRN_THROW_UNLESS(
       static_cast<int>(config.present.size()) == n && static_cast<int>(config.poses.size()) == n,
@@ -291,12 +348,14 @@ Scene BuildScene(const Assembly& assembly, const Configuration& config) {
           std::to_string(n) + " parts");
   const Tolerances tol = assembly.MakeTolerances();
   Scene sc;
+  sc.checkpoint = checkpoint;
   sc.dim = assembly.dimension();
   sc.tol_length = tol.length;
   sc.tol_angle = tol.angle;
   sc.axes = PreferredAxes(assembly);
   sc.shapes.resize(n);
   for (int i = 0; i < n; ++i) {
+    sc.Poll();
     Shape& s = sc.shapes[i];
     const Part& part = assembly.part(i);
     s.present = config.present[i];
@@ -310,11 +369,13 @@ Scene BuildScene(const Assembly& assembly, const Configuration& config) {
       s.hi = s.hi.cwiseMax(v);
     }
     if (sc.dim == 2)
-      PlaceShape2d(assembly, config, i, tol, s);
+      PlaceShape2d(assembly, config, i, tol, sc, s);
     else
       PlaceShape3d(assembly, config, i, tol, s);
   }
+  sc.Poll();
   AddPairsAndNormals(assembly, config, tol, sc);
+  sc.Poll();
   return sc;
 }
 
@@ -361,43 +422,94 @@ void Narrow(double c0, double s, double& t0, double& t1) {
 }
 
 // Step 3b: convex a moving along d, convex b still: do they ever overlap by
-// more than tol (separating-axis theorem over time)?
-bool ConvexSweptOverlap(const Shape& a, const Shape& b, const Vector3& d, double tol, int dim) {
+// more than tol (separating-axis theorem over time)? On an axis u, with a's
+// projection [amin, amax] and b's [bmin, bmax], the projections of a + t d
+// and b overlap deeper than tol where amax − bmin − tol + t (u · d) > 0 and
+// bmax − amin − tol − t (u · d) > 0. Those two constants depend on the pair
+// alone: a Slab each, found once per pair (SweptCache), in the order the
+// axes are tried (a's, b's, then in 3-D the cross products of their edges).
+struct Slab {
+  Vector3 u;
+  double ab = 0;  // amax − bmin − tol
+  double ba = 0;  // bmax − amin − tol
+};
+
+// Does a + t d overlap b deeper than tol for some t > 0, given their slabs?
+bool SlabsOverlap(const std::vector<Slab>& slabs, const Vector3& d) {
   double t0 = 0, t1 = kInf;
-  const auto axis = [&](const Vector3& u) {
-    double amin = kInf, amax = -kInf, bmin = kInf, bmax = -kInf;
-    for (const Vector3& v : a.verts) {
-      const double x = u.dot(v);
-      amin = std::min(amin, x);
-      amax = std::max(amax, x);
-    }
-    for (const Vector3& v : b.verts) {
-      const double x = u.dot(v);
-      bmin = std::min(bmin, x);
-      bmax = std::max(bmax, x);
-    }
-    const double s = u.dot(d);
-    // Overlap of [amin + t s, amax + t s] and [bmin, bmax] deeper than tol.
-    Narrow(amax - bmin - tol, s, t0, t1);
-    Narrow(bmax - amin - tol, -s, t0, t1);
-    return t0 < t1;
-  };
-  for (const Vector3& u : a.axes)
-    if (!axis(u)) return false;
-  for (const Vector3& u : b.axes)
-    if (!axis(u)) return false;
-  if (dim == 3) {
-    for (const Vector3& e : a.edge_dirs)
-      for (const Vector3& f : b.edge_dirs) {
-        const Vector3 u = e.cross(f);
-        const double len = u.norm();
-        if (len < numeric::kParameterSlack)
-          continue;  // parallel edges: their axis is a face normal's
-        if (!axis(u / len)) return false;
-      }
+  for (const Slab& slab : slabs) {
+    const double s = slab.u.dot(d);
+    Narrow(slab.ab, s, t0, t1);
+    Narrow(slab.ba, -s, t0, t1);
+    if (!(t0 < t1)) return false;
   }
   return t0 < t1;
 }
+
+// [min, max] of u · v over the vertices.
+std::array<double, 2> Extent(const std::vector<Vector3>& verts, const Vector3& u) {
+  double lo = kInf, hi = -kInf;
+  for (const Vector3& v : verts) {
+    const double x = u.dot(v);
+    lo = std::min(lo, x);
+    hi = std::max(hi, x);
+  }
+  return {lo, hi};
+}
+
+// What the swept tests of one computation keep, found on first use: each
+// convex shape's extents on its own axes, and each ordered convex pair's
+// slabs. The same numbers a direct computation gives, computed once.
+class SweptCache {
+ public:
+  explicit SweptCache(const Scene& sc) : sc_(sc), own_(sc.shapes.size()) {}
+
+  // The slabs of part ia moving into part ib (both convex).
+  const std::vector<Slab>& Slabs(int ia, int ib) {
+    auto it = slabs_.find({ia, ib});
+    if (it != slabs_.end()) return it->second;
+    const Shape &a = sc_.shapes[ia], &b = sc_.shapes[ib];
+    const double tol = sc_.tol_length;
+    std::vector<Slab> slabs;
+    const auto add = [&](const Vector3& u, const std::array<double, 2>& pa,
+                         const std::array<double, 2>& pb) {
+      slabs.push_back({u, pa[1] - pb[0] - tol, pb[1] - pa[0] - tol});
+    };
+    const std::vector<std::array<double, 2>>& own_a = Own(ia);
+    for (size_t k = 0; k < a.axes.size(); ++k) add(a.axes[k], own_a[k], Extent(b.verts, a.axes[k]));
+    const std::vector<std::array<double, 2>>& own_b = Own(ib);
+    for (size_t k = 0; k < b.axes.size(); ++k) add(b.axes[k], Extent(a.verts, b.axes[k]), own_b[k]);
+    if (sc_.dim == 3)
+      for (const Vector3& e : a.edge_dirs)
+        for (const Vector3& f : b.edge_dirs) {
+          const Vector3 u = e.cross(f);
+          const double len = u.norm();
+          if (len < numeric::kParameterSlack)
+            continue;  // parallel edges: their axis is a face normal's
+          const Vector3 unit = u / len;
+          add(unit, Extent(a.verts, unit), Extent(b.verts, unit));
+        }
+    return slabs_.emplace(std::make_pair(ia, ib), std::move(slabs)).first->second;
+  }
+
+ private:
+  const std::vector<std::array<double, 2>>& Own(int i) {
+    std::vector<std::array<double, 2>>& own = own_[i];
+    const Shape& s = sc_.shapes[i];
+    if (own.size() != s.axes.size()) {
+      own.clear();
+      for (const Vector3& u : s.axes) {
+        sc_.Poll();
+        own.push_back(Extent(s.verts, u));
+      }
+    }
+    return own;
+  }
+
+  const Scene& sc_;
+  std::vector<std::vector<std::array<double, 2>>> own_;  // (num_parts) per axis
+  std::map<std::pair<int, int>, std::vector<Slab>> slabs_;
+};
 
 // Sorts event times, merges those within tol, and tests the middle of each
 // interval between 0 and the last with `overlaps(t)`. The overlap is the same
@@ -459,21 +571,117 @@ void VertexEdgeEvents(const Vector2& p, const Vector2& d, const Vector2& q0, con
     out.push_back(t);
 }
 
+// VertexEdgeEvents of every vertex of `ps` moving along d and every edge of
+// `q`, the same times, skipping the pairs that cannot give one. With
+// c(x) = d × x, a vertex p crosses the line of edge (q0, q1) at the edge's
+// parameter s = (c(p) − c(q0)) / (c(q1) − c(q0)), so only vertices whose c
+// lies between c(q0) and c(q1) (widened by the parameter slack, and by far
+// more than roundoff) can; edges parallel to d are tested with every vertex.
+void PolygonEvents(const Polygon& ps, const Vector2& d, const Polygon& q, double tol,
+                   std::vector<double>& out) {
+  // Relative to the coordinates: far above the roundoff of c and s.
+  constexpr double kCSlack = 1e-9;
+  const int np = static_cast<int>(ps.size()), nq = static_cast<int>(q.size());
+  std::vector<double> c(np);
+  double scale = 1;
+  for (int i = 0; i < np; ++i) {
+    c[i] = Cross2(d, ps[i]);
+    scale = std::max(scale, ps[i].cwiseAbs().maxCoeff());
+  }
+  for (const Vector2& v : q) scale = std::max(scale, v.cwiseAbs().maxCoeff());
+  for (int k = 0; k < nq; ++k) {
+    const Vector2 &q0 = q[k], &q1 = q[(k + 1) % nq];
+    const Vector2 e = q1 - q0;
+    const double den = Cross2(d, e);
+    if (std::abs(den) <= numeric::kRoundoff * e.norm()) {  // parallel (VertexEdgeEvents' test)
+      for (const Vector2& p : ps) VertexEdgeEvents(p, d, q0, q1, tol, out);
+      continue;
+    }
+    const double c0 = Cross2(d, q0), c1 = Cross2(d, q1);
+    const double widen = numeric::kParameterSlack * std::abs(den) + kCSlack * scale;
+    const double lo = std::min(c0, c1) - widen, hi = std::max(c0, c1) + widen;
+    for (int i = 0; i < np; ++i)
+      if (c[i] >= lo && c[i] <= hi) VertexEdgeEvents(ps[i], d, q0, q1, tol, out);
+  }
+}
+
+// FindOverlap(a, b, tol).has_value(), by the same tests, skipping those that
+// bounding boxes show cannot pass: a point deeper than tol inside a polygon
+// lies inside its box by more than tol (skipped: closer than tol / 2 to the
+// box's sides, far beyond roundoff), and two edges that cross properly cross
+// at a point of both boxes. FindOverlap tests every vertex and every pair of
+// edges (O(n_a · n_b)); the swept test of a many-sided part calls it once or
+// more per direction, and its vertices and edges are mostly nowhere near the
+// other part.
+bool Overlaps2(const Polygon& a, const Polygon& b, double tol) {
+  const auto [a_lo, a_hi] = BoundingBox(a);
+  const auto [b_lo, b_hi] = BoundingBox(b);
+  const double margin = 0.5 * tol;
+  const auto deep_in_box = [margin](const Vector2& p, const Vector2& lo, const Vector2& hi) {
+    return p.x() > lo.x() + margin && p.x() < hi.x() - margin && p.y() > lo.y() + margin &&
+           p.y() < hi.y() - margin;
+  };
+  // SignedDepth(poly, p) > tol: inside (the cheap test first), then deep.
+  const auto deeper = [tol](const Polygon& poly, const Vector2& p) {
+    return ContainsPoint(poly, p) && DistanceToBoundary(poly, p) > tol;
+  };
+  // (a) a vertex of one deep inside the other.
+  for (const Vector2& v : a)
+    if (deep_in_box(v, b_lo, b_hi) && deeper(b, v)) return true;
+  for (const Vector2& v : b)
+    if (deep_in_box(v, a_lo, a_hi) && deeper(a, v)) return true;
+  // (b) two edges crossing properly: each edge's box meets the other polygon's.
+  const auto edge_box = [](const Polygon& p, int i) {
+    const Vector2 &p0 = p[i], &p1 = p[(i + 1) % static_cast<int>(p.size())];
+    return std::pair<Vector2, Vector2>(p0.cwiseMin(p1), p0.cwiseMax(p1));
+  };
+  const auto boxes_meet = [tol](const std::pair<Vector2, Vector2>& x, const Vector2& lo,
+                                const Vector2& hi) {
+    return x.first.x() <= hi.x() + tol && x.second.x() >= lo.x() - tol &&
+           x.first.y() <= hi.y() + tol && x.second.y() >= lo.y() - tol;
+  };
+  const int na = static_cast<int>(a.size()), nb = static_cast<int>(b.size());
+  std::vector<int> near_b, near_a;  // a's edges near b's box, b's edges near a's box
+  for (int i = 0; i < na; ++i)
+    if (boxes_meet(edge_box(a, i), b_lo, b_hi)) near_b.push_back(i);
+  for (int j = 0; j < nb; ++j)
+    if (boxes_meet(edge_box(b, j), a_lo, a_hi)) near_a.push_back(j);
+  for (const int i : near_b) {
+    const auto box_i = edge_box(a, i);
+    for (const int j : near_a)
+      if (boxes_meet(edge_box(b, j), box_i.first, box_i.second) &&
+          SegmentsCrossProperly(a[i], a[(i + 1) % na], b[j], b[(j + 1) % nb], tol))
+        return true;
+  }
+  // (c) coincident shapes: a point just inside an edge's midpoint of one deep
+  // inside the other. That point is 2 tol from the midpoint, so a midpoint
+  // outside the box grown by 2 tol cannot give one.
+  const auto midpoint_inside = [&](const Polygon& p, const Polygon& q, const Vector2& lo,
+                                   const Vector2& hi) {
+    const int n = static_cast<int>(p.size());
+    const Vector2 grow = Vector2::Constant(2.0 * tol + margin);
+    for (int i = 0; i < n; ++i) {
+      const Vector2 mid = 0.5 * (p[i] + p[(i + 1) % n]);
+      if (!deep_in_box(mid, lo - grow, hi + grow)) continue;
+      const Vector2 m = mid - 2.0 * tol * EdgeNormal(p, i);
+      if (deep_in_box(m, lo, hi) && deeper(q, m)) return true;
+    }
+    return false;
+  };
+  return midpoint_inside(a, b, b_lo, b_hi) || midpoint_inside(b, a, a_lo, a_hi);
+}
+
 // Step 3c, 2-D: a moving along d, b still, either non-convex.
 bool EventSweptOverlap2(const Shape& a, const Shape& b, const Vector3& d3, double tol) {
   const Vector2 d = d3.head<2>();
   std::vector<double> events;
-  const int na = static_cast<int>(a.poly.size()), nb = static_cast<int>(b.poly.size());
-  for (const Vector2& p : a.poly)
-    for (int k = 0; k < nb; ++k)
-      VertexEdgeEvents(p, d, b.poly[k], b.poly[(k + 1) % nb], tol, events);
-  for (const Vector2& p : b.poly)
-    for (int k = 0; k < na; ++k)
-      VertexEdgeEvents(p, -d, a.poly[k], a.poly[(k + 1) % na], tol, events);
+  const int na = static_cast<int>(a.poly.size());
+  PolygonEvents(a.poly, d, b.poly, tol, events);
+  PolygonEvents(b.poly, -d, a.poly, tol, events);
   Polygon moved = a.poly;
   return AnyIntervalOverlaps(events, tol, [&](double t) {
     for (int k = 0; k < na; ++k) moved[k] = a.poly[k] + t * d;
-    return FindOverlap(moved, b.poly, tol).has_value();
+    return Overlaps2(moved, b.poly, tol);
   });
 }
 
@@ -533,24 +741,25 @@ bool EventSweptOverlap3(const Shape& a, const Shape& b, const Vector3& d, double
 }
 
 // Step 3: does part a, translated along the unit d to infinity, run into b?
-bool SweptOverlap(const Scene& sc, int ia, int ib, const Vector3& d) {
+bool SweptOverlap(const Scene& sc, SweptCache& cache, int ia, int ib, const Vector3& d) {
   const Shape &a = sc.shapes[ia], &b = sc.shapes[ib];
   if (!RayMeetsBox(b.lo - a.hi, b.hi - a.lo, d, sc.tol_length, sc.dim)) return false;
-  if (a.convex && b.convex) return ConvexSweptOverlap(a, b, d, sc.tol_length, sc.dim);
+  if (a.convex && b.convex) return SlabsOverlap(cache.Slabs(ia, ib), d);
   return sc.dim == 2 ? EventSweptOverlap2(a, b, d, sc.tol_length)
                      : EventSweptOverlap3(a, b, d, sc.tol_length);
 }
 
 // Both relations of a pair at d, given its infinitesimal bits there.
-std::uint8_t PairBits(const Scene& sc, const PartPair& pair, const Vector3& d, std::uint8_t inf) {
+std::uint8_t PairBits(const Scene& sc, SweptCache& cache, const PartPair& pair, const Vector3& d,
+                      std::uint8_t inf) {
   std::uint8_t bits = inf;
   if (inf & kInfIJ) bits |= kFarIJ;
   if (inf & kInfJI) bits |= kFarJI;
   // Given interfaces: the shapes of the two parts may interpenetrate (that is
   // why the interfaces are given), so the contacts alone decide.
   if (pair.given_interface) return bits;
-  if (!(bits & kFarIJ) && SweptOverlap(sc, pair.i, pair.j, d)) bits |= kFarIJ;
-  if (!(bits & kFarJI) && SweptOverlap(sc, pair.j, pair.i, d)) bits |= kFarJI;
+  if (!(bits & kFarIJ) && SweptOverlap(sc, cache, pair.i, pair.j, d)) bits |= kFarIJ;
+  if (!(bits & kFarJI) && SweptOverlap(sc, cache, pair.j, pair.i, d)) bits |= kFarJI;
   return bits;
 }
 
@@ -688,8 +897,96 @@ double ArcMiddle(double a, double b) {
 
 Vector3 DirectionAt(double angle) { return {std::cos(angle), std::sin(angle), 0}; }
 
-PairFunction EvaluatePair2(const Scene& sc, const PartPair& pair, const Clusters& cl,
-                           const std::vector<std::array<int, 2>>& perp_cluster,
+// The swept relation of a moving into b at directions given in
+// counter-clockwise order around the circle (`angle` each), both convex: 1
+// where it holds. For convex parts it holds on one open arc of directions
+// (those of the open convex cone spanned by the points t d where a + t d
+// overlaps b deeper than tol: the tol-eroded Minkowski difference b ⊖ a,
+// seen from the origin; empty, or less than a half-turn, unless they overlap
+// where they stand), so among the directions it holds on one run: found
+// from a direction inside the arc (towards the difference of the vertex
+// means, a point of b ⊖ a), one outside (opposite) and two bisections, in
+// O(log n) tests instead of n. Empty when one of those premises is not met
+// (the caller then tests every direction).
+std::optional<std::vector<char>> ConvexSweptRun(const Scene& sc, SweptCache& cache, int ia, int ib,
+                                                const std::vector<Vector3>& dir,
+                                                const std::vector<double>& angle) {
+  const int n = static_cast<int>(dir.size());
+  const Shape &a = sc.shapes[ia], &b = sc.shapes[ib];
+  if (n < 2 || !a.convex || !b.convex) return std::nullopt;
+  int descents = 0;  // the angles must go once around, in order
+  for (int s = 0; s < n; ++s) descents += angle[(s + 1) % n] < angle[s] ? 1 : 0;
+  if (descents != 1) return std::nullopt;
+  Vector3 mean_a = Vector3::Zero(), mean_b = Vector3::Zero();
+  for (const Vector3& v : a.verts) mean_a += v / static_cast<double>(a.verts.size());
+  for (const Vector3& v : b.verts) mean_b += v / static_cast<double>(b.verts.size());
+  const Vector3 c = mean_b - mean_a;
+  if (!(c.norm() > sc.tol_length)) return std::nullopt;
+  const auto test = [&](const Vector3& d) {
+    sc.Poll();
+    return SweptOverlap(sc, cache, ia, ib, d);
+  };
+  if (!test(c.normalized())) return std::nullopt;
+  // The directions just after and just before an angle.
+  const auto after = [&](double theta) {
+    int best = 0;
+    double best_off = kInf;
+    for (int s = 0; s < n; ++s) {
+      const double off = NormalizeAngle(angle[s] - theta);
+      if (off < best_off) {
+        best_off = off;
+        best = s;
+      }
+    }
+    return best;
+  };
+  std::vector<signed char> known(n, -1);  // -1: not tested yet
+  const auto holds = [&](int s) {
+    if (known[s] < 0) known[s] = test(dir[s]) ? 1 : 0;
+    return known[s] == 1;
+  };
+  const int in_after = after(AngleOf(c)), in_before = (in_after + n - 1) % n;
+  std::vector<char> out(n, 0);
+  int t = -1;
+  if (holds(in_after))
+    t = in_after;
+  else if (holds(in_before))
+    t = in_before;
+  if (t < 0) return out;  // the arc holds no direction
+  const int out_after = after(AngleOf(-c)), out_before = (out_after + n - 1) % n;
+  int f = -1;
+  if (!holds(out_after))
+    f = out_after;
+  else if (!holds(out_before))
+    f = out_before;
+  if (f < 0) return std::nullopt;
+  // From t (holds) forward to f (does not): the last that holds.
+  int lo = 0, hi = (f - t + n) % n;
+  while (hi - lo > 1) {
+    const int mid = lo + (hi - lo) / 2;
+    (holds((t + mid) % n) ? lo : hi) = mid;
+  }
+  const int last = (t + lo) % n;
+  // From f forward to t: the first that holds.
+  lo = 0;
+  hi = (t - f + n) % n;
+  while (hi - lo > 1) {
+    const int mid = lo + (hi - lo) / 2;
+    (holds((f + mid) % n) ? hi : lo) = mid;
+  }
+  const int first = (f + hi) % n;
+  for (int s = first;; s = (s + 1) % n) {
+    out[s] = 1;
+    if (s == last) break;
+  }
+  return out;
+}
+
+// A pair's relation as a function of the direction (step 4): its bits at
+// each of its candidate clusters and at the middle of each arc between two,
+// of which it keeps the clusters where a bit changes.
+PairFunction EvaluatePair2(const Scene& sc, SweptCache& cache, const PartPair& pair,
+                           const Clusters& cl, const std::vector<std::array<int, 2>>& perp_cluster,
                            const std::vector<std::array<double, 2>>& perps) {
   std::vector<double> raw;
   PairCandidates(sc, pair, perps, raw);
@@ -699,25 +996,57 @@ PairFunction EvaluatePair2(const Scene& sc, const PartPair& pair, const Clusters
   ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
   const int m = static_cast<int>(ids.size());
   // Signs of d · n_k at a direction; at a cluster, exactly 0 on its normals.
-  const auto bits_at = [&](const Vector3& d, int cluster) {
-    const std::uint8_t inf = InfinitesimalBits(pair, [&](int k) {
+  const auto inf_at = [&](const Vector3& d, int cluster) {
+    return InfinitesimalBits(pair, [&](int k) {
       if (cluster >= 0 && (perp_cluster[k][0] == cluster || perp_cluster[k][1] == cluster))
         return 0;
       return SignOf(d.dot(sc.normals[k]), sc.tol_angle);
     });
-    return PairBits(sc, pair, d, inf);
   };
   PairFunction f;
   if (m == 0) {
-    f.constant = bits_at(Vector3(1, 0, 0), -1);
+    f.constant = PairBits(sc, cache, pair, Vector3(1, 0, 0), inf_at(Vector3(1, 0, 0), -1));
     return f;
   }
-  std::vector<std::uint8_t> at(m), arc(m);
+  // The 2m sample directions in counter-clockwise order: each cluster, then
+  // the middle of the arc after it; their bits as PairBits gives them.
+  const int n = 2 * m;
+  std::vector<Vector3> dir(n);
+  std::vector<double> angle(n);
+  std::vector<std::uint8_t> bits(n);
   for (int q = 0; q < m; ++q) {
     const Cluster& c = cl.list[ids[q]];
-    at[q] = bits_at(c.dir, ids[q]);
     const double next = cl.list[ids[(q + 1) % m]].angle;
-    arc[q] = bits_at(DirectionAt(ArcMiddle(c.angle, next)), -1);
+    dir[2 * q] = c.dir;
+    angle[2 * q] = c.angle;
+    bits[2 * q] = inf_at(c.dir, ids[q]);
+    angle[2 * q + 1] = ArcMiddle(c.angle, next);
+    dir[2 * q + 1] = DirectionAt(angle[2 * q + 1]);
+    bits[2 * q + 1] = inf_at(dir[2 * q + 1], -1);
+  }
+  for (std::uint8_t& b : bits) {
+    if (b & kInfIJ) b |= kFarIJ;
+    if (b & kInfJI) b |= kFarJI;
+  }
+  // Given interfaces: the contacts alone decide (PairBits).
+  if (!pair.given_interface)
+    for (const auto& [ia, ib, far] :
+         {std::tuple(pair.i, pair.j, kFarIJ), std::tuple(pair.j, pair.i, kFarJI)}) {
+      if (const auto run = ConvexSweptRun(sc, cache, ia, ib, dir, angle)) {
+        for (int s = 0; s < n; ++s)
+          if ((*run)[s]) bits[s] |= far;
+        continue;
+      }
+      for (int s = 0; s < n; ++s) {
+        if (bits[s] & far) continue;
+        sc.Poll();
+        if (SweptOverlap(sc, cache, ia, ib, dir[s])) bits[s] |= far;
+      }
+    }
+  std::vector<std::uint8_t> at(m), arc(m);
+  for (int q = 0; q < m; ++q) {
+    at[q] = bits[2 * q];
+    arc[q] = bits[2 * q + 1];
   }
   for (int q = 0; q < m; ++q) {
     const std::uint8_t before = arc[(q + m - 1) % m];
@@ -810,7 +1139,10 @@ Ndbg ComputeNdbg2(const Scene& sc) {
     perps.push_back({a, NormalizeAngle(a + std::numbers::pi)});
   }
   std::vector<double> all;
-  for (const PartPair& pair : sc.pairs) PairCandidates(sc, pair, perps, all);
+  for (const PartPair& pair : sc.pairs) {
+    sc.Poll();
+    PairCandidates(sc, pair, perps, all);
+  }
   const Clusters cl = MakeClusters(std::move(all), sc.axes, sc.tol_angle);
   std::vector<std::array<int, 2>> perp_cluster;
   for (const auto& p : perps) {
@@ -824,8 +1156,9 @@ Ndbg ComputeNdbg2(const Scene& sc) {
   std::vector<PairFunction> fns;
   fns.reserve(sc.pairs.size());
   std::vector<int> critical;
+  SweptCache cache(sc);
   for (const PartPair& pair : sc.pairs) {
-    fns.push_back(EvaluatePair2(sc, pair, cl, perp_cluster, perps));
+    fns.push_back(EvaluatePair2(sc, cache, pair, cl, perp_cluster, perps));
     critical.insert(critical.end(), fns.back().critical.begin(), fns.back().critical.end());
   }
   std::sort(critical.begin(), critical.end());
@@ -979,6 +1312,7 @@ Ndbg ComputeNdbg3(const Scene& sc) {
   Ndbg out;
   out.dimension = 3;
   out.normals = sc.normals;
+  SweptCache cache(sc);
   for (const ArrangementCell& a : Arrangement(sc.normals, sc.axes, sc.tol_angle)) {
     NdbgCell cell;
     cell.cell_dimension = a.dimension;
@@ -987,8 +1321,9 @@ Ndbg ComputeNdbg3(const Scene& sc) {
     cell.infinitesimal = EmptyGraph(sc, a.direction, BlockingKind::kInfinitesimal);
     cell.infinity = EmptyGraph(sc, a.direction, BlockingKind::kInfinity);
     for (const PartPair& pair : sc.pairs) {
+      sc.Poll();
       const std::uint8_t inf = InfinitesimalBits(pair, [&](int k) { return a.signs[k]; });
-      const std::uint8_t bits = PairBits(sc, pair, a.direction, inf);
+      const std::uint8_t bits = PairBits(sc, cache, pair, a.direction, inf);
       AddArcs(pair, bits, kInfIJ, kInfJI, cell.infinitesimal);
       AddArcs(pair, bits, kFarIJ, kFarJI, cell.infinity);
     }
@@ -1011,7 +1346,8 @@ BlockingGraph ComputeBlockingGraph(const Assembly& assembly, const Configuration
       unit.has_value(),
       "ComputeBlockingGraph: the direction must be finite and nonzero, got " + given.str());
   d = *unit;
-  const Scene sc = BuildScene(assembly, config);
+  const Scene sc = BuildScene(assembly, config, {});
+  SweptCache cache(sc);
   BlockingGraph g = EmptyGraph(sc, d, kind);
   for (const PartPair& pair : sc.pairs) {
     const std::uint8_t inf =
@@ -1019,20 +1355,21 @@ BlockingGraph ComputeBlockingGraph(const Assembly& assembly, const Configuration
     if (kind == BlockingKind::kInfinitesimal)
       AddArcs(pair, inf, kInfIJ, kInfJI, g);
     else
-      AddArcs(pair, PairBits(sc, pair, d, inf), kFarIJ, kFarJI, g);
+      AddArcs(pair, PairBits(sc, cache, pair, d, inf), kFarIJ, kFarJI, g);
   }
   return g;
 }
 
 Ndbg ComputeBlockingAt(const Assembly& assembly, const Configuration& config,
-                       const Vector3& direction) {
+                       const Vector3& direction, const std::function<void()>& checkpoint) {
   Vector3 d = direction;
   if (!assembly.is_3d()) d.z() = 0;
   const std::optional<Vector3> unit = UnitVector(d);
   CAIRN_THROW_UNLESS(unit.has_value(),
                      "ComputeBlockingAt: the direction must be finite and nonzero");
   d = *unit;
-  const Scene sc = BuildScene(assembly, config);
+  const Scene sc = BuildScene(assembly, config, checkpoint);
+  SweptCache cache(sc);
   Ndbg out;
   out.dimension = sc.dim;
   out.normals = sc.normals;
@@ -1057,8 +1394,9 @@ Ndbg ComputeBlockingAt(const Assembly& assembly, const Configuration& config,
   cell.infinitesimal = EmptyGraph(sc, d, BlockingKind::kInfinitesimal);
   cell.infinity = EmptyGraph(sc, d, BlockingKind::kInfinity);
   for (const PartPair& pair : sc.pairs) {
+    sc.Poll();
     const std::uint8_t inf = InfinitesimalBits(pair, [&](int k) { return signs[k]; });
-    const std::uint8_t bits = PairBits(sc, pair, d, inf);
+    const std::uint8_t bits = PairBits(sc, cache, pair, d, inf);
     AddArcs(pair, bits, kInfIJ, kInfJI, cell.infinitesimal);
     AddArcs(pair, bits, kFarIJ, kFarJI, cell.infinity);
   }
@@ -1067,8 +1405,9 @@ Ndbg ComputeBlockingAt(const Assembly& assembly, const Configuration& config,
   return out;
 }
 
-Ndbg ComputeNdbg(const Assembly& assembly, const Configuration& config) {
-  const Scene sc = BuildScene(assembly, config);
+Ndbg ComputeNdbg(const Assembly& assembly, const Configuration& config,
+                 const std::function<void()>& checkpoint) {
+  const Scene sc = BuildScene(assembly, config, checkpoint);
   return sc.dim == 2 ? ComputeNdbg2(sc) : ComputeNdbg3(sc);
 }
 

@@ -2,7 +2,12 @@
 // stdout, stderr and exit code.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <nlohmann/json.hpp>
+#include <numbers>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -15,6 +20,8 @@ namespace {
 using testing::Cairn;
 using testing::CliRun;
 using testing::ExamplePath;
+using testing::Slurp;
+using testing::TempDir;
 
 // The removable parts of the cell whose direction is `direction`.
 std::vector<std::string> RemovableAt(const nlohmann::json& doc, const nlohmann::json& direction) {
@@ -119,6 +126,76 @@ TEST(CliBlocking, MissingSceneIsBadInput) {
   const CliRun r = Cairn("blocking " + ExamplePath("no_such_scene.json"));
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("cairn: error: "), std::string::npos) << r.err;
+}
+
+// paper_fig4 with a free regular n-gon of radius 0.9 about (x, y), as a
+// scene file in `dir`; its path.
+std::string SceneWithFreeNGon(const std::string& dir, int n, double x, double y) {
+  nlohmann::json scene = nlohmann::json::parse(Slurp(ExamplePath("paper_fig4.json")));
+  std::ostringstream polygon;
+  polygon.precision(17);
+  polygon << "[";
+  for (int k = 0; k < n; ++k) {
+    const double a = 2 * std::numbers::pi * k / n;
+    polygon << (k ? "," : "") << "[" << x + 0.9 * std::cos(a) << "," << y + 0.9 * std::sin(a)
+            << "]";
+  }
+  polygon << "]";
+  scene["parts"].push_back({{"name", "free"}, {"polygon", nlohmann::json::parse(polygon.str())}});
+  const std::string path = dir + "/free_ngon.json";
+  std::ofstream(path) << scene.dump();
+  return path;
+}
+
+// A free 500-gon beside the slot, touching nothing and above nothing: upward
+// the other parts leave as they do without it, and so does the polygon.
+TEST(CliBlocking, FreePolygonAnswersForEveryPart) {
+  const std::string dir = TempDir("cairn_blocking_ngon");
+  std::filesystem::create_directories(dir);
+  const std::string scene = SceneWithFreeNGon(dir, 500, 12.5, 1.5);
+  const CliRun r = Cairn("blocking " + scene + " --json --direction 0,1,0");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const CliRun alone =
+      Cairn("blocking " + ExamplePath("paper_fig4.json") + " --json --direction 0,1,0");
+  ASSERT_EQ(alone.exit_code, 0) << alone.err;
+  std::vector<std::string> expected =
+      nlohmann::json::parse(alone.out)["cells"][0]["removable"].get<std::vector<std::string>>();
+  expected.push_back("free");
+  EXPECT_EQ(nlohmann::json::parse(r.out)["cells"][0]["removable"], nlohmann::json(expected));
+  const CliRun all = Cairn("blocking " + scene + " --json");
+  ASSERT_EQ(all.exit_code, 0) << all.err;
+  EXPECT_EQ(RemovableAt(nlohmann::json::parse(all.out), nlohmann::json::parse("[0, 1]")), expected);
+  std::filesystem::remove_all(dir);
+}
+
+// A batch's blocking job polls the job's deadline while the NDBG is computed:
+// the NDBG with a free 200 000-gon over the slot (its 3.2 million candidate
+// directions against the slot's walls, a non-convex part, each tested
+// against all its edges: hours) is abandoned at --job-timeout, recorded as
+// timed out, and the batch goes on.
+TEST(CliBlocking, BatchJobStopsAtItsTimeout) {
+  const std::string dir = TempDir("cairn_blocking_timeout");
+  std::filesystem::create_directories(dir);
+  const std::string scene = SceneWithFreeNGon(dir, 200000, 5, 6.5);
+  const std::string jobs = dir + "/jobs.jsonl";
+  std::ofstream(jobs) << "{\"id\": 1, \"command\": \"blocking\", \"model\": \"" << scene
+                      << "\"}\n{\"id\": 2, \"command\": \"blocking\", \"model\": \""
+                      << ExamplePath("paper_fig1.json") << "\"}\n";
+  const CliRun r = Cairn("batch " + jobs + " -o " + dir + "/out --job-timeout 1 --threads 1");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::istringstream out(Slurp(dir + "/out"));
+  std::string slow_line, fast_line;
+  ASSERT_TRUE(std::getline(out, slow_line) && std::getline(out, fast_line));
+  const nlohmann::json slow = nlohmann::json::parse(slow_line);
+  const nlohmann::json fast = nlohmann::json::parse(fast_line);
+  EXPECT_EQ(slow["id"], 1);
+  EXPECT_EQ(slow["exit"], 5) << slow_line;
+  EXPECT_EQ(slow["error"], "exceeded --job-timeout 1 s") << slow_line;
+  EXPECT_FALSE(slow.contains("result"));
+  EXPECT_EQ(fast["exit"], 0) << fast_line;
+  EXPECT_EQ(RemovableAt(fast["result"], nlohmann::json::parse("[0, 1]")),
+            (std::vector<std::string>{"C", "D"}));
+  std::filesystem::remove_all(dir);
 }
 
 }  // namespace

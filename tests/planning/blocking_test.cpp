@@ -9,8 +9,12 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <filesystem>
 #include <numbers>
 #include <set>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
@@ -537,6 +541,180 @@ TEST(Ndbg, PostconditionsOnExamples) {
       }
     }
     if (ndbg.dimension == 2) ExpectConsistent(assembly, config, ndbg);
+  }
+}
+
+// The NDBG as text, every number to the last bit: two computations that
+// agree on it agree on everything the reports show.
+std::string NdbgText(const Ndbg& ndbg) {
+  std::string out;
+  char buf[96];
+  const auto vec = [&](const Vector3& v) {
+    std::snprintf(buf, sizeof buf, "(%.17g %.17g %.17g)", v.x(), v.y(), v.z());
+    out += buf;
+  };
+  const auto graph = [&](const BlockingGraph& g) {
+    for (size_t i = 0; i < g.blockers.size(); ++i)
+      for (const int j : g.blockers[i]) out += " " + std::to_string(i) + ">" + std::to_string(j);
+  };
+  for (const Vector3& n : ndbg.normals) vec(n);
+  out += "\n";
+  for (const NdbgCell& c : ndbg.cells) {
+    std::snprintf(buf, sizeof buf, "%d %.17g %.17g ", c.cell_dimension, c.angle_from, c.angle_to);
+    out += buf;
+    vec(c.direction);
+    for (const int s : c.signs) out += " " + std::to_string(s);
+    out += " |";
+    graph(c.infinitesimal);
+    out += " |";
+    graph(c.infinity);
+    out += " | removable";
+    for (const int r : c.removable) out += " " + std::to_string(r);
+    out += "\n";
+  }
+  return out;
+}
+
+// FNV-1a, 64 bits.
+std::uint64_t Fnv1a(const std::string& text) {
+  std::uint64_t h = 14695981039346656037ull;
+  for (const unsigned char ch : text) {
+    h ^= ch;
+    h *= 1099511628211ull;
+  }
+  return h;
+}
+
+// Every bundled example's NDBG, recorded from the exhaustive computation
+// (every pair tested at every candidate direction and arc middle): the cell
+// count, the parts removable along some cell, and a hash of the whole NDBG
+// to the last bit (NdbgText). The faster search of convex pairs' swept
+// relation and the cached separating axes must give exactly these.
+TEST(Ndbg, BundledExamplesAsRecorded) {
+  struct Recorded {
+    const char* name;
+    size_t cells;
+    std::vector<int> removable_somewhere;
+    std::uint64_t hash;
+  };
+  const std::vector<Recorded> recorded = {
+      {"flush_joint.json", 24, {2, 3}, 0x1dd15e436a987bf9ull},
+      {"flush_joint_wall.json", 32, {4}, 0xec4afd1a5fd14574ull},
+      {"incline.json", 4, {1}, 0x8a82831bcd72db7full},
+      {"incline_slides.json", 4, {1}, 0x4f0076b50fa6efb3ull},
+      {"jenga.json",
+       3,
+       {1,  2,  3,  6,  7,  8,  9,  12, 13, 14, 15, 18, 19, 20, 21, 24, 25, 26, 27,
+        30, 31, 32, 33, 36, 37, 38, 39, 42, 43, 44, 45, 48, 49, 50, 51, 52, 53, 54},
+       0x7a981c7b6ba8e608ull},
+      {"l_shapes.json", 8, {0, 1}, 0x912a7bba9b89fdc8ull},
+      {"ladder.json", 8, {2}, 0xfdfac7043a511918ull},
+      {"overhang.json", 4, {1}, 0x1aa5812d6aa529acull},
+      {"overhang_tips.json", 4, {1}, 0x1aa5812d6aa529acull},
+      {"paper_fig1.json", 48, {1, 2, 3, 4}, 0xeee9f77858fb8cb3ull},
+      {"paper_fig14.json", 76, {1, 2, 3, 4, 5}, 0xe2c1b6d2dc718c12ull},
+      {"paper_fig15.json", 12, {1, 2}, 0x0d1e8af57626e9cfull},
+      {"paper_fig16.json", 12, {1, 2}, 0x0d1e8af57626e9cfull},
+      {"paper_fig17.json", 48, {1, 2, 3, 4}, 0x659c737a8cbc8d98ull},
+      {"paper_fig19.json", 16, {2, 3}, 0x1ca2ac99632d3c33ull},
+      {"paper_fig4.json", 40, {1, 3}, 0x7255d9f8668e3bd3ull},
+      {"paper_fig4_fixels.json", 40, {1, 3}, 0x7255d9f8668e3bd3ull},
+      {"paper_fig6.json", 72, {3, 4, 5}, 0xb9630488de85b80cull},
+      {"paper_fig9.json", 3, {1, 2, 3}, 0x1a7b3afd999ea07eull},
+      {"peg_in_slot.json", 4, {1}, 0x8bfb9cd73ca6093dull},
+      {"pyramid10.json", 164, {1, 4, 5, 7, 8, 9, 10}, 0x054341fed5b293f1ull},
+      {"pyramid14.json", 236, {1, 5, 6, 9, 10, 12, 13, 14}, 0x6baab24b319abf85ull},
+      {"stack3.json", 28, {1, 2, 3}, 0x219ae85219a4c3dfull},
+      {"stack3_tips.json", 28, {1, 2, 3}, 0xe22dd04b1276b660ull},
+      {"wall.json",
+       1056,
+       {1,  10, 11, 21, 22, 31, 32, 42, 43,  52,  53,  63,  64,  73, 74,
+        84, 85, 94, 95, 96, 97, 98, 99, 100, 101, 102, 103, 104, 105},
+       0x35502b65a5c346d8ull},
+  };
+  for (const Recorded& r : recorded) {
+    SCOPED_TRACE(r.name);
+    const Assembly assembly = Example(r.name);
+    const Ndbg ndbg = ComputeNdbg(assembly, Configuration::Assembled(assembly));
+    std::set<int> removable;
+    for (const NdbgCell& c : ndbg.cells) removable.insert(c.removable.begin(), c.removable.end());
+    const std::uint64_t hash = Fnv1a(NdbgText(ndbg));
+    EXPECT_EQ(ndbg.cells.size(), r.cells);
+    EXPECT_EQ(std::vector<int>(removable.begin(), removable.end()), r.removable_somewhere);
+    EXPECT_EQ(hash, r.hash);
+  }
+}
+
+// A regular n-gon of radius r about (x, y), counter-clockwise.
+PartDef NGon(const std::string& name, int n, double x, double y, double r) {
+  PartDef p;
+  p.name = name;
+  for (int k = 0; k < n; ++k) {
+    const double a = 2 * std::numbers::pi * k / n;
+    p.polygon.push_back({x + r * std::cos(a), y + r * std::sin(a)});
+  }
+  return p;
+}
+
+// A part that touches nothing changes no other pair's relation: every cell
+// of the NDBG with a free n-gon added has, among the other parts, the graphs
+// of the scene without it at the cell's direction; and the n-gon's own arcs
+// are those of DBG(d) computed directly (ExpectConsistent), beside the
+// slot's walls (a non-convex part: every direction tested) and beside convex
+// blocks (a convex pair: its run of directions searched).
+TEST(Ndbg, FreePolygonChangesNoOtherPair) {
+  const AssemblyDef base = ReadSceneDef(ExamplePath("paper_fig4.json"));
+  const Assembly without = Assembly::Create(base);
+  const Configuration config0 = Configuration::Assembled(without);
+  const int n0 = without.num_parts();
+  // Outside the slot (beside D), and in it, above the blocks.
+  for (const auto& [x, y] : {std::pair(13.0, 1.5), std::pair(5.0, 6.5)}) {
+    SCOPED_TRACE("n-gon at " + std::to_string(x) + ", " + std::to_string(y));
+    AssemblyDef def = base;
+    def.parts.push_back(NGon("free", 60, x, y, 0.9));
+    const Assembly with = Assembly::Create(def);
+    const Configuration config = Configuration::Assembled(with);
+    const Ndbg ndbg = ComputeNdbg(with, config);
+    ExpectConsistent(with, config, ndbg);
+    for (const NdbgCell& cell : ndbg.cells) {
+      for (const BlockingKind kind : {BlockingKind::kInfinitesimal, BlockingKind::kInfinity}) {
+        const BlockingGraph alone = ComputeBlockingGraph(without, config0, cell.direction, kind);
+        const BlockingGraph& got =
+            kind == BlockingKind::kInfinity ? cell.infinity : cell.infinitesimal;
+        for (int i = 0; i < n0; ++i) {
+          std::vector<int> others;
+          for (const int j : got.blockers[i])
+            if (j < n0) others.push_back(j);
+          EXPECT_EQ(others, alone.blockers[i]) << to_string(kind) << " part " << i;
+        }
+      }
+    }
+  }
+}
+
+// The checkpoint is called while the NDBG is computed, and what it throws
+// ends the computation and passes through (`cairn batch --job-timeout`).
+TEST(Ndbg, CheckpointIsPolledAndMayAbandon) {
+  struct Abandon {};
+  for (const char* name : {"paper_fig4.json", "jenga.json"}) {
+    SCOPED_TRACE(name);
+    const Assembly assembly = Example(name);
+    const Configuration config = Configuration::Assembled(assembly);
+    int calls = 0;
+    const Ndbg full = ComputeNdbg(assembly, config, [&] { ++calls; });
+    EXPECT_GT(calls, assembly.num_parts());
+    EXPECT_TRUE(SameNdbg(full, ComputeNdbg(assembly, config)));
+    for (const int stop_at : {1, calls / 2, calls}) {
+      int left = stop_at;
+      EXPECT_THROW(ComputeNdbg(assembly, config,
+                               [&] {
+                                 if (--left == 0) throw Abandon{};
+                               }),
+                   Abandon);
+    }
+    int at_calls = 0;
+    ComputeBlockingAt(assembly, config, Vector3(0, 1, 0.5), [&] { ++at_calls; });
+    EXPECT_GT(at_calls, 0);
   }
 }
 

@@ -48,6 +48,7 @@
 /// slot's walls, a block along its neighbour) are not blocked. docs/blocking.md
 /// describes the method.
 
+#include <functional>
 #include <vector>
 
 #include "cairn/core/types.h"
@@ -136,7 +137,11 @@ BlockingGraph ComputeBlockingGraph(const Assembly& assembly, const Configuration
 
 /// The NDBG of `config`: its cells with both graphs each. Deterministic (the
 /// same cells in the same order on every run and thread count).
-Ndbg ComputeNdbg(const Assembly& assembly, const Configuration& config);
+/// `checkpoint`, when set, is called all through the computation (between
+/// parts, pairs and direction tests); it may throw to abandon it (`cairn
+/// batch --job-timeout`), and the exception passes through.
+Ndbg ComputeNdbg(const Assembly& assembly, const Configuration& config,
+                 const std::function<void()>& checkpoint = {});
 
 /// The NDBG restricted to one direction (`cairn blocking --direction`): one
 /// cell, `direction` normalised, with both graphs at it and the parts that can
@@ -144,10 +149,10 @@ Ndbg ComputeNdbg(const Assembly& assembly, const Configuration& config);
 /// arrangement cell that holds the direction (2 when it is on no great circle
 /// of the normals, 1 on one, 0 on two or more); 2-D: the direction itself,
 /// dimension 0, `angle_from` = `angle_to`. `normals` as ComputeNdbg's. In 2-D
-/// the direction's z is ignored.
+/// the direction's z is ignored. `checkpoint` as ComputeNdbg's.
 /// @throws std::invalid_argument when the direction is zero or not finite.
 Ndbg ComputeBlockingAt(const Assembly& assembly, const Configuration& config,
-                       const Vector3& direction);
+                       const Vector3& direction, const std::function<void()>& checkpoint = {});
 
 /// True when the set `in_s` (num_parts flags) can leave along the graph's
 /// direction: it holds no fixed part (BlockingGraph::fixed) and no part of S
