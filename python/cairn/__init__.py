@@ -358,28 +358,44 @@ def read_timeline(source):
     ``tick`` (and ``patch`` in 3-D) as ints, ``breaks``/``slides`` as bools,
     ``part_a``/``part_b`` as strings. One entry per tick and contact point."""
     if isinstance(source, (str, os.PathLike)):
-        with open(source, encoding="utf-8") as f:
+        try:
+            f = open(source, encoding="utf-8")
+        except OSError as e:
+            raise _input_error("", f"cannot read the file: {e.strerror}", file=str(source)) from None
+        with f:
             return read_timeline(f)
-    name = getattr(source, "name", "timeline")
+    if not callable(getattr(source, "readline", None)):
+        raise TypeError("read_timeline takes a path or a text file object, not "
+                        f"{type(source).__name__}")
+    name = str(getattr(source, "name", "timeline"))
+    not_csv = ("not a Cairn timeline CSV (`cairn simulate --timeline`: its header starts "
+               "with 'time')")
     try:
         header = source.readline().strip().split(",")
         if header[0] != "time":
             raise ValueError
         rows = [line.rstrip("\n").split(",") for line in source if line.strip()]
-    except (UnicodeDecodeError, ValueError):
-        raise _input_error("", "not a Cairn timeline CSV (`cairn simulate --timeline`: its "
-                                "header starts with 'time')", file=name) from None
+    except (UnicodeDecodeError, ValueError, TypeError):  # TypeError: a binary file
+        raise _input_error("", not_csv, file=name) from None
+    for n, row in enumerate(rows, start=2):
+        if len(row) != len(header):
+            raise _input_error(f"line {n}", f"{len(row)} fields where the header has "
+                               f"{len(header)}", file=name)
     columns = {}
-    for k, name in enumerate(header):
+    for k, column in enumerate(header):
         values = [r[k] for r in rows]
-        if name in _NAME_COLUMNS:
-            columns[name] = np.array(values, dtype=str)
-        elif name in _INT_COLUMNS:
-            columns[name] = np.array(values, dtype=np.int64)
-        elif name in _BOOL_COLUMNS:
-            columns[name] = np.array([v == "1" for v in values], dtype=bool)
-        else:
-            columns[name] = np.array(values, dtype=float)
+        try:
+            if column in _NAME_COLUMNS:
+                columns[column] = np.array(values, dtype=str)
+            elif column in _INT_COLUMNS:
+                columns[column] = np.array(values, dtype=np.int64)
+            elif column in _BOOL_COLUMNS:
+                columns[column] = np.array([v == "1" for v in values], dtype=bool)
+            else:
+                columns[column] = np.array(values, dtype=float)
+        except (ValueError, OverflowError):
+            raise _input_error(column, "a value that is not a number of this column",
+                               file=name) from None
     return columns
 
 
@@ -391,7 +407,23 @@ def compas_forces(assembly_data, r):
     interface's normal from u to v). ``r`` is :func:`check`'s result for the
     same assembly (``from_compas`` of this data, best with
     ``interfaces="stored"``: then every contact is an interface point). The
-    data given is not changed: a copy is returned. Raises ValueError when a
-    contact that carries force is not at a point of a stored interface."""
+    data given is not changed: a copy is returned. Raises InputError (a
+    ValueError) when the data are not a COMPAS assembly's, when they store no
+    interfaces, or when a contact that carries force is not at a point of a
+    stored interface; TypeError when ``r`` is not a dict."""
     from ._compas import fill_forces
-    return fill_forces(_plain(assembly_data), r)
+    if not isinstance(r, dict):
+        raise TypeError(f"compas_forces: r is the dict cairn.check returns, not {type(r).__name__}")
+    for key in ("dimension", "contacts", "tolerances"):
+        if key not in r:
+            raise _input_error("r", f"not a result of cairn.check (it has no {key!r})")
+    data = _plain(assembly_data)
+    try:
+        return fill_forces(data, r)
+    except InputError:
+        raise
+    except ValueError as e:  # what fill_forces says of data that do not match r
+        raise _input_error("", str(e)) from None
+    except (KeyError, IndexError, TypeError, AttributeError) as e:
+        raise _input_error("assembly_data", "not the COMPAS assembly data of this result "
+                           f"(at {type(e).__name__}: {e})") from None

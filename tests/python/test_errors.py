@@ -80,3 +80,39 @@ def test_max_ticks_as_the_cli(cli):
     code, out, err = cli("simulate", scene, plan, "--max-ticks", "2")
     assert code == 2 and out == "" and err == f"cairn: error: {e.value}\n"
     assert cairn.simulate(cairn.load(scene), plan, max_ticks=7)["stable"]
+
+
+# What the Python fuzzer (fuzz/python_fuzz.py) found: helpers that took any
+# object and failed inside with AttributeError, IndexError or a bare
+# ValueError. Bad input is InputError; an argument of the wrong type TypeError.
+def test_read_timeline_refuses_what_is_not_a_timeline(tmp_path):
+    import io
+    for wrong in ([], 7, False, None):
+        with pytest.raises(TypeError, match="a path or a text file object"):
+            cairn.read_timeline(wrong)
+    with pytest.raises(cairn.InputError, match="cannot read the file"):
+        cairn.read_timeline(str(tmp_path / "absent.csv"))
+    with pytest.raises(cairn.InputError, match="cannot read the file"):
+        cairn.read_timeline(str(tmp_path))  # a folder
+    with pytest.raises(cairn.InputError, match="not a Cairn timeline CSV"):
+        cairn.read_timeline(io.BytesIO(b"time,step\n0,1\n"))  # a binary file
+    with pytest.raises(cairn.InputError) as e:
+        cairn.read_timeline(io.StringIO("time,step\n0.5,1\n0.6\n"))
+    assert e.value.json_path == "line 3"
+    assert "1 fields where the header has 2" in e.value.message
+    with pytest.raises(cairn.InputError) as e:
+        cairn.read_timeline(io.StringIO("time,step\n0.5,x\n"))
+    assert e.value.json_path == "step"
+
+
+def test_compas_forces_refuses_what_is_not_its_data():
+    r = cairn.check(cairn.load(example("stack3.json")))
+    with pytest.raises(TypeError, match="the dict cairn.check returns"):
+        cairn.compas_forces({}, ["step"])
+    with pytest.raises(cairn.InputError, match="not a result of cairn.check"):
+        cairn.compas_forces({}, {"dimension": 3})
+    for data in (False, [1, 2], {"graph": {"edge": {"0": {"1": {"interfaces": [{}]}}}}}):
+        with pytest.raises(cairn.InputError):
+            cairn.compas_forces(data, dict(r, dimension=3))
+    with pytest.raises(cairn.InputError, match="not of a 3-D"):
+        cairn.compas_forces({}, r)
