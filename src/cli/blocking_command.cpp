@@ -6,6 +6,7 @@
 #include <ostream>
 
 #include "cairn/core/error.h"
+#include "cairn/core/format.h"
 #include "cairn/core/unit_vector.h"
 #include "cairn/planning/blocking.h"
 #include "cairn/report/blocking_report.h"
@@ -16,14 +17,19 @@ namespace cairn::cli {
 
 namespace {
 
-// --direction: X,Y in a 2-D scene, X,Y,Z in a 3-D one; finite, not all zero.
+// --direction: X,Y (or X,Y,0) in a 2-D scene, X,Y,Z in a 3-D one; finite, not
+// all zero. As margin's --direction and --point take them.
 Vector3 DirectionFlag(const std::vector<double>& xyz, const Assembly& assembly) {
   const size_t dim = static_cast<size_t>(assembly.dimension());
-  if (xyz.size() != dim)
+  const bool planar_xyz = dim == 2 && xyz.size() == 3 && xyz[2] == 0;
+  if (xyz.size() != dim && !planar_xyz)
     throw InputError("", "--direction",
-                     std::string(dim == 2 ? "a 2-D scene takes a direction of 2 numbers X,Y"
+                     std::string(dim == 2 ? "a 2-D scene takes a direction of 2 numbers X,Y (or "
+                                            "X,Y,0)"
                                           : "a 3-D scene takes a direction of 3 numbers X,Y,Z") +
-                         ", not " + std::to_string(xyz.size()));
+                         ", not " +
+                         (xyz.size() == 3 ? std::string("3 with Z = ") + FormatNumber(xyz[2])
+                                          : std::to_string(xyz.size())));
   const Vector3 d(xyz[0], xyz[1], dim == 3 ? xyz[2] : 0.0);
   if (!d.allFinite()) throw InputError("", "--direction", "must have finite components");
   const std::optional<Vector3> unit = UnitVector(d);

@@ -97,11 +97,17 @@ TEST(CliBlocking, DirectionHasTheScenesDimension) {
   ASSERT_EQ(doc["cells"].size(), 1u);
   EXPECT_EQ(RemovableAt(doc, nlohmann::json::parse("[0, 1]")),
             (std::vector<std::string>{"C", "D"}));
-  r = Cairn("blocking " + ExamplePath("paper_fig1.json") + " --direction 0,1,0");
+  // X,Y,0 is the same direction in the scene's plane; any other Z is not in it.
+  r = Cairn("blocking " + ExamplePath("paper_fig1.json") + " --direction 0,1,0 --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(RemovableAt(nlohmann::json::parse(r.out), nlohmann::json::parse("[0, 1]")),
+            (std::vector<std::string>{"C", "D"}));
+  r = Cairn("blocking " + ExamplePath("paper_fig1.json") + " --direction 0,1,1");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_TRUE(r.out.empty()) << r.out;
   EXPECT_EQ(r.err,
-            "cairn: error: --direction: a 2-D scene takes a direction of 2 numbers X,Y, not 3\n");
+            "cairn: error: --direction: a 2-D scene takes a direction of 2 numbers X,Y (or X,Y,0), "
+            "not 3 with Z = 1\n");
   r = Cairn("blocking " + ExamplePath("jenga.json") + " --direction 0,1");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_EQ(r.err,
