@@ -5,6 +5,7 @@
 #include <coin/ClpSimplex.hpp>
 #include <coin/ClpSolve.hpp>
 #include <limits>
+#include <optional>
 #include <vector>
 
 #include "mechanics/equilibrium_lp.h"
@@ -132,6 +133,82 @@ bool ReadOptimum(const ContactLcp& lcp, const std::vector<Vector6>& load, bool f
   return false;
 }
 
+// The end of S found by equilibrium LPs alone, for when every read of the
+// margin LP's optimum failed (a vertex whose self-stress drowns the load in
+// roundoff). S is an interval: a feasible s is looked for at the LP's claim
+// `claimed` and at distances δ = kEndProbeSteps[i] · max(1, |claimed|) on
+// either side (within s ≥ lower_bound), then at s = 0; from it the end is bracketed by
+// steps doubling outward until an LP finds no equilibrium, then bisected to
+// a relative width kEndBisectionTolerance. Each probe is a verified
+// FindStaticEquilibrium, so the end returned is proved: an equilibrium at
+// `value`, none just past it. False (out unchanged) when no feasible s is
+// found near the claim or S shows no end within kEndMaxDoublings steps.
+constexpr double kEndProbeSteps[] = {0, 1e-12, 1e-9, 1e-7, 1e-5, 1e-3};
+constexpr double kEndBisectionTolerance = 1e-9;
+constexpr int kEndMaxDoublings = 60;
+
+bool BracketEnd(const ContactLcp& lcp, const std::vector<Vector6>& load, bool maximize,
+                double lower_bound, bool frictionless, double claimed, LoadParameterResult& out) {
+  EquilibriumOptions options;
+  options.frictionless = frictionless;
+  int lps = 0;
+  const auto at = [&](double s) {
+    std::vector<Vector6> w(lcp.bodies.size());
+    for (size_t b = 0; b < w.size(); ++b) w[b] = lcp.bodies[b].F_ext + s * load[b];
+    ++lps;
+    return FindStaticEquilibrium(WithLoads(lcp, w), options);
+  };
+  const double unit = std::max(1.0, std::abs(claimed));
+  const double sense = maximize ? 1.0 : -1.0;  // outward: towards the end
+  std::optional<double> inside;
+  StaticEquilibrium inside_eq;
+  for (const double step : kEndProbeSteps) {
+    for (const double sign : {-1.0, 1.0}) {
+      const double s = claimed + sign * step * unit;
+      if (s < lower_bound || inside) continue;
+      StaticEquilibrium eq = at(s);
+      if (eq.exists) inside = s, inside_eq = std::move(eq);
+    }
+    if (inside) break;
+  }
+  // s = 0 is the load as given: where S is that one point (a frictionless
+  // assembly that stands only untilted), no probe beside the claim finds it.
+  if (!inside && 0 >= lower_bound) {
+    StaticEquilibrium eq = at(0);
+    if (eq.exists) inside = 0.0, inside_eq = std::move(eq);
+  }
+  if (!inside) return false;
+  // Outward from the feasible point until an LP finds no equilibrium.
+  double lo = *inside, width = kEndBisectionTolerance * unit, hi = lo;
+  bool bracketed = false;
+  for (int k = 0; k < kEndMaxDoublings && !bracketed; ++k, width *= 2) {
+    hi = lo + sense * width;
+    if (hi < lower_bound) break;
+    StaticEquilibrium eq = at(hi);
+    if (eq.exists) {
+      lo = hi, inside_eq = std::move(eq);
+    } else {
+      bracketed = true;
+    }
+  }
+  if (!bracketed) return false;
+  while (std::abs(hi - lo) > kEndBisectionTolerance * std::max(1.0, std::abs(lo))) {
+    const double mid = 0.5 * (lo + hi);
+    StaticEquilibrium eq = at(mid);
+    if (eq.exists) {
+      lo = mid, inside_eq = std::move(eq);
+    } else {
+      hi = mid;
+    }
+  }
+  out.status = LoadParameterResult::Status::kOptimal;
+  out.value = lo;
+  out.equilibrium = std::move(inside_eq);
+  out.method = "equilibrium LPs bracketing the end";
+  out.iterations += lps;
+  return true;
+}
+
 }  // namespace
 
 // The LP of the file comment: columns x (the generators, in load_scale
@@ -162,6 +239,7 @@ LoadParameterResult OptimizeLoadParameter(const ContactLcp& lcp, const std::vect
   out.method = SolveFresh(lp, ncols, ng, s_box);
   out.iterations += lp.numberIterations();
   if (ReadOptimum(lcp, load, frictionless, e, lp, ng, out)) return out;
+  const double claimed = out.value;  // the first optimum's s, whose forces failed
   // The barrier's optimum lies inside the optimal face, within its tolerance
   // of the end: should its forces fail the re-check, the dual simplex's
   // vertex is read instead.
@@ -184,6 +262,7 @@ LoadParameterResult OptimizeLoadParameter(const ContactLcp& lcp, const std::vect
   out.method = "dual simplex, bounded forces";
   out.iterations += lp.numberIterations();
   if (lp.status() == 0 && ReadOptimum(lcp, load, frictionless, e, lp, ng, out)) return out;
+  if (BracketEnd(lcp, load, maximize, col_lo[ng], frictionless, claimed, out)) return out;
   out.status = LoadParameterResult::Status::kFailed;
   out.message = first_message;
   return out;
