@@ -17,6 +17,7 @@ import io
 import json
 import operator
 import os
+import stat
 import tempfile
 
 import numpy as np
@@ -358,10 +359,20 @@ def read_timeline(source):
     ``tick`` (and ``patch`` in 3-D) as ints, ``breaks``/``slides`` as bools,
     ``part_a``/``part_b`` as strings. One entry per tick and contact point."""
     if isinstance(source, (str, os.PathLike)):
+        # As Cairn's readers open a file (io/input_file.h): a regular file
+        # only, never a FIFO (which would block) or a device (never ending).
         try:
+            if not stat.S_ISREG(os.stat(source).st_mode):
+                raise _input_error("", "is not a regular file (a folder, a FIFO or a device)",
+                                   file=str(source))
             f = open(source, encoding="utf-8")
         except OSError as e:
             raise _input_error("", f"cannot read the file: {e.strerror}", file=str(source)) from None
+        except ValueError as e:  # a NUL byte in the name
+            if isinstance(e, InputError):
+                raise
+            raise _input_error("", "cannot read the file: its name has a NUL byte",
+                               file=repr(str(source))) from None
         with f:
             return read_timeline(f)
     if not callable(getattr(source, "readline", None)):

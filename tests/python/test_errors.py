@@ -92,8 +92,12 @@ def test_read_timeline_refuses_what_is_not_a_timeline(tmp_path):
             cairn.read_timeline(wrong)
     with pytest.raises(cairn.InputError, match="cannot read the file"):
         cairn.read_timeline(str(tmp_path / "absent.csv"))
-    with pytest.raises(cairn.InputError, match="cannot read the file"):
+    with pytest.raises(cairn.InputError, match="not a regular file"):
         cairn.read_timeline(str(tmp_path))  # a folder
+    with pytest.raises(cairn.InputError, match="NUL byte"):
+        cairn.read_timeline("\x00")
+    with pytest.raises(cairn.InputError, match="not a regular file"):
+        cairn.read_timeline("/dev/zero")  # read until memory ran out
     with pytest.raises(cairn.InputError, match="not a Cairn timeline CSV"):
         cairn.read_timeline(io.BytesIO(b"time,step\n0,1\n"))  # a binary file
     with pytest.raises(cairn.InputError) as e:
