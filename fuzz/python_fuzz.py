@@ -31,6 +31,8 @@ import sys
 import tempfile
 import time
 
+from cli_fuzz import mutate_json  # beside this file: the same mutations of JSON data
+
 HERE = os.path.dirname(os.path.abspath(__file__))
 EXAMPLES = os.path.join(os.path.dirname(HERE), "examples")
 SMALL = ["stack3.json", "paper_fig1.json", "incline.json", "overhang_tips.json",
@@ -69,26 +71,6 @@ def odd_value(rng, depth=0):
     return tuple(odd_value(rng, depth + 1) for _ in range(rng.randrange(4)))
 
 
-def mutate_scene(rng, doc):
-    """A scene dict with a few values replaced by odd ones."""
-    doc = json.loads(json.dumps(doc))
-    for _ in range(rng.randrange(1, 4)):
-        node, path = doc, []
-        for _ in range(rng.randrange(1, 6)):
-            if isinstance(node, dict) and node:
-                key = rng.choice(sorted(node))
-            elif isinstance(node, list) and node:
-                key = rng.randrange(len(node))
-            else:
-                break
-            path.append((node, key))
-            node = node[key]
-        if path:
-            parent, key = path[-1]
-            parent[key] = odd_value(rng)
-    return doc
-
-
 def run_round(module_dir, seed, calls, verbose):
     sys.path.insert(0, module_dir)
     import cairn  # noqa: E402
@@ -110,7 +92,7 @@ def run_round(module_dir, seed, calls, verbose):
         if r < 0.1:
             return odd_value(rng)
         if r < 0.2:  # a mutated scene, loaded
-            doc = mutate_scene(rng, json.load(open(os.path.join(EXAMPLES, rng.choice(SMALL)))))
+            doc = mutate_json(rng, json.load(open(os.path.join(EXAMPLES, rng.choice(SMALL)))))
             path = os.path.join(tmp, "m.json")
             with open(path, "w") as f:
                 json.dump(doc, f, allow_nan=True)
