@@ -591,7 +591,14 @@ StepModel ReadStepModel(const std::string& path, const std::string& text,
 
 // 0. What OpenCASCADE crashes on or spins on, found in the text first and
 // said with its line: a NUL byte, a number that is not finite (1.E400, NAN,
-// INF), a reference to an entity the file does not define.
+// INF) or beyond kMaxStepNumber, a reference to an entity the file does not
+// define.
+//
+// The largest magnitude of any number in a STEP file Cairn reads: a
+// thousand times the scene's coordinate range (limits::kMaxCoordinate, so
+// that a file in millimetres reaches it in metres). OpenCASCADE spins on a
+// point at 1E308 (a pen part's coordinate so changed ran past 300 s).
+constexpr double kMaxStepNumber = 1e3 * limits::kMaxCoordinate;
 void CheckStepText(const std::string& text, const std::string& path) {
   const auto line_of = [&](size_t offset) {
     return 1 + std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(offset), '\n');
@@ -669,9 +676,14 @@ void CheckStepText(const std::string& text, const std::string& path) {
         }
       }
       const std::string number = text.substr(i, j - i);
-      if (!std::isfinite(std::strtod(number.c_str(), nullptr)))
+      const double value = std::strtod(number.c_str(), nullptr);
+      if (!std::isfinite(value))
         fail(line, entity,
              "the number " + number + " is not finite (beyond the range of a double)");
+      if (std::abs(value) > kMaxStepNumber)
+        fail(line, entity,
+             "the number " + number +
+                 " is beyond the range Cairn reads (|x| <= " + FormatNumber(kMaxStepNumber) + ")");
       i = j;
     } else if (c == '.' && i + 1 < n && is_alpha(text[i + 1])) {  // an enumeration .NAME.
       size_t j = i + 1;

@@ -206,6 +206,9 @@ TEST(ReadStepAssembly, TextFaultsAreSaidWithTheirLine) {
        "line 24 (#12): the number 1.E400 is not finite"},
       {edited("#12 = CARTESIAN_POINT('',(0.,0.,0.));", "#12 = CARTESIAN_POINT('',(-inf,0.,0.));"),
        "line 24 (#12): inf is not a number"},
+      // Finite but beyond any model: OpenCASCADE spun on the cap with a point at 1E308.
+      {edited("#12 = CARTESIAN_POINT('',(0.,0.,0.));", "#12 = CARTESIAN_POINT('',(0.,1E308,0.));"),
+       "line 24 (#12): the number 1E308 is beyond the range Cairn reads (|x| <= 1e+15)"},
       {edited("#12 = CARTESIAN_POINT('',(0.,0.,0.));", ""),
        "line 23 (#11): refers to #12, which the file does not define"},
       {edited("#13 = DIRECTION", std::string("#13 = \0DIRECTION", 16)), "a NUL byte at line 25"},
