@@ -19,7 +19,6 @@
 #include "cairn/io/scene_reader.h"
 #include "cairn/io/sidecar_reader.h"
 #include "cairn/io/step_reader.h"
-#include "cli/output_files.h"
 
 namespace cairn::cli {
 
@@ -220,12 +219,6 @@ Model LoadCompasModel(const CompasAssembly& parsed, const std::string& file,
   m.assembly =
       CreateAssembly([&] { return CreateCompasAssembly(compas, file); }, compas.def, args, {});
   return m;
-}
-
-void WriteAtomically(const std::string& path, const std::string& text, const std::string& flag) {
-  OutputFiles files;
-  files.Add(path, text, flag);
-  files.Commit();
 }
 
 int ResolvePart(const Assembly& assembly, const std::string& name, const std::string& flag,

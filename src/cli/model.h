@@ -1,6 +1,6 @@
 #pragma once
 // What every command does first: read the model with the command line's
-// changes (docs/cli.md, "Reading the model"); and writing output files whole.
+// changes (docs/cli.md, "Reading the model").
 
 #include <cstdint>
 #include <iosfwd>
@@ -91,9 +91,5 @@ Configuration WithoutParts(const Assembly& assembly, const std::vector<std::stri
 /// `consequence` says what cannot be done. @throws InputError naming `file`.
 void RefuseGivenInterfaces(const Assembly& assembly, const std::string& file,
                            const std::string& consequence);
-
-/// Writes `text` to `path` whole or not at all: a temporary file beside it,
-/// renamed over it once complete. @throws InputError naming `flag`.
-void WriteAtomically(const std::string& path, const std::string& text, const std::string& flag);
 
 }  // namespace cairn::cli
