@@ -205,6 +205,83 @@ std::pair<Vector2, Vector2> BoundingBox(const Polygon& poly) {
   return {lo, hi};
 }
 
+// Ear clipping over a doubly linked ring of the remaining vertices. A vertex
+// is an ear when it turns left by more than tol and no remaining reflex
+// vertex lies in its triangle (boundary included); only reflex vertices can
+// lie in an ear's triangle, and a reflex vertex only turns convex as its
+// neighbours are clipped, so they are the ones tested.
+std::vector<std::array<int, 3>> Triangulate(const Polygon& ccw_poly, double tol) {
+  const int n = Size(ccw_poly);
+  std::vector<std::array<int, 3>> out;
+  if (n < 3) return out;
+  std::vector<int> prev(n), next(n);
+  for (int i = 0; i < n; ++i) {
+    prev[i] = (i + n - 1) % n;
+    next[i] = (i + 1) % n;
+  }
+  std::vector<char> removed(n, 0);
+  const auto turn = [&](int i) {
+    return LineSide(ccw_poly[prev[i]], ccw_poly[i], ccw_poly[next[i]]);
+  };
+  const auto unlink = [&](int i) {
+    removed[i] = 1;
+    next[prev[i]] = next[i];
+    prev[next[i]] = prev[i];
+  };
+  // Vertices on a straight line first, so that no ear takes one of them.
+  int remaining = n;
+  for (int i = 0, seen = 0; remaining >= 3 && seen < remaining;) {
+    const int after = next[i];
+    if (std::abs(turn(i)) <= tol) {
+      unlink(i);
+      --remaining;
+      seen = 0;
+    } else {
+      ++seen;
+    }
+    i = after;
+  }
+  std::vector<int> reflex;
+  for (int i = 0; i < n; ++i)
+    if (!removed[i] && turn(i) < -tol) reflex.push_back(i);
+  const auto in_triangle = [&](int a, int b, int c, int r) {
+    const Vector2 &pa = ccw_poly[a], &pb = ccw_poly[b], &pc = ccw_poly[c], &p = ccw_poly[r];
+    return LineSide(pa, pb, p) >= 0 && LineSide(pb, pc, p) >= 0 && LineSide(pc, pa, p) >= 0;
+  };
+  const auto is_ear = [&](int i) {
+    const int a = prev[i], c = next[i];
+    for (const int r : reflex)
+      if (!removed[r] && r != a && r != c && r != i && turn(r) < -tol && in_triangle(a, i, c, r))
+        return false;
+    return true;
+  };
+  int i = 0;
+  while (removed[i]) ++i;
+  int since_progress = 0;
+  while (remaining >= 3) {
+    if (since_progress > remaining) return {};  // no ear: not a simple polygon
+    const double t = turn(i);
+    if (std::abs(t) <= tol) {  // on a straight line: no triangle
+      const int after = next[i];
+      unlink(i);
+      --remaining;
+      i = after;
+      since_progress = 0;
+    } else if (t > tol && is_ear(i)) {
+      out.push_back({prev[i], i, next[i]});
+      const int after = next[i];
+      unlink(i);
+      --remaining;
+      i = after;
+      since_progress = 0;
+    } else {
+      i = next[i];
+      ++since_progress;
+    }
+  }
+  return out;
+}
+
 Vector2 EdgeNormal(const Polygon& ccw_poly, int i) {
   const int n = Size(ccw_poly);
   CAIRN_ASSERT(n >= 2 && i >= 0 && i < n);

@@ -43,7 +43,13 @@
 // 4. Cells, 2-D. The relation of a pair changes only at directions of
 //    differences v_j − v_i of its vertices (the vertices and edges of the
 //    Minkowski difference seen from the origin) and at the perpendiculars of
-//    its contact normals. All those candidate angles of all pairs are
+//    its contact normals. Cut into convex pieces (a convex part is one; a
+//    non-convex one its triangles), the parts run into each other exactly
+//    when two of their pieces do, and two convex pieces do so on one open
+//    arc, between the tangents from the origin to their difference's hull:
+//    two candidates per pair of pieces instead of one per pair of vertices
+//    (a 20 000-gon beside a block: 4 instead of 160 000). All those
+//    candidate angles of all pairs are
 //    clustered (within tol_angle) into canonical directions; a cluster that
 //    holds a world axis direction is that axis exactly. Each pair is then
 //    evaluated at each of its candidates and at the middle of each arc
@@ -135,6 +141,9 @@ struct Shape {
   std::vector<Vector3> axes;         // convex: face (2-D: edge) normals, one per ± pair
   std::vector<Vector3> edge_dirs;    // convex 3-D: edge directions, one per ± pair
   Polygon poly;                      // 2-D: counter-clockwise, world
+  // 2-D: convex pieces whose union is the polygon (itself when convex, else
+  // its triangles; none when it could not be cut: every vertex is a candidate)
+  std::vector<std::vector<Vector3>> pieces;
   // 3-D
   const Polyhedron* solid = nullptr;
   Eigen::Isometry3d X_WB = Eigen::Isometry3d::Identity();
@@ -253,7 +262,12 @@ void PlaceShape2d(const Assembly& assembly, const Configuration& config, int i,
     std::vector<Vector3> normals;
     for (int k = 0; k < m; ++k) normals.push_back(Embed(EdgeNormal(s.poly, k)));
     s.axes = UniqueAxes2d(normals, tol.angle, sc);
+    s.pieces = {s.verts};
+    return;
   }
+  s.pieces.clear();
+  for (const auto& tri : Triangulate(s.poly, tol.length))
+    s.pieces.push_back({s.verts[tri[0]], s.verts[tri[1]], s.verts[tri[2]]});
 }
 
 // A 3-D part's world transform, triangles and edges; when convex (every
@@ -825,18 +839,70 @@ struct Clusters {
   }
 };
 
-// The candidate angles of a pair: directions of ±(v_j − v_i), and the
-// perpendiculars of its contact normals.
+// Where "p moved along d runs into q" can begin or end, for convex pieces p,
+// q of two parts (angles). It holds on the open arc of directions towards
+// the convex hull of the differences w − v (w of q, v of p) as seen from the
+// origin: the two tangents from the origin, which are the extreme angles of
+// the differences about a direction into the hull (the difference of the
+// vertex means); their opposites are where q moved along −d runs into p.
+// When the origin is inside the hull (the pieces overlap where they stand,
+// within the tolerance) the relation is no single arc, and every difference
+// is a candidate.
+void PieceCandidates(const std::vector<Vector3>& p, const std::vector<Vector3>& q, double tol,
+                     std::vector<double>& out) {
+  Vector3 r = Vector3::Zero();
+  for (const Vector3& w : q) r += w / static_cast<double>(q.size());
+  for (const Vector3& v : p) r -= v / static_cast<double>(p.size());
+  double lo = kInf, hi = -kInf;
+  Vector3 e_lo = Vector3::Zero(), e_hi = Vector3::Zero();
+  const bool outside = r.norm() > tol;
+  if (outside)
+    for (const Vector3& v : p)
+      for (const Vector3& w : q) {
+        const Vector3 e = w - v;
+        if (e.norm() <= tol) continue;
+        const double a = std::atan2(r.x() * e.y() - r.y() * e.x(), r.dot(e));
+        if (a < lo) std::tie(lo, e_lo) = std::pair(a, e);
+        if (a > hi) std::tie(hi, e_hi) = std::pair(a, e);
+      }
+  const auto both = [&](const Vector3& e) {
+    const double a = AngleOf(e);
+    out.push_back(a);
+    out.push_back(NormalizeAngle(a + std::numbers::pi));
+  };
+  // Within a half-turn: the origin is outside the hull or on its boundary
+  // (inside, the differences surround it and span more than a half-turn).
+  if (outside && lo <= hi && hi - lo <= std::numbers::pi) {
+    both(e_lo);
+    both(e_hi);
+    return;
+  }
+  for (const Vector3& v : p)
+    for (const Vector3& w : q)
+      if ((w - v).norm() > tol) both(w - v);
+}
+
+// The candidate angles of a pair: where the swept relation of a convex
+// piece of one part and a convex piece of the other can change (the union
+// of the parts' relations changes only where one of the pieces' does), and
+// the perpendiculars of its contact normals. A part that could not be cut
+// into convex pieces counts as one piece, every difference a candidate.
 void PairCandidates(const Scene& sc, const PartPair& pair,
                     const std::vector<std::array<double, 2>>& perps, std::vector<double>& out) {
-  for (const Vector3& v : sc.shapes[pair.i].verts)
-    for (const Vector3& w : sc.shapes[pair.j].verts) {
-      const Vector3 e = w - v;
-      if (e.norm() <= sc.tol_length) continue;
-      const double a = AngleOf(e);
-      out.push_back(a);
-      out.push_back(NormalizeAngle(a + std::numbers::pi));
-    }
+  const Shape &a = sc.shapes[pair.i], &b = sc.shapes[pair.j];
+  if (a.pieces.empty() || b.pieces.empty()) {
+    for (const Vector3& v : a.verts)
+      for (const Vector3& w : b.verts) {
+        const Vector3 e = w - v;
+        if (e.norm() <= sc.tol_length) continue;
+        const double angle = AngleOf(e);
+        out.push_back(angle);
+        out.push_back(NormalizeAngle(angle + std::numbers::pi));
+      }
+  } else {
+    for (const auto& p : a.pieces)
+      for (const auto& q : b.pieces) PieceCandidates(p, q, sc.tol_length, out);
+  }
   for (const PairContact& c : pair.contacts) {
     out.push_back(perps[c.normal][0]);
     out.push_back(perps[c.normal][1]);

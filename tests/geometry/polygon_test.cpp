@@ -272,5 +272,64 @@ TEST(SelfIntersection, ASixtyThousandGonIsSimple) {
   EXPECT_TRUE(FindSelfIntersection(p, 1e-6 * 4).has_value());
 }
 
+// Ear clipping: the triangles are counter-clockwise, not slivers, inside the
+// polygon, and their areas add up to its area (so they do not overlap).
+void ExpectTriangulates(const Polygon& p, double tol) {
+  const auto tris = Triangulate(p, tol);
+  ASSERT_FALSE(tris.empty());
+  double area = 0;
+  for (const auto& t : tris) {
+    const Polygon tri = {p[t[0]], p[t[1]], p[t[2]]};
+    const double a = SignedArea(tri);
+    EXPECT_GT(a, 0);
+    EXPECT_GT(LineSide(tri[0], tri[1], tri[2]), tol);
+    EXPECT_TRUE(ContainsPoint(p, (tri[0] + tri[1] + tri[2]) / 3));
+    area += a;
+  }
+  EXPECT_NEAR(area, SignedArea(p), 1e-9 * std::abs(SignedArea(p)));
+  EXPECT_LE(tris.size(), p.size() - 2);
+}
+
+TEST(Triangulate, LShapeAndCollinearVertices) {
+  ExpectTriangulates(LShape(), 1e-9);
+  EXPECT_EQ(Triangulate(LShape(), 1e-9).size(), 4u);
+  // A square with a vertex in the middle of every edge: two triangles.
+  const Polygon square = {{0, 0}, {1, 0}, {2, 0}, {2, 1}, {2, 2}, {1, 2}, {0, 2}, {0, 1}};
+  ExpectTriangulates(square, 1e-9);
+  EXPECT_EQ(Triangulate(square, 1e-9).size(), 2u);
+  // Paper Fig. 4's base: a U.
+  ExpectTriangulates({{0, -1}, {10, -1}, {10, 4}, {9, 4}, {9, 0}, {1, 0}, {1, 4}, {0, 4}}, 1e-9);
+}
+
+TEST(Triangulate, StarShapedPolygonsAndCombs) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> jitter(0.3, 1.3);
+  for (int trial = 0; trial < 20; ++trial) {
+    const int n = 5 + trial * 7;
+    Polygon p;
+    for (int k = 0; k < n; ++k) {
+      const double t = 2 * 3.141592653589793 * k / n;
+      const double r = jitter(rng);
+      p.push_back(Vector2(r * std::cos(t), r * std::sin(t)));
+    }
+    SCOPED_TRACE("trial " + std::to_string(trial));
+    ExpectTriangulates(p, 1e-12);
+  }
+  // A comb: teeth whose ears are hidden behind the others.
+  Polygon comb = {{0, 0}, {20, 0}};
+  for (int k = 9; k >= 0; --k) {
+    comb.push_back({2.0 * k + 2, 5});
+    comb.push_back({2.0 * k + 1, 1});
+  }
+  comb.push_back({0, 5});
+  ExpectTriangulates(comb, 1e-12);
+}
+
+TEST(Triangulate, ClockwiseHasNoEar) {
+  Polygon p = LShape();
+  std::reverse(p.begin(), p.end());
+  EXPECT_TRUE(Triangulate(p, 1e-9).empty());
+}
+
 }  // namespace
 }  // namespace cairn

@@ -5,6 +5,7 @@
 /// MakeCounterClockwise its signed area is positive and its outward edge
 /// normals point to the right of each edge direction.
 
+#include <array>
 #include <optional>
 #include <vector>
 
@@ -77,6 +78,14 @@ bool SegmentsCrossProperly(const Vector2& a0, const Vector2& a1, const Vector2& 
 /// coincident shapes, a point just inside an edge midpoint of one lying deep
 /// inside the other.
 std::optional<Vector2> FindOverlap(const Polygon& a, const Polygon& b, double tol);
+
+/// The triangles of a simple counter-clockwise polygon, as vertex index
+/// triples (counter-clockwise), by ear clipping: O(n²) for n vertices.
+/// Vertices on a straight line (turning by less than `tol`, length, off the
+/// line through their neighbours) are passed over, so no triangle is a
+/// sliver; their union is the polygon. Empty when no ear can be found (a
+/// polygon that is not simple).
+std::vector<std::array<int, 3>> Triangulate(const Polygon& ccw_poly, double tol);
 
 /// Outward unit normal of edge i (from vertex i to i+1) of a counter-clockwise
 /// polygon.
