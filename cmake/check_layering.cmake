@@ -6,8 +6,10 @@
 #
 #   cmake -DGRAPH=<build>/stage_graph.txt -DROOT=<source tree> -P check_layering.cmake
 #
-# An include counts as a stage's when it is "cairn/<stage>/..." or, from
-# src/, "<stage>/..." (a private header of that stage). Fails listing every
+# An include counts as a stage's when it is "cairn/<stage>/..." or
+# <cairn/<stage>/...> (a public header), or "<stage>/..." (a private header
+# under src/, which only its own stage may include). The front ends are
+# stages too: cli (src/cli/) and python (python/src/). Fails listing every
 # include that is not allowed: file, line, the include and the arrow.
 
 cmake_minimum_required(VERSION 3.22)
@@ -56,6 +58,9 @@ foreach(stage IN LISTS stages)
   endif()
   file(GLOB_RECURSE files "${ROOT}/include/cairn/${stage}/*.h" "${ROOT}/src/${stage}/*.h"
        "${ROOT}/src/${stage}/*.cpp")
+  if(stage STREQUAL "python")
+    file(GLOB_RECURSE files "${ROOT}/python/src/*.h" "${ROOT}/python/src/*.cpp")
+  endif()
   foreach(file IN LISTS files)
     math(EXPR checked "${checked} + 1")
     # Lines as a list: semicolons (CMake's list separator) made harmless first.
@@ -67,20 +72,27 @@ foreach(stage IN LISTS stages)
     set(line_no 0)
     foreach(inc IN LISTS file_lines)
       math(EXPR line_no "${line_no} + 1")
-      if(NOT inc MATCHES "^[ \t]*#[ \t]*include[ \t]*\"")
+      if(NOT inc MATCHES "^[ \t]*#[ \t]*include[ \t]*[\"<]")
         continue()
       endif()
       set(target "")
-      if(inc MATCHES "\"cairn/([a-z_]+)/")
+      set(private FALSE)
+      if(inc MATCHES "[\"<]cairn/([a-z_]+)/")
         set(target "${CMAKE_MATCH_1}")
       elseif(inc MATCHES "\"([a-z_]+)/")
         set(target "${CMAKE_MATCH_1}")
+        set(private TRUE)
       endif()
       if(target)
         if(NOT target IN_LIST stages)
           continue()  # not a stage (a third-party folder)
         endif()
-        if(NOT target IN_LIST allowed_${stage})
+        if(private AND NOT target STREQUAL stage)
+          file(RELATIVE_PATH rel "${ROOT}" "${file}")
+          string(STRIP "${inc}" inc)
+          list(APPEND violations
+               "${rel}:${line_no}: ${inc}: a private header of stage '${target}' (src/${target}/), which only '${target}' may include")
+        elseif(NOT target IN_LIST allowed_${stage})
           file(RELATIVE_PATH rel "${ROOT}" "${file}")
           string(REPLACE ";" ", " may "${allowed_${stage}}")
           string(STRIP "${inc}" inc)

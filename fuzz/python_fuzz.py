@@ -116,8 +116,8 @@ def run_round(module_dir, seed, calls, verbose):
             return [scale * rng.choice([-1, 0, 1]) for _ in range(rng.choice([2, 3]))]
         if name in ("max", "threads") and r < 0.3:
             return rng.choice([1, 2])
-        if name == "html":  # outputs go to the scratch folder only
-            return os.path.join(tmp, "page.html") if r < 0.5 else None
+        if name in ("html", "timeline", "dot", "emit_plans"):  # outputs: the scratch folder only
+            return os.path.join(tmp, "out." + name) if r < 0.5 else None
         return odd_value(rng)
 
     for i in range(calls):

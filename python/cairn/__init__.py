@@ -42,7 +42,7 @@ __all__ = [
     "plot",
 ]
 
-_FORMATS = ("scene", "compas")
+_FORMATS = ("scene", "compas", "step", "asap")
 _INTERFACES = ("detect", "stored")
 
 # The whole numbers the CLI's options accept (src/cli/main.cpp), for the
@@ -52,6 +52,7 @@ _MAX_FIXELS = (1, 20)  # simulate --max-fixels
 _ALLOW_FIXTURES = (0, 20)  # plan --allow-fixtures
 _NON_NEGATIVE = (0, _INT_MAX)  # plan --max, --threads
 _MAX_TICKS = (0, 2**63 - 1)  # simulate --max-ticks (a C++ long long)
+_MAX_INPUT_SIZE = (1, 2**64 - 1)  # --max-input-size, bytes
 
 
 def __getattr__(name):
@@ -142,7 +143,8 @@ def _names(value, what):
     return names
 
 
-def _model_options(friction, supports, gravity, tolerance, interfaces):
+def _model_options(friction, supports, gravity, tolerance, interfaces, mesh_tolerance=None,
+                   sidecar=None, max_input_size=None):
     if interfaces not in _INTERFACES:
         raise _input_error("interfaces", f"must be one of {_INTERFACES}, not {interfaces!r}")
     return dict(
@@ -151,20 +153,56 @@ def _model_options(friction, supports, gravity, tolerance, interfaces):
         gravity=_numbers(gravity, "gravity"),
         tolerance=None if tolerance is None else _number(tolerance, "tolerance"),
         interfaces=interfaces,
+        mesh_tolerance=None if mesh_tolerance is None else _number(mesh_tolerance,
+                                                                   "mesh_tolerance"),
+        sidecar="" if sidecar is None else os.fspath(sidecar),
+        max_input_size=(_cairn.DEFAULT_MAX_INPUT_SIZE if max_input_size is None
+                        else _whole(max_input_size, "max_input_size", _MAX_INPUT_SIZE)),
     )
 
 
 def load(file, format="scene", friction=None, supports=None, gravity=None, tolerance=None,
-         interfaces="detect"):
+         interfaces="detect", mesh_tolerance=None, sidecar=None, max_input_size=None):
     """Reads a model from a file, as the CLI does: ``format`` "scene" (scene
-    format 1) or "compas" (a COMPAS assembly, which needs ``friction``), and
-    the model options ``friction``, ``supports`` (parts fixed in addition),
-    ``gravity`` (2 or 3 numbers), ``tolerance`` and ``interfaces`` ("detect"
-    or "stored") of ``--friction`` ... ``--interfaces``. Raises InputError."""
+    format 1), "compas" (a COMPAS assembly, which needs ``friction``), "step"
+    (a STEP assembly) or "asap" (an ASAP assembly folder), and the model
+    options ``friction``, ``supports`` (parts fixed in addition), ``gravity``
+    (2 or 3 numbers), ``tolerance``, ``interfaces`` ("detect" or "stored"),
+    ``mesh_tolerance`` (STEP's chordal tolerance, metres), ``sidecar`` (STEP
+    and ASAP: a file with what the model does not carry) and
+    ``max_input_size`` (bytes) of ``--friction`` ... ``--max-input-size``.
+    Raises InputError."""
     if format not in _FORMATS:
         raise _input_error("format", f"must be one of {_FORMATS}, not {format!r}")
     return _cairn.load(os.fspath(file), format,
-                       **_model_options(friction, supports, gravity, tolerance, interfaces))
+                       _model_options(friction, supports, gravity, tolerance, interfaces,
+                                      mesh_tolerance, sidecar, max_input_size))
+
+
+def _write_outputs(m, files):
+    """Writes [(path, text, keyword)] as the CLI writes its outputs: never over the
+    model's file, each whole or not at all (a temporary file beside it,
+    renamed); a path that cannot be written is an InputError naming it."""
+    for path, text, keyword in files:
+        path = os.fspath(path)
+        if not isinstance(path, str) or not path:
+            raise _input_error(keyword, f"must be a file name, not {path!r}")
+        if os.path.exists(path) and os.path.exists(m.file) and os.path.samefile(path, m.file):
+            raise _input_error(keyword, f"is the model's file {m.file!r}: it would be replaced")
+        tmp = None
+        try:
+            fd, tmp = tempfile.mkstemp(dir=os.path.dirname(os.path.abspath(path)),
+                                       prefix=".cairn-", suffix=".tmp")
+            with os.fdopen(fd, "w", encoding="utf-8") as f:
+                f.write(text)
+            os.replace(tmp, path)
+            tmp = None
+        except (OSError, ValueError) as e:
+            raise _input_error(keyword, f"cannot write {path!r}: "
+                               f"{getattr(e, 'strerror', None) or e}") from None
+        finally:
+            if tmp is not None and os.path.exists(tmp):
+                os.unlink(tmp)
 
 
 def _plain(data):
@@ -218,8 +256,7 @@ def from_compas(assembly_data, friction=None, supports=None, gravity=None, toler
     blocks by their node keys. Messages name the document ``name``."""
     text = _dumps(_plain(assembly_data))
     return _cairn.from_compas(text, name,
-                              **_model_options(friction, supports, gravity, tolerance,
-                                               interfaces))
+                              _model_options(friction, supports, gravity, tolerance, interfaces))
 
 
 def _check_model(m):
@@ -233,15 +270,20 @@ def _normalize(normalize):
     return str(normalize)
 
 
-def check(m, without=None, normalize=None):
+def check(m, without=None, normalize=None, html=None):
     """``cairn check --json``: is the assembly, with the parts ``without``
     taken away, stable? The dict has the CLI's keys, plus ``contact_arrays``
     (numpy columns of ``contacts``: ``point`` (n, d), ``normal`` (n, d),
     ``normal_force`` (n,), ``friction_force`` ((n,) in 2-D, (n, 3) in 3-D),
     ``parts`` (n, 2) part indices into ``m.parts``, -1 for the world).
-    ``normalize`` names the part whose weight is the force unit."""
+    ``normalize`` names the part whose weight is the force unit; ``html``, a
+    file to write the result page to (``--html``)."""
     _check_model(m)
-    doc = json.loads(_cairn.check(m, _names(without, "without"), _normalize(normalize)))
+    doc, _, page, *_ = _cairn.check(m, _names(without, "without"), _normalize(normalize),
+                                    html is not None)
+    if html is not None:
+        _write_outputs(m, [(html, page, "html")])
+    doc = json.loads(doc)
     doc["contact_arrays"] = _contact_arrays(m, doc)
     return doc
 
@@ -264,52 +306,94 @@ def _contact_arrays(m, doc):
 
 
 def simulate(m, plan, continue_after_failure=False, normalize=None, suggest_fixtures=False,
-             max_fixels=3, max_ticks=None):
+             max_fixels=3, max_ticks=None, margin=None, html=None, timeline=None):
     """``cairn simulate --json``: runs a plan (a plan file, or a plan as a
     dict) along its paths. The dict has the CLI's keys, plus ``timeline``: the
     ``--timeline`` CSV as a dict of numpy columns named by its header (one
     entry per tick and contact point; :func:`cairn.plot.timeline` sums them per
     pair or patch). With ``suggest_fixtures`` the key ``fixtures`` as the CLI's
     ``--suggest-fixtures``; ``max_ticks`` is ``--max-ticks`` (None: the CLI's
-    default)."""
+    default); ``margin="friction"`` adds the key ``margin`` as ``--margin
+    friction``; ``html`` and ``timeline`` are files to write the result page
+    and the timeline CSV to."""
     _check_model(m)
     if isinstance(plan, dict):
         plan_file, plan_text = "plan", _dumps(plan)
     else:
         plan_file, plan_text = os.fspath(plan), ""
-    doc_text, csv = _cairn.simulate(m, plan_file, plan_text,
-                                    _flag(continue_after_failure, "continue_after_failure"),
-                                    _normalize(normalize),
-                                    _flag(suggest_fixtures, "suggest_fixtures"),
-                                    _whole(max_fixels, "max_fixels", _MAX_FIXELS),
-                                    _cairn.DEFAULT_MAX_TICKS if max_ticks is None
-                                    else _whole(max_ticks, "max_ticks", _MAX_TICKS))
+    if margin not in (None, "friction"):
+        raise _input_error("margin", f"must be None or 'friction', not {margin!r}")
+    doc_text, _, page, csv, *_ = _cairn.simulate(
+        m, plan_file, plan_text, _flag(continue_after_failure, "continue_after_failure"),
+        _normalize(normalize), _flag(suggest_fixtures, "suggest_fixtures"),
+        _whole(max_fixels, "max_fixels", _MAX_FIXELS),
+        _cairn.DEFAULT_MAX_TICKS if max_ticks is None
+        else _whole(max_ticks, "max_ticks", _MAX_TICKS),
+        margin or "", html is not None)
+    outputs = []
+    if html is not None:
+        outputs.append((html, page, "html"))
+    if timeline is not None:
+        outputs.append((timeline, csv, "timeline"))
+    _write_outputs(m, outputs)
     doc = json.loads(doc_text)
     doc["timeline"] = read_timeline(io.StringIO(csv))
     return doc
 
 
 def plan(m, max=None, single_parts=False, paths=None, allow_fixtures=0, keep=None,
-         support="full", threads=0):
+         support="full", threads=0, dt=None, speed=None, directions="ndbg", html=None, dot=None,
+         emit_plans=None):
     """``cairn plan --json``: stable disassembly sequences. ``max``: stop after
     this many (best-first; None: all); ``single_parts``: no subassemblies;
     ``paths``: candidate paths (a file, or its contents as a dict);
     ``allow_fixtures``: up to this many fixels where nothing is stable;
-    ``keep``: parts never removed; ``support``: "full", "none" or "both"."""
+    ``keep``: parts never removed; ``support``: "full", "none" or "both";
+    ``dt``, ``speed``: the paths' time step and speed (None: automatic);
+    ``directions``: "ndbg" (the NDBG's cells) or "axes" (±x, ±y, ±z);
+    ``html``, ``dot``: files to write the result page and the graph to;
+    ``emit_plans``: a folder to write every sequence's plan files to."""
     _check_model(m)
-    keep = _names(keep, "keep")
-    args = (0 if max is None else _whole(max, "max", _NON_NEGATIVE),
-            _flag(single_parts, "single_parts"))
-    rest = (_whole(allow_fixtures, "allow_fixtures", _ALLOW_FIXTURES), keep, str(support),
-            _whole(threads, "threads", _NON_NEGATIVE))
+    options = dict(
+        max=0 if max is None else _whole(max, "max", _NON_NEGATIVE),
+        single_parts=_flag(single_parts, "single_parts"),
+        allow_fixtures=_whole(allow_fixtures, "allow_fixtures", _ALLOW_FIXTURES),
+        keep=_names(keep, "keep"), support=str(support),
+        threads=_whole(threads, "threads", _NON_NEGATIVE),
+        dt=0.0 if dt is None else _number(dt, "dt"),
+        speed=0.0 if speed is None else _number(speed, "speed"),
+        directions=str(directions), page=html is not None, dot=dot is not None,
+        emit_plans=emit_plans is not None, paths="")
+    for key, given in (("dt", dt), ("speed", speed)):
+        if given is not None and not 0 < options[key] < float("inf"):
+            raise _input_error(key, f"must be a positive number (or None: automatic), "
+                                    f"not {given!r}")
     if isinstance(paths, dict):
         # The candidate-paths reader reads files: the dict goes through one.
         with tempfile.TemporaryDirectory() as tmp:
-            path = os.path.join(tmp, "paths.json")
-            with open(path, "w", encoding="utf-8") as f:
+            options["paths"] = os.path.join(tmp, "paths.json")
+            with open(options["paths"], "w", encoding="utf-8") as f:
                 f.write(_dumps(paths))
-            return json.loads(_cairn.plan(m, *args, path, *rest))
-    return json.loads(_cairn.plan(m, *args, "" if paths is None else os.fspath(paths), *rest))
+            answer = _cairn.plan(m, options)
+    else:
+        options["paths"] = "" if paths is None else os.fspath(paths)
+        answer = _cairn.plan(m, options)
+    doc, _, page, _, graph, plans = answer
+    outputs = []
+    if html is not None:
+        outputs.append((html, page, "html"))
+    if dot is not None:
+        outputs.append((dot, graph, "dot"))
+    if emit_plans is not None:
+        folder = os.fspath(emit_plans)
+        try:
+            os.makedirs(folder, exist_ok=True)
+        except (OSError, ValueError) as e:
+            raise _input_error("emit_plans", f"cannot make the folder {folder!r}: "
+                               f"{getattr(e, 'strerror', None) or e}") from None
+        outputs += [(os.path.join(folder, name), text, "emit_plans") for name, text in plans]
+    _write_outputs(m, outputs)
+    return json.loads(doc)
 
 
 def blocking(m, direction=None, without=None):
@@ -326,7 +410,7 @@ def blocking(m, direction=None, without=None):
                                             f"{m.dimension}-D scene, not {len(d)}")
         if len(d) == 2:
             d.append(0.0)  # the command's X,Y,Z
-    return json.loads(_cairn.blocking(m, _names(without, "without"), d))
+    return json.loads(_cairn.blocking(m, _names(without, "without"), d)[0])
 
 
 def margin(m, friction=False, tilt=None, load=None, point=None, direction=None, without=None):
@@ -345,7 +429,7 @@ def margin(m, friction=False, tilt=None, load=None, point=None, direction=None, 
     return json.loads(_cairn.margin(m, _flag(friction, "friction"), _numbers(tilt, "tilt"),
                                     "" if load is None else str(load), _numbers(point, "point"),
                                     _numbers(direction, "direction"),
-                                    _names(without, "without")))
+                                    _names(without, "without"))[0])
 
 
 _INT_COLUMNS = ("step", "tick", "patch")

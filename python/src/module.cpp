@@ -1,8 +1,9 @@
 // The compiled half of the Python module `cairn` (docs/python.md): the
-// commands of the CLI as functions of a loaded model, each returning the very
-// JSON document (as text) that `cairn <command> --json` prints, built by the
-// same report functions. The Python half (python/cairn/__init__.py) parses it
-// and adds the numpy columns; nothing here decides anything the CLI does not.
+// commands as functions of a loaded model, each calling the very function
+// the CLI calls (include/cairn/app/) and returning its JSON document (as
+// text) and, when asked, its page and files. The Python half
+// (python/cairn/__init__.py) converts arguments, parses the document, adds
+// the numpy columns and writes the files; nothing here decides anything.
 //
 // Threads: every solve runs with the GIL released (a Model is immutable, an
 // Assembly may be analysed from many threads); arguments are converted before
@@ -11,43 +12,35 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <cstdint>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
+#include <tuple>
+#include <utility>
 #include <vector>
 
+#include "cairn/app/blocking.h"
+#include "cairn/app/check.h"
+#include "cairn/app/margin.h"
+#include "cairn/app/model.h"
+#include "cairn/app/plan.h"
+#include "cairn/app/simulate.h"
 #include "cairn/core/error.h"
+#include "cairn/core/format.h"
+#include "cairn/geometry/plan.h"
 #include "cairn/io/compas_reader.h"
-#include "cairn/io/paths_reader.h"
-#include "cairn/io/plan_reader.h"
-#include "cairn/motion/simulate.h"
-#include "cairn/planning/blocking.h"
-#include "cairn/planning/fixtures.h"
-#include "cairn/planning/planner.h"
-#include "cairn/report/blocking_report.h"
-#include "cairn/report/check_report.h"
-#include "cairn/report/fixture_report.h"
-#include "cairn/report/margin_report.h"
-#include "cairn/report/plan_report.h"
-#include "cairn/report/simulation_report.h"
-#include "cairn/stability/analyze.h"
-#include "cli/blocking_command.h"
-#include "cli/margin_command.h"
-#include "cli/model.h"
 
 namespace py = pybind11;
 
 namespace cairn::python {
 namespace {
 
-// A loaded model: the CLI's Model (definition and validated Assembly) and the
-// name of the file it came from (the reports' `scene_file`). Immutable once
-// made, so one model may be checked from many threads at once.
-struct PyModel {
-  cli::Model model;
-  std::string file;
-};
+// A loaded model: app's Model (definition, validated Assembly, the file it
+// came from). Immutable once made, so one model may be checked from many
+// threads at once.
+using PyModel = app::Model;
 using ModelPtr = std::shared_ptr<PyModel>;
 
 // What a cairn.Model that no loader made says: `cairn.Model.__new__` without
@@ -75,18 +68,19 @@ const PyModel& ModelOf(const py::handle& obj) {
   return *p;  // owned by `obj`, which the caller holds
 }
 
-// The model options of every command (docs/cli.md, "Reading the model").
-cli::ModelArgs MakeModelArgs(const std::string& format, std::optional<double> friction,
-                             const std::vector<std::string>& supports,
-                             const std::vector<double>& gravity, std::optional<double> tolerance,
-                             const std::string& interfaces) {
-  cli::ModelArgs args;
+// The model options of every command (docs/cli.md, "Reading the model"),
+// as the Python half passes them (a dict of the keywords).
+app::ModelArgs ModelArgsOf(const std::string& format, const py::dict& o) {
+  app::ModelArgs args;
   args.format = format;
-  args.friction = friction;
-  args.supports = supports;
-  args.gravity = gravity;
-  args.tolerance = tolerance;
-  args.interfaces = interfaces;
+  args.friction = o["friction"].cast<std::optional<double>>();
+  args.supports = o["supports"].cast<std::vector<std::string>>();
+  args.gravity = o["gravity"].cast<std::vector<double>>();
+  args.tolerance = o["tolerance"].cast<std::optional<double>>();
+  args.interfaces = o["interfaces"].cast<std::string>();
+  args.mesh_tolerance = o["mesh_tolerance"].cast<std::optional<double>>();
+  args.sidecar = o["sidecar"].cast<std::string>();
+  args.max_input_size = o["max_input_size"].cast<std::uint64_t>();
   return args;
 }
 
@@ -100,140 +94,99 @@ nlohmann::json ParseText(const std::string& text, const std::string& file) {
   }
 }
 
-ModelPtr Load(const std::string& file, const std::string& format, std::optional<double> friction,
-              const std::vector<std::string>& supports, const std::vector<double>& gravity,
-              std::optional<double> tolerance, const std::string& interfaces) {
-  const cli::ModelArgs args =
-      MakeModelArgs(format, friction, supports, gravity, tolerance, interfaces);
+ModelPtr Load(const std::string& file, const std::string& format, const py::dict& options) {
+  const app::ModelArgs args = ModelArgsOf(format, options);
   py::gil_scoped_release release;
-  return std::make_shared<PyModel>(PyModel{cli::LoadModel(file, args), file});
+  return std::make_shared<PyModel>(app::LoadModel(file, args));
 }
 
-ModelPtr FromCompas(const std::string& text, const std::string& name,
-                    std::optional<double> friction, const std::vector<std::string>& supports,
-                    const std::vector<double>& gravity, std::optional<double> tolerance,
-                    const std::string& interfaces) {
-  const cli::ModelArgs args =
-      MakeModelArgs("compas", friction, supports, gravity, tolerance, interfaces);
+ModelPtr FromCompas(const std::string& text, const std::string& name, const py::dict& options) {
+  const app::ModelArgs args = ModelArgsOf("compas", options);
   py::gil_scoped_release release;
   const CompasAssembly parsed = ParseCompasAssembly(ParseText(text, name), name);
-  return std::make_shared<PyModel>(PyModel{cli::LoadCompasModel(parsed, name, args), name});
+  return std::make_shared<PyModel>(app::LoadCompasModel(parsed, name, args));
+}
+
+// A command's answer for the Python half: the document (as text), the exit
+// code, the page ("" unless asked for) and the files.
+using Answer = std::tuple<std::string, int, std::string, std::string, std::string,
+                          std::vector<std::pair<std::string, std::string>>>;
+Answer AnswerOf(app::CommandResult&& r) {
+  if (r.exit == app::kExitInternalError) throw std::runtime_error(r.failure);
+  return {r.document.dump(2),    r.exit,           std::move(r.page),
+          std::move(r.timeline), std::move(r.dot), std::move(r.plans)};
 }
 
 // `cairn check --json`.
-std::string Check(const py::object& model, const std::vector<std::string>& without,
-                  const std::string& normalize) {
+Answer Check(const py::object& model, const std::vector<std::string>& without,
+             const std::string& normalize, bool page) {
   const PyModel& m = ModelOf(model);
   py::gil_scoped_release release;
-  const Assembly& assembly = m.model.assembly;
-  ReportOptions report;
-  report.scene_file = m.file;
-  report.normalize_part = cli::ResolveNormalize(assembly, normalize, m.file);
-  const Configuration config = cli::WithoutParts(assembly, without, m.file, report.without);
-  StabilityOptions analysis;
-  analysis.check_equilibrium = true;  // as the CLI: report jamming too
-  const StabilityResult result = AnalyzeConfiguration(assembly, config, analysis);
-  return StabilityToJson(assembly, config, result, report).dump(2);
+  app::CheckQuery q;
+  q.without = without;
+  q.normalize = normalize;
+  q.page = page;
+  return AnswerOf(app::CheckDocument(m, q));
 }
 
-// `cairn simulate --json` and the `--timeline` CSV of the same run.
-std::pair<std::string, std::string> Simulate(const py::object& model, const std::string& plan_file,
-                                             const std::string& plan_text,
-                                             bool continue_after_failure,
-                                             const std::string& normalize, bool suggest_fixtures,
-                                             int max_fixels, long long max_ticks) {
+// `cairn simulate --json`, the `--timeline` CSV of the same run, and the page.
+Answer Simulate(const py::object& model, const std::string& plan_file, const std::string& plan_text,
+                bool continue_after_failure, const std::string& normalize, bool suggest_fixtures,
+                int max_fixels, long long max_ticks, const std::string& margin, bool page) {
   const PyModel& m = ModelOf(model);
   py::gil_scoped_release release;
-  const Assembly& assembly = m.model.assembly;
-  cli::RefuseGivenInterfaces(assembly, m.file,
-                             "parts cannot be moved along a plan (check it, with without= for "
-                             "subassemblies, or let Cairn find the contacts from the shapes)");
+  app::SimulateQuery q;
   // A plan file, or a plan given as a dict (named "plan" in messages).
-  const Plan plan = plan_text.empty() ? ReadPlan(plan_file, assembly, max_ticks)
-                                      : Plan::Create(ParsePlanJson(ParseText(plan_text, plan_file),
-                                                                   plan_file, assembly.dimension()),
-                                                     assembly, plan_file, max_ticks);
-  ReportOptions report;
-  report.scene_file = m.file;
-  report.normalize_part = cli::ResolveNormalize(assembly, normalize, m.file);
-  SimulationOptions options;
-  options.continue_after_failure = continue_after_failure;
-  options.record_timeline = true;
-  const SimulationResult result = SimulatePlan(assembly, plan, options);
-  nlohmann::json doc = SimulationToJson(assembly, plan, result, report);
-  if (suggest_fixtures) {
-    FixtureSearchOptions search;
-    search.max_fixels = max_fixels;
-    // null: asked for, but the plan is stable without fixels (as the CLI).
-    doc["fixtures"] =
-        result.stable()
-            ? nlohmann::json(nullptr)
-            : FixtureSuggestionToJson(assembly,
-                                      SuggestFixtures(m.model.def, assembly, plan, result, search),
-                                      search, report);
-  }
-  return {doc.dump(2), TimelineToCsv(assembly, result, report)};
+  q.plan_file = plan_file;
+  if (!plan_text.empty()) q.plan_data = ParseText(plan_text, plan_file);
+  q.normalize = normalize;
+  q.continue_after_failure = continue_after_failure;
+  q.suggest_fixtures = suggest_fixtures;
+  q.max_fixels = max_fixels;
+  q.max_ticks = max_ticks;
+  q.margin = margin;
+  q.timeline = true;
+  q.page = page;
+  return AnswerOf(app::SimulateDocument(m, q));
 }
 
-// `cairn plan --json`.
-std::string PlanSequences(const py::object& model, int max, bool single_parts,
-                          const std::string& paths, int allow_fixtures,
-                          const std::vector<std::string>& keep, const std::string& support,
-                          int threads) {
+// `cairn plan --json`, with its page, graph and plans when asked.
+Answer PlanSequences(const py::object& model, const py::dict& o) {
   const PyModel& m = ModelOf(model);
+  app::PlanQuery q;
+  q.max = o["max"].cast<int>();
+  q.threads = o["threads"].cast<int>();
+  q.paths = o["paths"].cast<std::string>();
+  q.keep = o["keep"].cast<std::vector<std::string>>();
+  q.support = o["support"].cast<std::string>();
+  q.single_parts = o["single_parts"].cast<bool>();
+  q.dt = o["dt"].cast<double>();
+  q.speed = o["speed"].cast<double>();
+  q.allow_fixtures = o["allow_fixtures"].cast<int>();
+  q.directions = o["directions"].cast<std::string>();
+  q.dot = o["dot"].cast<bool>();
+  q.emit_plans = o["emit_plans"].cast<bool>();
+  q.page = o["page"].cast<bool>();
   py::gil_scoped_release release;
-  const Assembly& assembly = m.model.assembly;
-  cli::RefuseGivenInterfaces(assembly, m.file,
-                             "parts cannot be moved, so no removal can be planned");
-  PlannerOptions options;
-  options.max_sequences = max;
-  options.threads = threads;
-  options.subassemblies = !single_parts;
-  options.allow_fixtures = allow_fixtures;
-  if (support != "full" && support != "none" && support != "both")
-    throw InputError("", "support",
-                     "must be \"full\", \"none\" or \"both\", not \"" + support + "\"");
-  options.support = support == "none"   ? SupportChoice::kNone
-                    : support == "both" ? SupportChoice::kBoth
-                                        : SupportChoice::kFull;
-  for (const std::string& name : keep)
-    options.keep.push_back(cli::ResolvePart(assembly, name, "keep", m.file));
-  if (!paths.empty()) options.given_paths = ReadCandidatePaths(paths, assembly);
-  const PlannerResult result = PlanDisassembly(m.model.def, assembly, options);
-  return PlannerToJson(assembly, result, m.file).dump(2);
+  return AnswerOf(app::PlanDocument(m, q));
 }
 
-// `cairn blocking --json`.
-std::string Blocking(const py::object& model, const std::vector<std::string>& without,
-                     const std::vector<double>& direction) {
+// `cairn blocking --json` (with a direction, `--direction`).
+Answer Blocking(const py::object& model, const std::vector<std::string>& without,
+                const std::vector<double>& direction) {
   const PyModel& m = ModelOf(model);
   py::gil_scoped_release release;
-  const Assembly& assembly = m.model.assembly;
-  ReportOptions report;
-  report.scene_file = m.file;
-  const Configuration config = cli::WithoutParts(assembly, without, m.file, report.without);
-  // With a direction, `cairn blocking --direction`: its resolver (which
-  // names the option "direction" here) and the one cell at it.
-  if (direction.empty()) return NdbgToJson(assembly, ComputeNdbg(assembly, config), report).dump(2);
-  const Vector3 d = cli::BlockingDirection(direction, assembly, "direction");
-  return NdbgToJson(assembly, ComputeBlockingAt(assembly, config, d), report).dump(2);
+  return AnswerOf(app::BlockingDocument(m, {without, direction, "direction"}));
 }
 
 // `cairn margin --json`: friction (a flag), tilt (an axis) or load (a part,
 // a point, a direction), as the CLI's --friction, --tilt, --load.
-std::string Margin(const py::object& model, bool friction, const std::vector<double>& tilt,
-                   const std::string& load, const std::vector<double>& point,
-                   const std::vector<double>& direction, const std::vector<std::string>& without) {
+Answer Margin(const py::object& model, bool friction, const std::vector<double>& tilt,
+              const std::string& load, const std::vector<double>& point,
+              const std::vector<double>& direction, const std::vector<std::string>& without) {
   const PyModel& m = ModelOf(model);
   py::gil_scoped_release release;
-  const Assembly& assembly = m.model.assembly;
-  ReportOptions report;
-  report.scene_file = m.file;
-  const Configuration config = cli::WithoutParts(assembly, without, m.file, report.without);
-  const cli::MarginQuery query{friction, tilt, load, point, direction};
-  const MarginRequest request = cli::ResolveMarginQuery(assembly, query, m.file);
-  const MarginResult result = ComputeMargin(m.model.def, assembly, config, request);
-  return MarginToJson(assembly, request, result, report).dump(2);
+  return AnswerOf(app::MarginDocument(m, {friction, tilt, load, point, direction, without}));
 }
 
 }  // namespace
@@ -270,21 +223,19 @@ PYBIND11_MODULE(_cairn, m) {
       .def("__repr__",
            [](const py::object& self) {
              const PyModel& s = ModelOf(self);
-             const cairn::Assembly& a = s.model.assembly;
-             return "<cairn.Model " + cairn::JsonQuoted(s.model.def.name) + " (" +
+             const cairn::Assembly& a = s.assembly;
+             return "<cairn.Model " + cairn::JsonQuoted(s.def.name) + " (" +
                     std::to_string(a.dimension()) + "-D, " + std::to_string(a.num_parts()) +
                     " parts) from " + cairn::JsonQuoted(s.file) + ">";
            })
       .def_property_readonly("file", [](const py::object& self) { return ModelOf(self).file; })
-      .def_property_readonly("name",
-                             [](const py::object& self) { return ModelOf(self).model.def.name; })
+      .def_property_readonly("name", [](const py::object& self) { return ModelOf(self).def.name; })
       .def_property_readonly(
-          "dimension",
-          [](const py::object& self) { return ModelOf(self).model.assembly.dimension(); })
+          "dimension", [](const py::object& self) { return ModelOf(self).assembly.dimension(); })
       .def_property_readonly("parts",
                              [](const py::object& self) {
                                std::vector<std::string> names;
-                               const cairn::Assembly& a = ModelOf(self).model.assembly;
+                               const cairn::Assembly& a = ModelOf(self).assembly;
                                for (int i = 0; i < a.num_parts(); ++i)
                                  names.push_back(a.part(i).name);
                                return names;
@@ -292,18 +243,18 @@ PYBIND11_MODULE(_cairn, m) {
       .def_property_readonly("fixed",
                              [](const py::object& self) {
                                std::vector<std::string> names;
-                               const cairn::Assembly& a = ModelOf(self).model.assembly;
+                               const cairn::Assembly& a = ModelOf(self).assembly;
                                for (int i = 0; i < a.num_parts(); ++i)
                                  if (a.part(i).fixed) names.push_back(a.part(i).name);
                                return names;
                              })
       .def_property_readonly(
           "has_interfaces",
-          [](const py::object& self) { return ModelOf(self).model.assembly.has_interfaces(); })
+          [](const py::object& self) { return ModelOf(self).assembly.has_interfaces(); })
       // Each part's vertices in the assembled pose, `dimension` numbers each
       // (2-D: the polygon in order), for drawing (cairn.plot.scene).
       .def_property_readonly("vertices", [](const py::object& self) {
-        const cairn::Assembly& a = ModelOf(self).model.assembly;
+        const cairn::Assembly& a = ModelOf(self).assembly;
         const cairn::Configuration config = cairn::Configuration::Assembled(a);
         std::vector<std::vector<std::vector<double>>> parts;
         for (int i = 0; i < a.num_parts(); ++i) {
@@ -318,17 +269,15 @@ PYBIND11_MODULE(_cairn, m) {
       });
 
   m.attr("DEFAULT_MAX_TICKS") = cairn::Plan::kDefaultMaxTicks;
-  m.def("load", &Load, py::arg("file"), py::arg("format"), py::arg("friction"), py::arg("supports"),
-        py::arg("gravity"), py::arg("tolerance"), py::arg("interfaces"));
-  m.def("from_compas", &FromCompas, py::arg("text"), py::arg("name"), py::arg("friction"),
-        py::arg("supports"), py::arg("gravity"), py::arg("tolerance"), py::arg("interfaces"));
-  m.def("check", &Check, py::arg("model"), py::arg("without"), py::arg("normalize"));
+  m.attr("DEFAULT_MAX_INPUT_SIZE") = cairn::kDefaultMaxInputSize;
+  m.def("load", &Load, py::arg("file"), py::arg("format"), py::arg("options"));
+  m.def("from_compas", &FromCompas, py::arg("text"), py::arg("name"), py::arg("options"));
+  m.def("check", &Check, py::arg("model"), py::arg("without"), py::arg("normalize"),
+        py::arg("page"));
   m.def("simulate", &Simulate, py::arg("model"), py::arg("plan_file"), py::arg("plan_text"),
         py::arg("continue_after_failure"), py::arg("normalize"), py::arg("suggest_fixtures"),
-        py::arg("max_fixels"), py::arg("max_ticks"));
-  m.def("plan", &PlanSequences, py::arg("model"), py::arg("max"), py::arg("single_parts"),
-        py::arg("paths"), py::arg("allow_fixtures"), py::arg("keep"), py::arg("support"),
-        py::arg("threads"));
+        py::arg("max_fixels"), py::arg("max_ticks"), py::arg("margin"), py::arg("page"));
+  m.def("plan", &PlanSequences, py::arg("model"), py::arg("options"));
   m.def("blocking", &Blocking, py::arg("model"), py::arg("without"), py::arg("direction"));
   m.def("margin", &Margin, py::arg("model"), py::arg("friction"), py::arg("tilt"), py::arg("load"),
         py::arg("point"), py::arg("direction"), py::arg("without"));

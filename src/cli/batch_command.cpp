@@ -28,12 +28,12 @@
 
 #include "cairn/core/error.h"
 #include "cairn/io/input_file.h"
+#include "cairn/io/json_line.h"
 #include "cairn/mechanics/rest_solution.h"
 #include "cli/margin_command.h"
 #include "cli/mpi.h"
 #include "cli/output_files.h"
 #include "cli/progress.h"
-#include "io/json_checks.h"
 
 namespace cairn::cli {
 namespace {
@@ -56,43 +56,11 @@ std::string Dump(const json& j) { return j.dump(-1, ' ', false, json::error_hand
 
 // ---- Lines of JSON --------------------------------------------------------------
 
-// A line of JOBS or RESULTS, parsed with the readers' checks
-// (io_internal::SyntaxChecker): nested at most kMaxJsonDepth deep (a line
-// nested deeper would overflow the stack of whatever walks it), no key given
-// twice in one object (JSON would silently keep the last).
-struct ParsedLine {
-  std::optional<json> value;  // empty: not JSON, or refused
-  std::string why;            // then: what is wrong, with its JSON path
-  bool cut_short = false;     // then: valid JSON text up to its end, but incomplete
-};
-
-ParsedLine ParseLine(const std::string& line) {
-  ParsedLine out;
-  io_internal::SyntaxChecker checker;
-  if (line.find('\0') == std::string::npos && json::sax_parse(line, &checker)) {
-    out.value = json::parse(line);
-    return out;
-  }
-  if (checker.duplicate_path()) {
-    out.why = *checker.duplicate_path() + ": duplicate key in one object";
-  } else if (checker.too_deep_path()) {
-    out.why = *checker.too_deep_path() + ": nested more than " +
-              std::to_string(io_internal::kMaxJsonDepth) + " arrays or objects deep";
-  } else if (line.find('\0') != std::string::npos) {
-    out.why = "a NUL byte (a JSON text has none; is this a binary file?)";
-  } else {
-    out.why = io_internal::DescribeJsonError(line, checker.error_position(),
-                                             checker.error().value_or(""));
-    // One line: its column says where ("at line 1, column C" says no more).
-    if (const size_t at = out.why.find("at line 1, column"); at != std::string::npos)
-      out.why.replace(at, 17, "at column");
-    out.cut_short = checker.error_position() >= line.size();
-  }
-  return out;
-}
-
 // "a string", "a number", ... (for messages).
-std::string Article(const json& j) { return io_internal::JsonChecker::Article(j); }
+std::string Article(const json& j) {
+  const std::string t = j.type_name();
+  return (t == "array" || t == "object" ? "an " : "a ") + t;
+}
 
 // The batch reads its own files (JOBS, RESULTS) and a job's files only when
 // they are regular files: a FIFO would block the read forever (no deadline
@@ -128,7 +96,7 @@ std::vector<Job> ReadJobs(const std::string& path) {
     if (!line.empty() && line.back() == '\r') line.pop_back();
     if (line.find_first_not_of(" \t") == std::string::npos) continue;
     const std::string where = "line " + std::to_string(n);
-    const ParsedLine parsed = ParseLine(line);
+    const JsonLine parsed = ParseJsonLine(line);
     if (!parsed.value) throw InputError(path, where, parsed.why + " (one job per line)");
     const json& j = *parsed.value;
     if (!j.is_object())
@@ -271,7 +239,7 @@ struct RecordedResult {
   std::string id;  // as JSON text
   int exit = 0;
 };
-std::optional<RecordedResult> AsResult(const ParsedLine& parsed) {
+std::optional<RecordedResult> AsResult(const JsonLine& parsed) {
   if (!parsed.value || !parsed.value->is_object()) return std::nullopt;
   const json& j = *parsed.value;
   const auto id = j.find("id"), exit = j.find("exit");
@@ -343,7 +311,7 @@ class Results {
     long long at = 0;
     std::string line;
     for (size_t n = 1; std::getline(in, line); ++n) {
-      const ParsedLine parsed = ParseLine(line);
+      const JsonLine parsed = ParseJsonLine(line);
       const std::optional<RecordedResult> result = AsResult(parsed);
       if (in.eof()) {
         // No newline after it. A batch writes a line and its newline at once,
@@ -523,25 +491,6 @@ std::string Summary(size_t run, size_t retried, size_t skipped, const BatchProgr
 }
 
 }  // namespace
-
-CommandDocument MarginJobDocument(MarginArgs args) {
-  args.json = true;
-  std::ostringstream out, err;
-  const int exit = RunMargin(args, out, err);
-  // One line on standard error, after "cairn: error: " or "cairn: internal
-  // error: ".
-  std::string message = err.str();
-  while (!message.empty() && message.back() == '\n') message.pop_back();
-  if (exit == kExitBadInput) {
-    const std::string tag = "cairn: error: ";
-    throw InputError("", "", message.rfind(tag, 0) == 0 ? message.substr(tag.size()) : message);
-  }
-  if (exit != kExitStable && exit != kExitUnstable) {
-    const std::string tag = "cairn: internal error: ";
-    throw std::runtime_error(message.rfind(tag, 0) == 0 ? message.substr(tag.size()) : message);
-  }
-  return {json::parse(out.str()), exit};
-}
 
 JobResult RunJob(const std::string& line, const JobParser& parse, double job_timeout) {
   // The line: {"id":…,"exit":…,"result":…} or {"id":…,"exit":…,"error":…},

@@ -36,12 +36,6 @@ struct JobResult {
   int exit = 0;
 };
 
-/// A margin job's document: what `cairn margin ... --json` prints (RunMargin
-/// itself, its document read back), and its exit code. @throws InputError
-/// with RunMargin's message on bad input, std::runtime_error on an internal
-/// error (exit 4).
-CommandDocument MarginJobDocument(MarginArgs args);
-
 /// One job (a line of JOBS, already known to be a JSON object with an id),
 /// run in-process. Never throws.
 JobResult RunJob(const std::string& line, const JobParser& parse, double job_timeout);

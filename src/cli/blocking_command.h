@@ -5,8 +5,8 @@
 #include <string>
 #include <vector>
 
+#include "cairn/app/model.h"
 #include "cli/command.h"
-#include "cli/model.h"
 
 namespace cairn::cli {
 
@@ -22,13 +22,6 @@ struct BlockingArgs {
 /// through the computation (it may throw to abandon it: `cairn batch
 /// --job-timeout`). @throws InputError on bad input.
 CommandDocument BlockingDocument(const BlockingArgs& args, const Checkpoint& checkpoint = {});
-
-/// The direction of `--direction` as the command reads it (3 finite numbers,
-/// not all zero; Z = 0 in a 2-D scene), for the Python module's
-/// `cairn.blocking(direction=...)`. Errors name `option`.
-/// @throws InputError when it is not a direction.
-Vector3 BlockingDirection(const std::vector<double>& xyz, const Assembly& assembly,
-                          const std::string& option = "--direction");
 
 /// `cairn blocking`: the NDBG of the scene (planning/blocking.h), per cell
 /// its directions and the parts that can leave. Exit 0, or 2 on bad input.

@@ -5,8 +5,8 @@
 #include <string>
 #include <vector>
 
+#include "cairn/app/model.h"
 #include "cli/command.h"
-#include "cli/model.h"
 
 namespace cairn::cli {
 

@@ -6,16 +6,22 @@
 #include <iosfwd>
 #include <nlohmann/json.hpp>
 
+#include "cairn/app/command.h"
+#include "cairn/app/model.h"
+
 namespace cairn::cli {
 
-/// Exit codes (a public contract).
-inline constexpr int kExitStable = 0;
-inline constexpr int kExitUnstable = 1;
-inline constexpr int kExitBadInput = 2;
-inline constexpr int kExitInfeasible = 3;
-/// A defect of Cairn's (an exception that is not bad input): reported as an
-/// internal error, never a crash.
-inline constexpr int kExitInternalError = 4;
+/// Exit codes (a public contract): app's.
+using app::kExitBadInput;
+using app::kExitInfeasible;
+using app::kExitInternalError;
+using app::kExitStable;
+using app::kExitUnstable;
+
+/// The model options and the model, as app reads them.
+using app::LoadModel;
+using app::Model;
+using app::ModelArgs;
 
 /// Runs a command's `body` and returns its exit code; bad input
 /// (InputError) is written to `err` as "cairn: error: ..." with exit
@@ -24,8 +30,7 @@ inline constexpr int kExitInternalError = 4;
 int RunGuarded(std::ostream& err, const std::function<int()>& body);
 
 /// A command's JSON document (what it prints with `--json`) and its exit
-/// code: what each command's `...Document` function returns, for the CLI and
-/// for `cairn batch`, which calls them in-process.
+/// code, for `cairn batch`, which runs the commands in-process.
 struct CommandDocument {
   nlohmann::json json;
   int exit = kExitStable;

@@ -1,27 +1,13 @@
 
 #include "cli/convert_command.h"
 
-#include <algorithm>
-#include <cmath>
-#include <cstdio>
-#include <filesystem>
-#include <fstream>
-#include <iostream>
-#include <optional>
-#include <sstream>
+#include <ostream>
 
-#include "cairn/core/error.h"
-#include "cairn/io/compas_reader.h"
-#include "cairn/io/plan_reader.h"
-#include "cairn/io/scene_reader.h"
-#include "cairn/motion/simulate.h"
-#include "cairn/planning/fixtures.h"
-#include "cairn/report/fixture_report.h"
-#include "cairn/stability/analyze.h"
+#include "cairn/app/model.h"
+#include "cairn/core/format.h"
+#include "cairn/io/scene_writer.h"
 #include "cli/command.h"
-#include "cli/model.h"
 #include "cli/output_files.h"
-#include "cli/scene_writer.h"
 
 namespace cairn::cli {
 

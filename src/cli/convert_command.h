@@ -4,14 +4,14 @@
 #include <iosfwd>
 #include <string>
 
-#include "cli/model.h"
+#include "cairn/app/model.h"
 
 namespace cairn::cli {
 
 struct ConvertArgs {
   std::string input;
   std::string output;
-  ModelArgs model;
+  app::ModelArgs model;
 };
 
 /// `cairn convert`: writes the validated model of `input` to `output` as a

@@ -390,7 +390,7 @@ cairn::cli::JobCommand ParseJob(const std::vector<std::string>& args) {
     return [p](const cli::Checkpoint& c) { return cli::BlockingDocument(p->blocking, c); };
   if (*parser.plan) return [p](const cli::Checkpoint& c) { return cli::PlanDocument(p->plan, c); };
   if (*parser.margin)
-    return [p](const cli::Checkpoint&) { return cli::MarginJobDocument(p->margin); };
+    return [p](const cli::Checkpoint& c) { return cli::MarginDocument(p->margin, c); };
   throw cairn::InputError("", "command", "must be check, simulate, plan, blocking or margin");
 }
 

@@ -7,19 +7,11 @@
 #include <string>
 #include <vector>
 
-#include "cairn/stability/margin.h"
-#include "cli/model.h"
+#include "cairn/app/margin.h"
+#include "cairn/app/model.h"
+#include "cli/command.h"
 
 namespace cairn::cli {
-
-/// Which margin, as the command line (or the Python module) says it.
-struct MarginQuery {
-  bool friction = false;          ///< --friction (without --tilt and --load)
-  std::vector<double> tilt;       ///< --tilt X,Y,Z
-  std::string load;               ///< --load PART
-  std::vector<double> point;      ///< --point (2 or 3 numbers)
-  std::vector<double> direction;  ///< --direction (2 or 3 numbers)
-};
 
 struct MarginArgs {
   std::string scene;
@@ -31,15 +23,14 @@ struct MarginArgs {
   /// carry MU and only sets the model's μ.
   bool friction_given = false;
   std::string friction_value;
-  MarginQuery query;  // tilt, load, point, direction (friction from above)
-  ModelArgs model;    // --friction's value goes to model.friction
+  app::MarginQuery query;  // tilt, load, point, direction (friction from above; without: below)
+  app::ModelArgs model;    // --friction's value goes to model.friction
 };
 
-/// The request of `query` on `assembly`. @throws InputError naming the flag
-/// (and `file`): no quantity or two, a wrong count of numbers, an unknown
-/// part.
-MarginRequest ResolveMarginQuery(const Assembly& assembly, const MarginQuery& query,
-                                 const std::string& file);
+/// `cairn margin --json`'s document, for `cairn batch`: exit 0 when the
+/// configuration stands as given, 1 when not. @throws InputError on bad
+/// input; std::runtime_error when the solver failed (exit 4).
+CommandDocument MarginDocument(const MarginArgs& args, const Checkpoint& checkpoint = {});
 
 /// `cairn margin`: exit 0 when the configuration stands as given (and the
 /// margin is computed), 1 when it does not stand, 2 bad input, 4 a solver

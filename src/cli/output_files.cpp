@@ -134,7 +134,7 @@ bool Inside(const fs::path& file, const fs::path& dir) {
 
 }  // namespace
 
-std::vector<NamedFile> ModelInputs(const std::string& file, const ModelArgs& args,
+std::vector<NamedFile> ModelInputs(const std::string& file, const app::ModelArgs& args,
                                    const std::string& name) {
   std::vector<NamedFile> inputs{{file, name}};
   if (args.format == "asap") {

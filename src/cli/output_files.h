@@ -28,7 +28,7 @@
 #include <string>
 #include <vector>
 
-#include "cli/model.h"
+#include "cairn/app/model.h"
 
 namespace cairn::cli {
 
@@ -44,7 +44,7 @@ struct NamedFile {
 /// The files a command reads for its model `file` (named `name`): the file
 /// itself, its `--sidecar`, and with `--format asap` the assembly folder
 /// (the folder given, or the folder of its config.json).
-std::vector<NamedFile> ModelInputs(const std::string& file, const ModelArgs& args,
+std::vector<NamedFile> ModelInputs(const std::string& file, const app::ModelArgs& args,
                                    const std::string& name);
 
 /// The outputs a command line names, checked before the command works: none

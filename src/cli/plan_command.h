@@ -5,9 +5,9 @@
 #include <string>
 #include <vector>
 
+#include "cairn/app/model.h"
 #include "cairn/planning/planner.h"
 #include "cli/command.h"
-#include "cli/model.h"
 
 namespace cairn::cli {
 

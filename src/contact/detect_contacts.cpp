@@ -181,9 +181,6 @@ bool PolygonHasEdge(const Polygon& poly, const Vector2& p, const Vector2& m, dou
   return false;
 }
 
-bool PolyhedronHasFace(const Polyhedron& poly, const Eigen::Isometry3d& X, const Vector3& p,
-                       const Vector3& m, double tol, double cos_tol);
-
 // 2-D: whether the polygon's material near p lies on the side m·(x − p) ≥ 0:
 // every edge through p has both ends on that side, and p is no reflex vertex.
 bool PolygonOnSide(const Polygon& poly, const Vector2& p, const Vector2& m, double tol,
@@ -209,48 +206,63 @@ bool PolygonOnSide(const Polygon& poly, const Vector2& p, const Vector2& m, doub
   return true;
 }
 
+// 3-D, in the polyhedron's own frame (X maps it to the world; a rigid map
+// keeps every distance, so the tolerances are the same): whether face f
+// contains p_B, on its plane within tol and inside its polygon or within
+// tol of it (crossing number in the face's plane).
+bool FaceContains(const Polyhedron& poly, size_t f, const Vector3& p_B, double tol) {
+  const Vector3& n = poly.face_normals()[f];
+  const auto& face = poly.faces()[f];
+  const Vector3& v0 = poly.vertices()[face[0]];
+  if (std::abs(n.dot(p_B - v0)) > tol) return false;
+  const auto [u, w] = TangentBasis(n);
+  const Vector2 q((p_B - v0).dot(u), (p_B - v0).dot(w));
+  bool inside = false;
+  for (size_t i = 0, j = face.size() - 1; i < face.size(); j = i++) {
+    const Vector3 &vj = poly.vertices()[face[j]], &vi = poly.vertices()[face[i]];
+    const Vector2 a((vj - v0).dot(u), (vj - v0).dot(w));
+    const Vector2 b((vi - v0).dot(u), (vi - v0).dot(w));
+    const Vector2 d = b - a;
+    const double s =
+        d.squaredNorm() > 0 ? std::clamp((q - a).dot(d) / d.squaredNorm(), 0.0, 1.0) : 0.0;
+    if ((a + s * d - q).norm() <= tol) return true;
+    if ((a.y() > q.y()) != (b.y() > q.y()) && q.x() < a.x() + (q.y() - a.y()) * d.x() / d.y())
+      inside = !inside;
+  }
+  return inside;
+}
+
 // 3-D: whether the polyhedron's material near p lies on the side
-// m·(x − p) ≥ 0: every face through p has all its vertices on that side.
+// m·(x − p) ≥ 0: every face through p has all its vertices on that side. A
+// face counts as through p when a face of (nearly) its normal contains p:
+// the faces that contain p are found once, in the body's frame.
 bool PolyhedronOnSide(const Polyhedron& poly, const Eigen::Isometry3d& X, const Vector3& p,
                       const Vector3& m, double tol, double angle_tol) {
+  const Vector3 p_B = X.inverse() * p, m_B = X.linear().transpose() * m;
+  std::vector<Vector3> through;  // the normals of the faces that contain p
+  for (size_t f = 0; f < poly.faces().size(); ++f)
+    if (FaceContains(poly, f, p_B, tol)) through.push_back(poly.face_normals()[f]);
+  const double same = 1.0 - numeric::kRoundoff;
   for (size_t f = 0; f < poly.faces().size(); ++f) {
-    const Vector3 n = X.linear() * poly.face_normals()[f];
-    if (!PolyhedronHasFace(poly, X, p, n, tol, 1.0 - numeric::kRoundoff)) continue;
+    const Vector3& n = poly.face_normals()[f];
+    if (std::none_of(through.begin(), through.end(),
+                     [&](const Vector3& t) { return t.dot(n) >= same; }))
+      continue;
     for (int i : poly.faces()[f]) {
-      const Vector3 v = X * poly.vertices()[i];
-      if (m.dot(v - p) < -(tol + angle_tol * (v - p).norm())) return false;
+      const Vector3 v = poly.vertices()[i] - p_B;
+      if (m_B.dot(v) < -(tol + angle_tol * v.norm())) return false;
     }
   }
   return true;
 }
 
-// 3-D: whether a face of the polyhedron placed by X, with outward normal m,
-// contains p (on its plane within tol, inside its polygon or within tol of it).
+// 3-D: whether a face of the polyhedron placed by X, with outward normal
+// within cos_tol of m, contains p (FaceContains, in the body's frame).
 bool PolyhedronHasFace(const Polyhedron& poly, const Eigen::Isometry3d& X, const Vector3& p,
                        const Vector3& m, double tol, double cos_tol) {
-  for (size_t f = 0; f < poly.faces().size(); ++f) {
-    const Vector3 n = X.linear() * poly.face_normals()[f];
-    if (n.dot(m) < cos_tol) continue;
-    const auto& face = poly.faces()[f];
-    std::vector<Vector3> v;
-    for (int i : face) v.push_back(X * poly.vertices()[i]);
-    if (std::abs(n.dot(p - v[0])) > tol) continue;
-    // Within tol of an edge, or inside (crossing number in the face's plane).
-    const auto [u, w] = TangentBasis(n);
-    const Vector2 q((p - v[0]).dot(u), (p - v[0]).dot(w));
-    bool inside = false;
-    for (size_t i = 0, j = v.size() - 1; i < v.size(); j = i++) {
-      const Vector2 a((v[j] - v[0]).dot(u), (v[j] - v[0]).dot(w));
-      const Vector2 b((v[i] - v[0]).dot(u), (v[i] - v[0]).dot(w));
-      const Vector2 d = b - a;
-      const double s =
-          d.squaredNorm() > 0 ? std::clamp((q - a).dot(d) / d.squaredNorm(), 0.0, 1.0) : 0.0;
-      if ((a + s * d - q).norm() <= tol) return true;
-      if ((a.y() > q.y()) != (b.y() > q.y()) && q.x() < a.x() + (q.y() - a.y()) * d.x() / d.y())
-        inside = !inside;
-    }
-    if (inside) return true;
-  }
+  const Vector3 p_B = X.inverse() * p, m_B = X.linear().transpose() * m;
+  for (size_t f = 0; f < poly.faces().size(); ++f)
+    if (poly.face_normals()[f].dot(m_B) >= cos_tol && FaceContains(poly, f, p_B, tol)) return true;
   return false;
 }
 

@@ -7,12 +7,17 @@
 #define BOOST_GEOMETRY_NO_ROBUSTNESS
 
 #include <algorithm>
+#include <array>
 #include <boost/geometry.hpp>
 #include <boost/geometry/geometries/linestring.hpp>
 #include <boost/geometry/geometries/point_xy.hpp>
 #include <boost/geometry/geometries/polygon.hpp>
 #include <cmath>
 #include <map>
+#include <utility>
+#include <vector>
+
+#include "cairn/geometry/box_grid.h"
 
 namespace cairn {
 
@@ -115,6 +120,16 @@ bool BoxesApart(const Vector3& lo1, const Vector3& hi1, const Vector3& lo2, cons
   return (lo1.array() > hi2.array() + tol).any() || (lo2.array() > hi1.array() + tol).any();
 }
 
+// The grid of a placed part's edges.
+BoxGrid EdgeGrid(const Placed& P, double tol) {
+  std::vector<Vector3> lo, hi;
+  for (const auto& e : P.edges) {
+    lo.push_back(P.v[e[0]].cwiseMin(P.v[e[1]]));
+    hi.push_back(P.v[e[0]].cwiseMax(P.v[e[1]]));
+  }
+  return BoxGrid(lo, hi, tol);
+}
+
 // Whether every neighbour of vertex i of P lies on the +n side of the plane
 // n · x = c (within tol): P's material near i is on that side.
 bool MaterialAbove(const Placed& P, int i, const Vector3& n, double c, double tol) {
@@ -148,7 +163,10 @@ class PairContacts {
         length_tol(length),
         angle_tol(angle),
         cos_tol(std::cos(angle)),
-        area_tol(length * length) {}
+        area_tol(length * length),
+        faces_a(A.lo, A.hi, length),
+        faces_b(B.lo, B.hi, length),
+        edges_b(EdgeGrid(B, length)) {}
 
   // Vertex–face and edge–face contacts, both ways (a's features on b's faces,
   // then b's on a's).
@@ -170,7 +188,7 @@ class PairContacts {
       const Vector3 o = B.v[b.faces()[fb][0]];
       Polygon2 poly_b;
       bool have_b = false;
-      for (int fa = 0; fa < static_cast<int>(A.n.size()); ++fa) {
+      for (const int fa : faces_a.Query(B.lo[fb], B.hi[fb])) {
         if (A.n[fa].dot(B.n[fb]) > -cos_tol) continue;
         if (BoxesApart(A.lo[fa], A.hi[fa], B.lo[fb], B.hi[fb], length_tol)) continue;
         bool on_plane = true;
@@ -228,7 +246,7 @@ class PairContacts {
   // Vertex–face, both ways: a vertex of P on a face of Q.
   void VertexFace(const Placed& P, const Placed& Q, bool p_is_a) {
     for (int i = 0; i < static_cast<int>(P.v.size()); ++i) {
-      for (int f = 0; f < static_cast<int>(Q.n.size()); ++f) {
+      for (const int f : FacesOf(Q).Query(P.v[i], P.v[i])) {
         const double d = Q.n[f].dot(P.v[i]) - Q.offset[f];
         if (std::abs(d) > length_tol) continue;
         if (BoxesApart(P.v[i], P.v[i], Q.lo[f], Q.hi[f], length_tol)) continue;
@@ -260,7 +278,7 @@ class PairContacts {
   void EdgeFace(const Placed& P, const Placed& Q, bool p_is_a) {
     for (int e = 0; e < static_cast<int>(P.edges.size()); ++e) {
       const int i = P.edges[e][0], j = P.edges[e][1];
-      for (int f = 0; f < static_cast<int>(Q.n.size()); ++f) {
+      for (const int f : FacesOf(Q).Query(P.v[i].cwiseMin(P.v[j]), P.v[i].cwiseMax(P.v[j]))) {
         const double di = Q.n[f].dot(P.v[i]) - Q.offset[f];
         const double dj = Q.n[f].dot(P.v[j]) - Q.offset[f];
         if (std::abs(di) > length_tol || std::abs(dj) > length_tol) continue;
@@ -311,7 +329,7 @@ class PairContacts {
   void EdgeEdge() {
     for (int ea = 0; ea < static_cast<int>(A.edges.size()); ++ea) {
       const Vector3 p0 = A.v[A.edges[ea][0]], p1 = A.v[A.edges[ea][1]];
-      for (int eb = 0; eb < static_cast<int>(B.edges.size()); ++eb) {
+      for (const int eb : edges_b.Query(p0.cwiseMin(p1), p0.cwiseMax(p1))) {
         const Vector3 q0 = B.v[B.edges[eb][0]], q1 = B.v[B.edges[eb][1]];
         if (BoxesApart(p0.cwiseMin(p1), p0.cwiseMax(p1), q0.cwiseMin(q1), q0.cwiseMax(q1),
                        length_tol))
@@ -367,6 +385,9 @@ class PairContacts {
   std::vector<Patch> patches;  // by face of b (face–face, a's faces pressed onto b's)
   std::vector<std::pair<int, int>> face_pairs;  // (face a, face b) of each patch
   int next_patch = 0;
+  // Which faces and edges are near which (BoxGrid).
+  const BoxGrid faces_a, faces_b, edges_b;
+  const BoxGrid& FacesOf(const Placed& Q) const { return &Q == &A ? faces_a : faces_b; }
 };
 
 }  // namespace

@@ -13,6 +13,7 @@
 
 #include "cairn/core/check.h"
 #include "cairn/core/error.h"
+#include "cairn/geometry/box_grid.h"
 #include "cairn/geometry/polygon.h"
 
 namespace cairn {
@@ -633,22 +634,43 @@ double SignedDistance(const Polyhedron& poly, const Eigen::Isometry3d& X_WB, con
 
 namespace {
 
+// A polyhedron's triangles in its own frame, with a grid over their boxes
+// (BoxGrid) to find the ones near a point.
+struct Triangles {
+  std::vector<std::array<Vector3, 3>> corners;
+  Vector3 lo{0, 0, 0}, hi{0, 0, 0};  // the polyhedron's box
+  BoxGrid grid;
+
+  static Triangles Of(const Polyhedron& poly, double tol) {
+    std::vector<std::array<Vector3, 3>> corners;
+    std::vector<Vector3> lo, hi;
+    const auto& x = poly.vertices();
+    for (const auto& face : poly.face_triangles())
+      for (const auto& t : face) {
+        corners.push_back({x[t[0]], x[t[1]], x[t[2]]});
+        lo.push_back(x[t[0]].cwiseMin(x[t[1]]).cwiseMin(x[t[2]]));
+        hi.push_back(x[t[0]].cwiseMax(x[t[1]]).cwiseMax(x[t[2]]));
+      }
+    Vector3 box_lo = x[0], box_hi = x[0];
+    for (const Vector3& v : x) box_lo = box_lo.cwiseMin(v), box_hi = box_hi.cwiseMax(v);
+    return {std::move(corners), box_lo, box_hi, BoxGrid(lo, hi, tol)};
+  }
+};
+
 // SignedDistance(poly, p) < −tol for a point p in poly's own frame, cheapest
-// test first: outside the bounding box grown by tol it cannot be; then the
-// winding number (inside at all?); only then the distance to the surface,
-// stopping at the first triangle within tol.
-bool DeeperInside(const Polyhedron& poly, const Vector3& lo, const Vector3& hi, const Vector3& p,
-                  double tol) {
-  if ((p.array() < lo.array() - tol).any() || (p.array() > hi.array() + tol).any()) return false;
-  const auto& x = poly.vertices();
+// test first: outside the bounding box grown by tol it cannot be; within tol
+// of a triangle (only those the grid puts near p can be) it is not; only
+// then the winding number (inside at all?), which needs every triangle.
+bool DeeperInside(const Triangles& tris, const Vector3& p, double tol) {
+  if ((p.array() < tris.lo.array() - tol).any() || (p.array() > tris.hi.array() + tol).any())
+    return false;
+  for (const int k : tris.grid.Query(p, p)) {
+    const auto& c = tris.corners[k];
+    if ((ClosestPointOnTriangle(p, c[0], c[1], c[2]) - p).norm() <= tol) return false;
+  }
   double winding = 0;
-  for (const auto& face : poly.face_triangles())
-    for (const auto& t : face) winding += SolidAngle(x[t[0]] - p, x[t[1]] - p, x[t[2]] - p);
-  if (!(winding > 2 * M_PI)) return false;
-  for (const auto& face : poly.face_triangles())
-    for (const auto& t : face)
-      if ((ClosestPointOnTriangle(p, x[t[0]], x[t[1]], x[t[2]]) - p).norm() <= tol) return false;
-  return true;
+  for (const auto& c : tris.corners) winding += SolidAngle(c[0] - p, c[1] - p, c[2] - p);
+  return winding > 2 * M_PI;
 }
 
 // A point of `a` deeper than tol inside `b`, among a's sample points.
@@ -668,12 +690,11 @@ std::optional<Vector3> SampleInside(const Polyhedron& a, const Eigen::Isometry3d
       samples.push_back((x[t[0]] + x[t[1]] + x[t[2]]) / 3);
       for (int k = 0; k < 3; ++k) samples.push_back((x[t[k]] + x[t[(k + 1) % 3]]) / 2);
     }
-  // b's bounding box in its own frame, where the samples are tested.
-  Vector3 lo = b.vertices()[0], hi = lo;
-  for (const Vector3& v : b.vertices()) lo = lo.cwiseMin(v), hi = hi.cwiseMax(v);
+  // b's triangles in its own frame, where the samples are tested.
+  const Triangles tris = Triangles::Of(b, tol);
   const Eigen::Isometry3d X_BA = X_WB.inverse() * X_WA;
   for (const Vector3& s : samples)
-    if (DeeperInside(b, lo, hi, X_BA * s, tol)) return X_WA * s;
+    if (DeeperInside(tris, X_BA * s, tol)) return X_WA * s;
   return std::nullopt;
 }
 

@@ -10,9 +10,9 @@
 #include <sstream>
 
 #include "cairn/io/scene_reader.h"
+#include "cairn/io/scene_writer.h"
 #include "cli/cli_run.h"
 #include "cli/command.h"
-#include "cli/scene_writer.h"
 
 namespace cairn::cli {
 namespace {

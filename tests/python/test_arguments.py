@@ -172,7 +172,7 @@ for name, call in [("repr", lambda: repr(m)), ("check", lambda: cairn.check(m)),
                    ("blocking_direction", lambda: cairn.blocking(m, direction=(0, 1))),
                    ("margin", lambda: cairn.margin(m, friction=True)),
                    ("simulate", lambda: cairn.simulate(m, {scene!r})),
-                   ("raw_check", lambda: cairn._cairn.check(m, [], ""))]:
+                   ("raw_check", lambda: cairn._cairn.check(m, [], "", False))]:
     try:
         call()
         print(name, "ran")
@@ -189,7 +189,7 @@ for name, call in [("repr", lambda: repr(m)), ("check", lambda: cairn.check(m)),
 
 def test_not_a_model_is_a_type_error():
     with pytest.raises(TypeError, match="expected a cairn.Model"):
-        cairn._cairn.check("examples/stack3.json", [], "")
+        cairn._cairn.check("examples/stack3.json", [], "", False)
     with pytest.raises(TypeError, match="expected a cairn.Model"):
         cairn.check("examples/stack3.json")
 

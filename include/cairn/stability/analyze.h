@@ -3,8 +3,9 @@
 /// The stability of one configuration: does every movable part stay put?
 ///
 /// AnalyzeConfiguration is the driver; it reads as the pipeline:
-///   DetectContacts → SplitComponents → BuildContactLcp → SolveLemke →
-///   RecoverSolution → ClassifyMotion.
+///   DetectContacts → SplitComponents → BuildContactLcp → SolveComponent
+///   (the equilibrium LP first, Lemke's method where it decides: one solve
+///   policy, solve_component.h) → RecoverSolution → ClassifyMotion.
 /// Movable parts that share no contact are solved apart (contact-graph
 /// components), so a large scene costs the sum of its pieces.
 ///

@@ -6,7 +6,7 @@
 
 #include "cairn/geometry/assembly.h"
 
-namespace cairn::cli {
+namespace cairn {
 
 /// The scene-format-v1 text of `def`: every field it sets, each part's shape
 /// as a `polygon` (2-D) or a `polyhedron` (3-D; a box or mesh is written as the
@@ -16,4 +16,4 @@ namespace cairn::cli {
 /// to keep large files readable.
 std::string WriteSceneJson(const AssemblyDef& def);
 
-}  // namespace cairn::cli
+}  // namespace cairn

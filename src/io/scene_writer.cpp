@@ -1,10 +1,10 @@
-#include "cli/scene_writer.h"
+#include "cairn/io/scene_writer.h"
 
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
 
-namespace cairn::cli {
+namespace cairn {
 namespace {
 
 using nlohmann::ordered_json;
@@ -119,4 +119,4 @@ std::string WriteSceneJson(const AssemblyDef& def) {
   return os.str();
 }
 
-}  // namespace cairn::cli
+}  // namespace cairn

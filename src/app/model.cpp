@@ -1,4 +1,4 @@
-#include "cli/model.h"
+#include "cairn/app/model.h"
 
 #include <algorithm>
 #include <cmath>
@@ -20,12 +20,20 @@
 #include "cairn/io/sidecar_reader.h"
 #include "cairn/io/step_reader.h"
 
-namespace cairn::cli {
+namespace cairn::app {
 
 namespace {
 
 // The model options' own numbers: finite, and of their sign.
 void CheckModelFlags(const ModelArgs& args) {
+  // The CLI's parser takes only these; the Python module passes strings.
+  if (args.format != "scene" && args.format != "compas" && args.format != "step" &&
+      args.format != "asap")
+    throw InputError("", "--format",
+                     "must be scene, compas, step or asap, not \"" + args.format + "\"");
+  if (args.interfaces != "detect" && args.interfaces != "stored")
+    throw InputError("", "--interfaces",
+                     "must be detect or stored, not \"" + args.interfaces + "\"");
   if (args.friction) {
     // CLI11 parses "nan" and "inf" as doubles; neither is a coefficient.
     if (!std::isfinite(*args.friction))
@@ -201,6 +209,7 @@ Model LoadModel(const std::string& file, const ModelArgs& args, std::ostream* no
   if (args.tolerance) m.def.tolerance = *args.tolerance;
   ApplyModelFlags(args, file, m.def);
   m.assembly = CreateAssembly([&] { return Assembly::Create(m.def, file); }, m.def, args, set_by);
+  m.file = file;
   return m;
 }
 
@@ -218,6 +227,7 @@ Model LoadCompasModel(const CompasAssembly& parsed, const std::string& file,
   m.def = compas.def;
   m.assembly =
       CreateAssembly([&] { return CreateCompasAssembly(compas, file); }, compas.def, args, {});
+  m.file = file;
   return m;
 }
 
@@ -269,4 +279,4 @@ void RefuseGivenInterfaces(const Assembly& assembly, const std::string& file,
         "the contacts are given as interfaces of the assembled configuration: " + consequence);
 }
 
-}  // namespace cairn::cli
+}  // namespace cairn::app

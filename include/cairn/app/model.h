@@ -1,6 +1,8 @@
 #pragma once
-// What every command does first: read the model with the command line's
-// changes (docs/cli.md, "Reading the model").
+/// @file
+/// What every command does first, from the CLI and from Python alike: read
+/// the model with the command line's changes (docs/cli.md, "Reading the
+/// model"), and resolve the part names the commands are given.
 
 #include <cstdint>
 #include <iosfwd>
@@ -12,7 +14,7 @@
 #include "cairn/io/compas_reader.h"
 #include "cairn/io/input_file.h"
 
-namespace cairn::cli {
+namespace cairn::app {
 
 /// How the input file is read and what the command line changes in its model
 /// (shared by check, simulate and convert; docs/cli.md, "Reading the model").
@@ -54,6 +56,7 @@ struct ModelArgs {
 struct Model {
   AssemblyDef def;
   Assembly assembly;
+  std::string file;  ///< the file (or document) it was read from: messages, `scene_file`
 };
 
 /// Reads `file` in `args.format` and applies --sidecar, --friction,
@@ -92,4 +95,4 @@ Configuration WithoutParts(const Assembly& assembly, const std::vector<std::stri
 void RefuseGivenInterfaces(const Assembly& assembly, const std::string& file,
                            const std::string& consequence);
 
-}  // namespace cairn::cli
+}  // namespace cairn::app

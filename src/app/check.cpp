@@ -1,0 +1,28 @@
+#include "cairn/app/check.h"
+
+#include "cairn/report/check_report.h"
+#include "cairn/report/html_report.h"
+#include "cairn/stability/analyze.h"
+
+namespace cairn::app {
+
+CommandResult CheckDocument(const Model& model, const CheckQuery& query, const Monitor& monitor) {
+  const Assembly& assembly = model.assembly;
+  ReportOptions report;
+  report.scene_file = model.file;
+  report.normalize_part = ResolveNormalize(assembly, query.normalize, model.file);
+  report.contacts = query.contacts;
+  const Configuration config = WithoutParts(assembly, query.without, model.file, report.without);
+  monitor.Poll();
+  StabilityOptions analysis;
+  analysis.check_equilibrium = true;  // report jamming (weak stability) too
+  const StabilityResult result = AnalyzeConfiguration(assembly, config, analysis);
+  CommandResult out;
+  out.document = StabilityToJson(assembly, config, result, report);
+  out.exit = result.stable() ? kExitStable : kExitUnstable;
+  out.text = StabilityToText(assembly, config, result, report);
+  if (query.page) out.page = CheckPage(assembly, out.document, report);
+  return out;
+}
+
+}  // namespace cairn::app
