@@ -179,16 +179,18 @@ def load(file, format="scene", friction=None, supports=None, gravity=None, toler
                                       mesh_tolerance, sidecar, max_input_size))
 
 
-def _write_outputs(m, files):
-    """Writes [(path, text, keyword)] as the CLI writes its outputs: never over the
-    model's file, each whole or not at all (a temporary file beside it,
-    renamed); a path that cannot be written is an InputError naming it."""
+def _write_outputs(m, files, inputs=()):
+    """Writes [(path, text, keyword)] as the CLI writes its outputs: never over
+    the model's file or another input of the call (`inputs`: a plan, a paths
+    file), each whole or not at all (a temporary file beside it, renamed); a
+    path that cannot be written is an InputError naming it."""
     for path, text, keyword in files:
         path = os.fspath(path)
         if not isinstance(path, str) or not path:
             raise _input_error(keyword, f"must be a file name, not {path!r}")
-        if os.path.exists(path) and os.path.exists(m.file) and os.path.samefile(path, m.file):
-            raise _input_error(keyword, f"is the model's file {m.file!r}: it would be replaced")
+        for given in (m.file, *inputs):
+            if os.path.exists(path) and os.path.exists(given) and os.path.samefile(path, given):
+                raise _input_error(keyword, f"is the input file {given!r}: it would be replaced")
         tmp = None
         try:
             fd, tmp = tempfile.mkstemp(dir=os.path.dirname(os.path.abspath(path)),
@@ -335,7 +337,7 @@ def simulate(m, plan, continue_after_failure=False, normalize=None, suggest_fixt
         outputs.append((html, page, "html"))
     if timeline is not None:
         outputs.append((timeline, csv, "timeline"))
-    _write_outputs(m, outputs)
+    _write_outputs(m, outputs, [plan_file] if not plan_text else [])
     doc = json.loads(doc_text)
     doc["timeline"] = read_timeline(io.StringIO(csv))
     return doc
@@ -392,7 +394,7 @@ def plan(m, max=None, single_parts=False, paths=None, allow_fixtures=0, keep=Non
             raise _input_error("emit_plans", f"cannot make the folder {folder!r}: "
                                f"{getattr(e, 'strerror', None) or e}") from None
         outputs += [(os.path.join(folder, name), text, "emit_plans") for name, text in plans]
-    _write_outputs(m, outputs)
+    _write_outputs(m, outputs, [] if paths is None or isinstance(paths, dict) else [paths])
     return json.loads(doc)
 
 

@@ -129,13 +129,17 @@ def test_options_the_python_module_lacked(cli):
         cairn.plan(m, dt=0)
 
 
-def test_an_output_never_replaces_the_model(tmp_path):
-    scene = tmp_path / "scene.json"
+def test_an_output_never_replaces_an_input(tmp_path):
+    scene, plan = tmp_path / "scene.json", tmp_path / "lift.plan.json"
     scene.write_bytes(open(example("paper_fig1.json"), "rb").read())
+    plan.write_bytes(open(example("plans", "paper_fig1_c_first.plan.json"), "rb").read())
     m = cairn.load(scene)
-    with pytest.raises(cairn.InputError, match="model's file"):
+    with pytest.raises(cairn.InputError, match="html: is the input file"):
         cairn.check(m, html=scene)
+    with pytest.raises(cairn.InputError, match="timeline: is the input file"):
+        cairn.simulate(m, plan, timeline=plan)
     assert scene.read_bytes() == open(example("paper_fig1.json"), "rb").read()
+    assert plan.read_bytes() == open(example("plans", "paper_fig1_c_first.plan.json"), "rb").read()
 
 
 def test_compas_file(cli):
