@@ -39,8 +39,9 @@ f 4 1 5
 f 4 5 8
 )";
 
-fs::path Folder(const std::string& config) {
-  const fs::path dir = fs::temp_directory_path() / "cairn_asap_reader_test";
+// A folder of its own per test (ctest runs the tests of one file at once).
+fs::path Folder(const std::string& name, const std::string& config) {
+  const fs::path dir = fs::temp_directory_path() / ("cairn_asap_reader_test_" + name);
   fs::remove_all(dir);
   fs::create_directories(dir);
   for (const char* key : {"0", "10"}) std::ofstream(dir / (std::string(key) + ".obj")) << kCube;
@@ -51,7 +52,7 @@ fs::path Folder(const std::string& config) {
 // Part "10" sits at the origin; part "0" is turned a quarter about z and
 // moved to (5, 0, 1): its cube spans x 4..5, y 0..1, z 1..2.
 TEST(ReadAsapAssembly, NamesInKeyOrderAndPlacesByFinalState) {
-  const fs::path dir = Folder(R"({"10": {"final_state": [0, 0, 0, 0, 0, 0]},
+  const fs::path dir = Folder("placed", R"({"10": {"final_state": [0, 0, 0, 0, 0, 0]},
       "0": {"initial_state": [9, 9, 9, 0, 0, 0], "final_state": [5, 0, 1, 0, 0, 1.5707963267948966]}})");
   const AssemblyDef def = ReadAsapAssembly(dir.string());
   ASSERT_EQ(def.parts.size(), 2u);
@@ -70,7 +71,7 @@ TEST(ReadAsapAssembly, NamesInKeyOrderAndPlacesByFinalState) {
 }
 
 TEST(ReadAsapAssembly, AFinalStateOfFiveNumbersIsNamed) {
-  const fs::path dir = Folder(R"({"0": {"final_state": [0, 0, 0, 0, 0]},
+  const fs::path dir = Folder("five", R"({"0": {"final_state": [0, 0, 0, 0, 0]},
                                   "10": {"final_state": [3, 0, 0, 0, 0, 0]}})");
   try {
     ReadAsapAssembly(dir.string());
