@@ -5,7 +5,6 @@
 
 #include "cairn/core/error.h"
 #include "cairn/io/paths_reader.h"
-#include "cairn/io/plan_reader.h"
 #include "cairn/io/scene_writer.h"
 #include "cairn/report/html_report.h"
 #include "cairn/report/plan_report.h"

@@ -32,8 +32,8 @@ TEST(ResolveMarginQuery, OneQuantityAndErrorsNameTheFlag) {
             Vector3(0, 0, 1));
 }
 
-// Paper Fig. 1 stands (exit 0) and tilts some way before it fails: both
-// senses of the tilt about z have a critical angle.
+// Paper Fig. 1 stands as given (exit 0, the margin solved, no failure) and
+// its tilt margin about z comes back in the document and in words.
 TEST(MarginDocument, PaperFig1Tilts) {
   const Model m = LoadModel(ExamplePath("paper_fig1.json"), {});
   const CommandResult r = MarginDocument(m, {false, {0, 0, 1}, "", {}, {}, {}});
