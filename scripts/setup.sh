@@ -7,15 +7,18 @@
 #   bash scripts/setup.sh          # build + tests
 #   bash scripts/setup.sh --bench  # ... and bench/
 #   bash scripts/setup.sh --fuzz   # ... and clang with libFuzzer (fuzz/README.md)
+#   bash scripts/setup.sh --lint   # ... and clang-tidy-19 (.clang-tidy) and clang-format
 set -euo pipefail
 
 bench=0
 fuzz=0
+lint=0
 for arg in "$@"; do
   case "$arg" in
     --bench) bench=1 ;;
     --fuzz) fuzz=1 ;;
-    *) echo "setup: unknown option $arg (known: --bench, --fuzz)" >&2; exit 2 ;;
+    --lint) lint=1 ;;
+    *) echo "setup: unknown option $arg (known: --bench, --fuzz, --lint)" >&2; exit 2 ;;
   esac
 done
 
@@ -56,6 +59,12 @@ fi
 if ((fuzz)); then
   packages+=(
     clang libclang-rt-dev      # fuzz/: libFuzzer, ASan and UBSan for clang
+  )
+fi
+
+if ((lint)); then
+  packages+=(
+    clang-tidy-19 clang-format  # .clang-tidy (misc-include-cleaner needs 17+), .clang-format
   )
 fi
 

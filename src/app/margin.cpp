@@ -1,11 +1,8 @@
 #include "cairn/app/margin.h"
 
 #include <cmath>
-#include <optional>
 
 #include "cairn/core/error.h"
-#include "cairn/core/format.h"
-#include "cairn/core/tolerances.h"
 #include "cairn/core/unit_vector.h"
 #include "cairn/report/margin_report.h"
 
@@ -30,6 +27,8 @@ Vector3 ReadVector(const std::vector<double>& v, int dim, const std::string& fla
 
 MarginRequest ResolveMarginQuery(const Assembly& assembly, const MarginQuery& q,
                                  const std::string& file) {
+  // The flags are read here; what they ask is checked by the stability stage
+  // (CheckMarginRequest), the one place its messages are written.
   const int asked = (q.friction ? 1 : 0) + (q.tilt.empty() ? 0 : 1) + (q.load.empty() ? 0 : 1);
   if (asked != 1)
     throw InputError(file, "margin",
@@ -43,12 +42,7 @@ MarginRequest ResolveMarginQuery(const Assembly& assembly, const MarginQuery& q,
     if (q.tilt.size() != 3)
       throw InputError(file, "--tilt",
                        "takes an axis of 3 comma-separated numbers (2-D scenes: 0,0,1)");
-    const std::optional<Vector3> axis = UnitVector(ReadVector(q.tilt, 3, "--tilt", file));
-    if (!axis) throw InputError(file, "--tilt", "the axis must not be zero");
-    req.axis = *axis;
-    if (!assembly.is_3d() && (req.axis.x() != 0 || req.axis.y() != 0))
-      throw InputError(file, "--tilt",
-                       "a 2-D scene turns in its plane: the axis must be 0,0,1 or 0,0,-1");
+    req.axis = ReadVector(q.tilt, 3, "--tilt", file);
   } else {
     req.quantity = MarginQuantity::kLoad;
     req.part = ResolvePart(assembly, q.load, "--load", file);
@@ -56,18 +50,11 @@ MarginRequest ResolveMarginQuery(const Assembly& assembly, const MarginQuery& q,
     if (q.point.empty()) throw InputError(file, "--point", "is required with --load");
     if (q.direction.empty()) throw InputError(file, "--direction", "is required with --load");
     req.point = ReadVector(q.point, dim, "--point", file);
-    if (req.point.cwiseAbs().maxCoeff() > limits::kMaxCoordinate)
-      throw InputError(file, "--point",
-                       "must be within the scene's coordinate range, |x| <= " +
-                           FormatNumber(limits::kMaxCoordinate));
-    const std::optional<Vector3> direction =
-        UnitVector(ReadVector(q.direction, dim, "--direction", file));
-    if (!direction) throw InputError(file, "--direction", "must not be the zero vector");
-    req.direction = *direction;
-    if (assembly.part(req.part).fixed)
-      throw InputError(file, "--load",
-                       "part \"" + q.load + "\" is fixed: a load on it goes to the ground");
+    req.direction = ReadVector(q.direction, dim, "--direction", file);
   }
+  CheckMarginRequest(assembly, req, file);
+  if (req.quantity == MarginQuantity::kTilt) req.axis = *UnitVector(req.axis);
+  if (req.quantity == MarginQuantity::kLoad) req.direction = *UnitVector(req.direction);
   return req;
 }
 

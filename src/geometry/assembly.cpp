@@ -685,6 +685,15 @@ bool Assembly::IsFrictionless() const {
          std::all_of(pair_mu_.begin(), pair_mu_.end(), [](const auto& e) { return e.second == 0; });
 }
 
+Assembly Assembly::WithFriction(double default_mu, double pair_factor) const {
+  CAIRN_CHECK(std::isfinite(default_mu) && default_mu >= 0 && std::isfinite(pair_factor) &&
+              pair_factor >= 0);
+  Assembly out = *this;
+  out.default_friction_ = default_mu;
+  for (auto& entry : out.pair_mu_) entry.second *= pair_factor;
+  return out;
+}
+
 std::optional<std::string> Assembly::FixtureFault(const FixtureDef& f) const {
   const int part = FindPart(f.part);
   if (part < 0) return "no part named '" + EscapedName(f.part) + "'";

@@ -18,11 +18,6 @@ namespace cairn::equilibrium_internal {
 // this fraction of the largest are dropped (dimensionless).
 inline constexpr double kDropRelative = 1e-13;
 
-// From this many generator columns on, the equilibrium LP goes to the
-// interior-point method first: below it the dual simplex is as fast and its
-// answer exact (measured: docs/benchmarks.md, "The equilibrium LP").
-inline constexpr int kBarrierColumns = 2000;
-
 // The simplex's primal feasibility tolerance (Clp's default is 1e-7 of the
 // scaled rows): the forces at rest must balance tightly enough for the LCP
 // check, which divides the unbalanced load by the parts' masses.

@@ -3,17 +3,17 @@
 #include <algorithm>
 #include <cmath>
 #include <coin/ClpSimplex.hpp>
-#include <coin/ClpSolve.hpp>
 #include <limits>
 #include <optional>
 #include <vector>
 
+#include "cairn/mechanics/lp_policy.h"
+#include "mechanics/clp_solve.h"
 #include "mechanics/equilibrium_lp.h"
 
 namespace cairn {
 
 using equilibrium_internal::EquilibriumLp;
-using equilibrium_internal::kBarrierColumns;
 using equilibrium_internal::kSimplexPrimalTolerance;
 using equilibrium_internal::Load;
 using equilibrium_internal::MakeEquilibriumLp;
@@ -29,14 +29,10 @@ namespace {
 // with a self-stress of 1e9 loads fails it (Fig. 6 tilted in its plane).
 constexpr double kMaxGeneratorLoads = 1e6;
 
-// A margin LP (with an objective) from kMarginBarrierColumns columns on goes
-// to the interior-point method without crossover; below, the dual simplex.
-// Measured (bench/margin_bench --tilt; docs/benchmarks.md, "Margins"): the
-// tilt LP of the 100-brick wall (1141 columns) takes 16 ms so, 30 ms by the
-// dual simplex; Jenga's (2497 columns) 15 ms against 44–64 ms, and 35 ms
-// with crossover; the cross vault's tilt margin takes 1.2 s so, 1.9 s with
-// crossover.
-// Solves `lp` from scratch (see above). Returns the method's name.
+// Solves the parametric LP `lp` from scratch by the LP policy
+// (cairn/mechanics/lp_policy.h: the interior-point method from
+// kParametricBarrierColumns columns on; the cross vault's tilt margin takes
+// 1.2 s so, 1.9 s with crossover). Returns the method's name.
 //
 // The interior-point method gets the parameter s (column `s_col`) boxed to
 // ±`s_box`: where the LP is unbounded, Clp 1.17's predictor-corrector
@@ -44,27 +40,22 @@ constexpr double kMaxGeneratorLoads = 1e6;
 // tilted about x). An optimum on the box is not taken.
 const char* SolveFresh(ClpSimplex& lp, int ncols, int s_col, double s_box) {
   lp.setPrimalTolerance(kSimplexPrimalTolerance);
-  if (ncols >= kMarginBarrierColumns) {
+  const LpMethod first = FirstLpMethod(LpForm::kParametric, ncols);
+  if (first != LpMethod::kDualSimplex) {
     const double lo = lp.columnLower()[s_col], hi = lp.columnUpper()[s_col];
     lp.setColumnLower(s_col, std::max(lo, -s_box));
     lp.setColumnUpper(s_col, std::min(hi, s_box));
-    ClpSolve how;
-    how.setSolveType(ClpSolve::useBarrierNoCross);
-    how.setPresolveType(ClpSolve::presolveOff);
-    lp.initialSolve(how);
+    clp::SolveByBarrier(lp, first);
     lp.setColumnLower(s_col, lo);
     lp.setColumnUpper(s_col, hi);
     // Only its optimum is taken: a claim of infeasibility or unboundedness
     // is left to the simplex, which proves it.
     const double s = lp.primalColumnSolution()[s_col];
-    if (lp.status() == 0 && std::abs(s) < 0.5 * s_box) return "barrier";
+    if (clp::StatusOf(lp) == clp::Status::kOptimal && std::abs(s) < 0.5 * s_box)
+      return to_string(first);
     lp.allSlackBasis(true);
   }
-  lp.dual();
-  if (lp.status() == 0 || lp.status() == 1 || lp.status() == 2) return "dual simplex";
-  lp.allSlackBasis(true);
-  lp.primal();
-  return "primal simplex";
+  return clp::SolveBySimplex(lp);
 }
 
 }  // namespace
@@ -90,18 +81,18 @@ namespace {
 // its forces do not balance (`out.message`).
 bool ReadOptimum(const ContactLcp& lcp, const std::vector<Vector6>& load, bool frictionless,
                  const EquilibriumLp& e, ClpSimplex& lp, int ng, LoadParameterResult& out) {
-  if (lp.status() == 1) {
-    out.status = LoadParameterResult::Status::kInfeasible;
-    return true;
-  }
-  if (lp.status() == 2) {
-    out.status = LoadParameterResult::Status::kUnbounded;
-    return true;
-  }
-  if (lp.status() != 0) {
-    out.message = "Clp: status " + std::to_string(lp.status()) + ", secondary status " +
-                  std::to_string(lp.secondaryStatus());
-    return false;
+  switch (clp::StatusOf(lp)) {
+    case clp::Status::kOptimal:
+      break;
+    case clp::Status::kPrimalInfeasible:
+      out.status = LoadParameterResult::Status::kInfeasible;
+      return true;
+    case clp::Status::kDualInfeasible:
+      out.status = LoadParameterResult::Status::kUnbounded;
+      return true;
+    default:
+      out.message = clp::Failure("margin LP", lp);
+      return false;
   }
   out.value = lp.primalColumnSolution()[ng];
   out.motion = MotionOfDuals(e, lp.dualRowSolution());
@@ -243,10 +234,9 @@ LoadParameterResult OptimizeLoadParameter(const ContactLcp& lcp, const std::vect
   // The barrier's optimum lies inside the optimal face, within its tolerance
   // of the end: should its forces fail the re-check, the dual simplex's
   // vertex is read instead.
-  if (std::string(out.method) == "barrier") {
+  if (std::string(out.method) == to_string(LpMethod::kBarrier)) {
     lp.allSlackBasis(true);
-    lp.dual();
-    out.method = "dual simplex";
+    out.method = clp::SolveBySimplex(lp);
     out.iterations += lp.numberIterations();
     if (ReadOptimum(lcp, load, frictionless, e, lp, ng, out)) return out;
   }
@@ -258,10 +248,12 @@ LoadParameterResult OptimizeLoadParameter(const ContactLcp& lcp, const std::vect
   const std::string first_message = out.message;
   for (int j = 0; j < ng; ++j) lp.setColumnUpper(j, kMaxGeneratorLoads);
   lp.allSlackBasis(true);
-  lp.dual();
+  clp::SolveBySimplex(lp);
   out.method = "dual simplex, bounded forces";
   out.iterations += lp.numberIterations();
-  if (lp.status() == 0 && ReadOptimum(lcp, load, frictionless, e, lp, ng, out)) return out;
+  if (clp::StatusOf(lp) == clp::Status::kOptimal &&
+      ReadOptimum(lcp, load, frictionless, e, lp, ng, out))
+    return out;
   if (BracketEnd(lcp, load, maximize, col_lo[ng], frictionless, claimed, out)) return out;
   out.status = LoadParameterResult::Status::kFailed;
   out.message = first_message;
@@ -352,30 +344,29 @@ FrictionDeficit FrictionDeficitLp::Solve(double k) {
   // The interior-point method on large components (a warm-started simplex
   // took 2000–16000 pivots per step on the Armadillo vault: the LP is very
   // degenerate); the dual simplex on small ones, or when the former fails.
-  if (ncols >= kBarrierColumns) {
-    ClpSolve how;
-    how.setSolveType(ClpSolve::useBarrierNoCross);
-    how.setPresolveType(ClpSolve::presolveOff);
-    lp.initialSolve(how);
-    out.method = "barrier";
+  const LpMethod first = FirstLpMethod(LpForm::kDeficit, ncols);
+  if (first != LpMethod::kDualSimplex) {
+    clp::SolveByBarrier(lp, first);
+    out.method = to_string(first);
   }
-  if (ncols < kBarrierColumns || lp.status() != 0) {
+  if (first == LpMethod::kDualSimplex || clp::StatusOf(lp) != clp::Status::kOptimal) {
     lp.setPrimalTolerance(kSimplexPrimalTolerance);
-    lp.dual();
-    out.method = "dual simplex";
+    out.method = clp::SolveBySimplex(lp);
   }
   ++lps_;
   out.iterations = lp.numberIterations();
   iterations_ += out.iterations;
-  if (lp.status() == 1) {
-    // Infeasible even with unlimited friction: no factor holds.
-    out.solved = true;
-    out.deficit = std::numeric_limits<double>::infinity();
-    return out;
-  }
-  if (lp.status() != 0) {
-    out.message = "Clp (friction deficit LP): status " + std::to_string(lp.status());
-    return out;
+  switch (clp::StatusOf(lp)) {
+    case clp::Status::kOptimal:
+      break;
+    case clp::Status::kPrimalInfeasible:
+      // Infeasible even with unlimited friction: no factor holds.
+      out.solved = true;
+      out.deficit = std::numeric_limits<double>::infinity();
+      return out;
+    default:
+      out.message = clp::Failure("friction deficit LP", lp);
+      return out;
   }
   out.solved = true;
   out.deficit = std::max(0.0, lp.objectiveValue());

@@ -5,10 +5,11 @@
 #include <algorithm>
 #include <cmath>
 #include <coin/ClpSimplex.hpp>
-#include <coin/ClpSolve.hpp>
 #include <coin/CoinPackedMatrix.hpp>
 #include <vector>
 
+#include "cairn/mechanics/lp_policy.h"
+#include "mechanics/clp_solve.h"
 #include "mechanics/equilibrium_lp.h"
 
 namespace cairn {
@@ -201,7 +202,6 @@ bool ReadEquilibrium(const ContactLcp& lcp, const EquilibriumLp& e, const double
 using equilibrium_internal::EquilibriumLp;
 using equilibrium_internal::Generator;
 using equilibrium_internal::GeneratorWrench;
-using equilibrium_internal::kBarrierColumns;
 using equilibrium_internal::kBarrierIterations;
 using equilibrium_internal::kMechanismRest;
 using equilibrium_internal::kMechanismSlack;
@@ -219,15 +219,13 @@ StaticEquilibrium FindStaticEquilibrium(const ContactLcp& lcp, const Equilibrium
   // 1. Large problems: the interior-point method, no crossover. Its answer is
   // accepted only when it passes the re-check; anything else goes on to the
   // simplex, which also proves infeasibility.
-  if (ncols >= kBarrierColumns && options.max_iterations <= 0) {
+  const LpMethod first = FirstLpMethod(LpForm::kFeasibility, ncols);
+  if (first != LpMethod::kDualSimplex && options.max_iterations <= 0) {
     ClpSimplex lp;
     Load(e, lp);
-    ClpSolve how;
-    how.setSolveType(ClpSolve::useBarrierNoCross);
-    how.setPresolveType(ClpSolve::presolveOff);
-    lp.setMaximumIterations(kBarrierIterations);
-    lp.initialSolve(how);
-    if (lp.status() == 0 && ReadEquilibrium(lcp, e, lp.primalColumnSolution(), ncols, out)) {
+    clp::SolveByBarrier(lp, first, kBarrierIterations);
+    if (clp::StatusOf(lp) == clp::Status::kOptimal &&
+        ReadEquilibrium(lcp, e, lp.primalColumnSolution(), ncols, out)) {
       out.solved = out.exists = true;
       out.method = "barrier";
       out.iterations = lp.numberIterations();
@@ -253,27 +251,21 @@ StaticEquilibrium FindStaticEquilibrium(const ContactLcp& lcp, const Equilibrium
   Load(e, lp);
   lp.setPrimalTolerance(kSimplexPrimalTolerance);
   if (options.max_iterations > 0) lp.setMaximumIterations(options.max_iterations);
-  lp.dual();
-  out.method = "dual simplex";
-  if (lp.status() != 0 && lp.status() != 1 && lp.status() != 3) {
-    lp.allSlackBasis(true);
-    lp.primal();
-    out.method = "primal simplex";
-  }
+  out.method = clp::SolveBySimplex(lp);
   out.iterations = lp.numberIterations();
-  if (lp.status() == 1) {
-    out.solved = true;  // primal infeasible: no equilibrium
-    return out;
-  }
-  if (lp.status() == 3) {
-    out.message =
-        "Clp: the iteration budget (" + std::to_string(options.max_iterations) + ") ran out";
-    return out;
-  }
-  if (lp.status() != 0) {
-    out.message = "Clp simplex: status " + std::to_string(lp.status()) + ", secondary status " +
-                  std::to_string(lp.secondaryStatus());
-    return out;
+  switch (clp::StatusOf(lp)) {
+    case clp::Status::kOptimal:
+      break;
+    case clp::Status::kPrimalInfeasible:
+      out.solved = true;  // no equilibrium
+      return out;
+    case clp::Status::kStopped:
+      out.message =
+          "Clp: the iteration budget (" + std::to_string(options.max_iterations) + ") ran out";
+      return out;
+    default:
+      out.message = clp::Failure("equilibrium LP", lp);
+      return out;
   }
   if (!ReadEquilibrium(lcp, e, lp.primalColumnSolution(), ncols, out)) {
     out.message = "Clp's equilibrium fails the re-check: residual " + std::to_string(out.residual);
@@ -318,18 +310,15 @@ bool SolveElasticLp(const EquilibriumLp& e, const std::vector<double>& radius, C
   lp.setLogLevel(0);
   lp.loadProblem(a.Matrix(e.nrows, ncols), col_lo.data(), col_hi.data(), cost.data(), rhs.data(),
                  rhs.data());
-  if (ncols >= kBarrierColumns) {
-    // With crossover: a vertex of the dual, so that bodies that need not
-    // move are exactly at rest.
-    ClpSolve how;
-    how.setSolveType(ClpSolve::useBarrier);
-    how.setPresolveType(ClpSolve::presolveOff);
-    lp.initialSolve(how);
-  } else {
-    lp.dual();
-  }
-  if (lp.status() == 0) return true;
-  *message = "Clp (elastic equilibrium LP): status " + std::to_string(lp.status());
+  // Large: the interior-point method with crossover, a vertex of the dual,
+  // so that bodies that need not move are exactly at rest.
+  const LpMethod first = FirstLpMethod(LpForm::kElastic, ncols);
+  if (first != LpMethod::kDualSimplex)
+    clp::SolveByBarrier(lp, first);
+  else
+    clp::SolveBySimplex(lp);
+  if (clp::StatusOf(lp) == clp::Status::kOptimal) return true;
+  *message = clp::Failure("elastic equilibrium LP", lp);
   return false;
 }
 

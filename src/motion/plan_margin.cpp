@@ -22,7 +22,7 @@ PlanMargin PlanFrictionMargin(const AssemblyDef& def, const Plan& plan,
   const FrictionScaling scaling = FrictionScalingOf(def);
   out.factor = scaling.factor;
   out.nominal = scaling.nominal;
-  const AssemblyDef& base = scaling.base;
+  const Assembly scene = Assembly::Create(def);
   const double k_max = scaling.k_max;
   SimulationOptions sim = options;
   sim.continue_after_failure = false;  // the first failure is the answer
@@ -30,7 +30,7 @@ PlanMargin PlanFrictionMargin(const AssemblyDef& def, const Plan& plan,
   // One probe: the whole plan at factor k (its first failure, if any).
   const auto run = [&](double k) {
     ++out.simulations;
-    return SimulatePlan(Assembly::Create(ScaleFriction(base, k)), plan, sim);
+    return SimulatePlan(scaling.At(scene, k), plan, sim);
   };
   // 1. A stable upper end: the nominal factor, doubled until the plan holds.
   double hi = out.nominal > 0 ? out.nominal : 1.0, lo = 0;

@@ -17,10 +17,10 @@ namespace cairn {
 namespace {
 using report_internal::Angular;
 using report_internal::Clean;
+using report_internal::ContactRecord;
 using report_internal::ForceRoundoffScale;
 using report_internal::Tangential;
 using report_internal::Vec;
-std::string PartName(const Assembly& a, int i) { return report_internal::PartName(a, i, "world"); }
 
 // Nothing holds the assembly: no part present is fixed and no fixture (a
 // contact with the world) touches any part, so everything falls together.
@@ -93,20 +93,12 @@ json ContactsToJson(const CheckJsonContext& cx, const StabilityResult& result) {
   json contacts = json::array();
   for (const ContactReport& cr : result.contacts) {
     const Contact& c = cr.contact;
-    json jc;
-    jc["parts"] = {PartName(assembly, c.part_a), PartName(assembly, c.part_b)};
-    jc["point"] = Vec(c.p_WC, dim);
-    jc["normal"] = Vec(c.n_W, dim);
+    json jc = ContactRecord(assembly, cr, force_scale, forces);
     jc["feature"] = to_string(c.feature);
-    if (dim == 3) jc["patch"] = c.patch;
     jc["mu"] = c.mu;
-    jc["normal_force"] = Clean(cr.normal_force / force_scale, forces);
-    jc["friction_force"] = Tangential(cr.friction_force / force_scale, c, dim, forces);
     jc[st ? "normal_velocity" : "normal_acceleration"] = Clean(cr.normal_motion, g);
     jc[st ? "sliding_velocity" : "tangential_acceleration"] =
         Tangential(cr.tangent_motion, c, dim, g);
-    jc["breaks"] = cr.breaking;
-    jc["slides"] = cr.sliding;
     jc["component"] = cr.component;
     contacts.push_back(jc);
   }

@@ -9,10 +9,14 @@
 #include <map>
 #include <set>
 
+#include "report/report_common.h"
 #include "viewer_bundle.h"
 
 namespace cairn {
 namespace {
+
+using report_internal::ContactRecord;
+using report_internal::ForceRoundoffScale;
 
 using nlohmann::json;
 
@@ -86,37 +90,13 @@ json SceneData(const Assembly& a, const ReportOptions& options) {
           {"fixtures", fixtures}};
 }
 
-// --- contacts in compact form: flat arrays, one entry (or triple) each -----
+// --- contacts: the records --json writes (report_common.h, ContactRecord) ---
 
-class CompactContacts {
- public:
-  explicit CompactContacts(double force_scale) : scale_(force_scale) {}
-  void Add(const ContactReport& c) {
-    a_idx_.push_back(c.contact.part_a);
-    b_idx_.push_back(c.contact.part_b >= 0 ? c.contact.part_b : -1);
-    for (int k = 0; k < 3; ++k) {
-      p_.push_back(Short(c.contact.p_WC[k]));
-      n_.push_back(Short(c.contact.n_W[k]));
-      ft_.push_back(Short(c.friction_force[k] / scale_));
-    }
-    fn_.push_back(Short(c.normal_force / scale_));
-    flags_.push_back((c.breaking ? 1 : 0) | (c.sliding ? 2 : 0));
-  }
-  json ToJson() const {
-    return {{"a", a_idx_}, {"b", b_idx_}, {"p", p_},        {"n", n_},
-            {"fn", fn_},   {"ft", ft_},   {"flags", flags_}};
-  }
-
- private:
-  double scale_;
-  std::vector<int> a_idx_, b_idx_, flags_;
-  std::vector<double> p_, n_, fn_, ft_;
-};
-
-json Contacts(const std::vector<ContactReport>& contacts, double force_scale) {
-  CompactContacts c(force_scale);
-  for (const ContactReport& r : contacts) c.Add(r);
-  return c.ToJson();
+json Contacts(const Assembly& a, const std::vector<ContactReport>& contacts, double force_scale) {
+  const double forces = ForceRoundoffScale(a, force_scale);
+  json out = json::array();
+  for (const ContactReport& c : contacts) out.push_back(ContactRecord(a, c, force_scale, forces));
+  return out;
 }
 
 // --- a simulation's ticks ---------------------------------------------------
@@ -173,9 +153,9 @@ std::vector<size_t> PageFrameIndices(const std::vector<SimulationFrame>& frames,
 json Frames(const Assembly& a, const SimulationResult& result,
             const std::vector<SimulationFrame>& frames, double force_scale) {
   // The timeline's rows of each (step, tick), in order.
-  std::map<std::pair<int, int>, CompactContacts> contacts;
+  std::map<std::pair<int, int>, std::vector<ContactReport>> contacts;
   for (const TimelineRow& row : result.timeline)
-    contacts.try_emplace({row.step, row.tick}, force_scale).first->second.Add(row.contact);
+    contacts[{row.step, row.tick}].push_back(row.contact);
   json out = json::array();
   for (size_t k : PageFrameIndices(frames, result)) {
     const SimulationFrame& f = frames[k];
@@ -190,7 +170,7 @@ json Frames(const Assembly& a, const SimulationResult& result,
          {"poses", MovedPoses(f.poses)},
          {"absent", absent},
          {"roles", Roles(a, f.roles)},
-         {"contacts", it != contacts.end() ? it->second.ToJson() : CompactContacts(1).ToJson()}});
+         {"contacts", it != contacts.end() ? Contacts(a, it->second, force_scale) : json::array()}});
   }
   return out;
 }
@@ -251,7 +231,7 @@ class PlanNodes {
     for (int i : Present(config)) key += (key.empty() ? "" : ",") + std::to_string(i);
     if (nodes_.contains(key)) return;
     const StabilityResult r = AnalyzeConfiguration(a_, config, {}, nullptr, &workspace_);
-    nodes_[key] = Contacts(r.contacts, force_scale_);
+    nodes_[key] = Contacts(a_, r.contacts, force_scale_);
   }
 
   const Assembly& a_;

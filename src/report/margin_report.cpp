@@ -50,7 +50,7 @@ json MechanismToJson(const Assembly& assembly, const MarginMechanism& m) {
     parts.push_back({{"part", assembly.part(m.parts[i]).name},
                      {"linear", Vec(v, dim, 1e-6)},
                      {"angular", Angular(w, dim, 1e-6)},
-                     {"motion", w.norm() > 1e-6 * std::max(1.0, v.norm()) ? "turns" : "slides"}});
+                     {"motion", to_string(m.kinds[i])}});
   }
   json out = {{"at", m.at}, {"found", m.found}, {"power", m.power}, {"parts", parts}};
   if (!m.found) out["message"] = m.message;

@@ -11,6 +11,7 @@
 #include "cairn/core/tolerances.h"
 #include "cairn/core/types.h"
 #include "cairn/geometry/assembly.h"
+#include "cairn/stability/analyze.h"
 
 namespace cairn::report_internal {
 
@@ -61,6 +62,28 @@ inline nlohmann::json Names(const Assembly& a, const std::vector<int>& parts) {
 // for the world side (i < 0).
 inline std::string PartName(const Assembly& a, int i, const char* world) {
   return i >= 0 ? a.part(i).name : world;
+}
+
+// A contact as every document writes it (`check --json`'s `contacts`,
+// `simulate --json`'s failure, the result page's frames and plan nodes): the
+// parts ("world" for a fixel), point, normal (into the first part), the
+// normal and friction forces on the first part divided by `force_scale` (the
+// report's force unit; `forces` is ForceRoundoffScale), whether it breaks or
+// slides, and in 3-D its patch. Each document adds its own keys (the motions,
+// the feature, the component).
+inline nlohmann::json ContactRecord(const Assembly& a, const ContactReport& c, double force_scale,
+                                    double forces) {
+  const int dim = a.dimension();
+  nlohmann::json out = {
+      {"parts", {PartName(a, c.contact.part_a, "world"), PartName(a, c.contact.part_b, "world")}},
+      {"point", Vec(c.contact.p_WC, dim)},
+      {"normal", Vec(c.contact.n_W, dim)},
+      {"normal_force", Clean(c.normal_force / force_scale, forces)},
+      {"friction_force", Tangential(c.friction_force / force_scale, c.contact, dim, forces)},
+      {"breaks", c.breaking},
+      {"slides", c.sliding}};
+  if (dim == 3) out["patch"] = c.contact.patch;
+  return out;
 }
 
 // A fixel as a scene file's `fixtures` entry: part, point, normal.

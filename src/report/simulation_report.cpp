@@ -12,6 +12,7 @@ namespace cairn {
 namespace {
 using report_internal::Angular;
 using report_internal::Clean;
+using report_internal::ContactRecord;
 using report_internal::ForceRoundoffScale;
 using report_internal::Tangential;
 using report_internal::Vec;
@@ -56,17 +57,9 @@ nlohmann::json SimulationToJson(const Assembly& assembly, const Plan& plan,
     jf["motions"] = motions;
     json contacts = json::array();
     for (const ContactReport& c : f.contacts) {
-      json jc = {
-          {"parts", {PartName(assembly, c.contact.part_a), PartName(assembly, c.contact.part_b)}},
-          {"point", Vec(c.contact.p_WC, dim)},
-          {"normal", Vec(c.contact.n_W, dim)},
-          {"normal_force", Clean(c.normal_force / force_scale, forces)},
-          {"friction_force", Tangential(c.friction_force / force_scale, c.contact, dim, forces)},
-          {"normal_velocity", Clean(c.normal_motion)},
-          {"sliding_velocity", Tangential(c.tangent_motion, c.contact, dim)},
-          {"breaks", c.breaking},
-          {"slides", c.sliding}};
-      if (dim == 3) jc["patch"] = c.contact.patch;
+      json jc = ContactRecord(assembly, c, force_scale, forces);
+      jc["normal_velocity"] = Clean(c.normal_motion);
+      jc["sliding_velocity"] = Tangential(c.tangent_motion, c.contact, dim);
       contacts.push_back(jc);
     }
     jf["contacts"] = contacts;

@@ -305,27 +305,30 @@ void ClassifyMotion(PartMotion& m, bool keeps_contact, double size, double scene
     m.kind = MotionKind::kAtRest;
     return;
   }
-  if (!keeps_contact) {
-    m.kind = MotionKind::kFalls;
-    return;
-  }
+  Vector3 pivot;
+  m.kind = ClassifyRigidMotion(m.linear, m.angular, keeps_contact, size, scene_size, &pivot);
+  if (m.kind == MotionKind::kTips) m.pivot = pivot;  // made absolute by the caller
+}
+
+}  // namespace
+
+MotionKind ClassifyRigidMotion(const Vector3& linear, const Vector3& angular, bool keeps_contact,
+                               double size, double scene_size, Vector3* pivot) {
+  if (!keeps_contact) return MotionKind::kFalls;
   // The instantaneous axis (Chasles): its point nearest the centroid is
   // r = ω × v / |ω|² (in 2-D the point of zero motion, (−v_y, v_x) / ω). A
   // part tips when that point lies within the scene (about its own size of a
   // contact); a far-away axis is a translation with a little spin.
-  const double w2 = m.angular.squaredNorm();
+  const double w2 = angular.squaredNorm();
   if (w2 > 0) {
-    const Vector3 r = m.angular.cross(m.linear) / w2;
+    const Vector3 r = angular.cross(linear) / w2;
     if (r.norm() <= std::max(kTipReachParts * size, kTipReachScene * scene_size)) {
-      m.kind = MotionKind::kTips;
-      m.pivot = r;  // relative to the centroid; made absolute by the caller
-      return;
+      if (pivot) *pivot = r;
+      return MotionKind::kTips;
     }
   }
-  m.kind = MotionKind::kSlides;
+  return MotionKind::kSlides;
 }
-
-}  // namespace
 
 std::vector<ContactLcp> BuildComponentLcps(const Assembly& assembly, const Configuration& config,
                                            const StabilityOptions& options,

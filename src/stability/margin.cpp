@@ -10,6 +10,7 @@
 #include "cairn/core/format.h"
 #include "cairn/core/tolerances.h"
 #include "cairn/core/unit_vector.h"
+#include "cairn/mechanics/lp_policy.h"
 #include "cairn/mechanics/margin_lp.h"
 #include "cairn/mechanics/static_equilibrium.h"
 
@@ -85,7 +86,23 @@ Loads Sum(const Loads& a, const Loads& b) {
 constexpr int kCarriedSimplexColumns = 8000;
 constexpr int kCarriedSimplexIterations = 100000;
 
-bool Carried(const ContactLcp& lcp, const Loads& load, bool frictionless, int* lps) {
+// The LPs one margin asks of a component: how many were solved, and the
+// first that failed numerically (Clp stopped on trouble, or forces that fail
+// their re-check however solved). A failure is a status, as everywhere in
+// Cairn: once one is recorded, Carried and End answer at once without solving,
+// the searches stop, and the margin is reported unsolved with its message.
+struct LpLedger {
+  int solved = 0;
+  std::string failure;
+  bool failed() const { return !failure.empty(); }
+  void Fail(std::string message) {
+    if (failure.empty()) failure = std::move(message);
+  }
+};
+
+// Whether `load` is carried (false, too, once the ledger holds a failure).
+bool Carried(const ContactLcp& lcp, const Loads& load, bool frictionless, LpLedger* lps) {
+  if (lps->failed()) return false;
   EquilibriumOptions options;
   options.frictionless = frictionless;
   int columns = 0;
@@ -97,9 +114,9 @@ bool Carried(const ContactLcp& lcp, const Loads& load, bool frictionless, int* l
     e = FindStaticEquilibrium(WithLoads(lcp, load), simplex);
   }
   if (!e.solved) e = FindStaticEquilibrium(WithLoads(lcp, load), options);
-  ++*lps;
-  if (!e.solved) throw std::runtime_error("equilibrium LP failed: " + e.message);
-  return e.exists;
+  ++lps->solved;
+  if (!e.solved) lps->Fail("equilibrium LP failed: " + e.message);
+  return e.solved && e.exists;
 }
 
 MarginEquilibrium ToCertificate(const ContactLcp& lcp, const StaticEquilibrium& e, double at,
@@ -124,15 +141,27 @@ Mechanism MechanismPast(const ContactLcp& past, const LoadParameterResult& lp) {
   return FindMechanism(past);
 }
 
-MarginMechanism ToCertificate(const ContactLcp& lcp, const Mechanism& m, double at) {
+// A part's radius about its centroid (length): the reach ClassifyRigidMotion
+// measures a turn's axis against.
+double PartRadius(const Part& part) {
+  double radius = 0;
+  for (const Vector3& v : part.vertices) radius = std::max(radius, (v - part.centroid).norm());
+  return radius;
+}
+
+MarginMechanism ToCertificate(const Assembly& assembly, const ContactLcp& lcp, const Mechanism& m,
+                              double at) {
   MarginMechanism out;
   out.at = at;
   out.found = m.found;
   out.message = m.message;
   out.power = m.power;
   for (int b : m.moving) {
-    out.parts.push_back(lcp.bodies[b].part);
+    const int p = lcp.bodies[b].part;
+    out.parts.push_back(p);
     out.nu.push_back(m.nu[b]);
+    out.kinds.push_back(ClassifyRigidMotion(m.nu[b].head<3>(), m.nu[b].tail<3>(), true,
+                                            PartRadius(assembly.part(p)), assembly.scene_size()));
   }
   return out;
 }
@@ -151,10 +180,11 @@ struct Interval {
 // parametric LP; where it finds no finite end, the exact unboundedness test
 // of mechanics/margin_lp.h (F1 alone carried) confirms it.
 Interval End(const ContactLcp& lcp, const Loads& F0, const Loads& F1, bool maximize,
-             double lower_bound, bool frictionless, int* lps) {
+             double lower_bound, bool frictionless, LpLedger* lps) {
   Interval out;
+  if (lps->failed()) return out;
   out.lp = OptimizeLoadParameter(WithLoads(lcp, F0), F1, maximize, lower_bound, frictionless);
-  ++*lps;
+  ++lps->solved;
   using S = LoadParameterResult::Status;
   if (out.lp.status == S::kOptimal) {
     out.end = out.lp.value;
@@ -175,10 +205,25 @@ Interval End(const ContactLcp& lcp, const Loads& F0, const Loads& F1, bool maxim
     out.empty = true;
     return out;
   }
-  throw std::runtime_error("margin LP: " + (out.lp.status == S::kUnbounded
-                                                ? std::string("unbounded although the load "
-                                                              "alone is not carried")
-                                                : out.lp.message));
+  if (!lps->failed())
+    lps->Fail("margin LP: " + (out.lp.status == S::kUnbounded
+                                   ? std::string("unbounded although the load alone is not carried")
+                                   : out.lp.message));
+  return out;
+}
+
+// A ledger's failure as the result's status. False when the margin stops.
+bool Report(const LpLedger& lps, MarginResult& r) {
+  if (!lps.failed()) return true;
+  r.solved = false;
+  r.message = lps.failure;
+  return false;
+}
+
+// Closes one component's margin: its LP count, and its failure, if any.
+bool Close(const LpLedger& lps, ComponentMargin& cm, MarginResult& r) {
+  cm.lps = lps.solved;
+  return Report(lps, r);
 }
 
 void LoadMargin(const Assembly& assembly, const std::vector<ContactLcp>& lcps,
@@ -191,33 +236,38 @@ void LoadMargin(const Assembly& assembly, const std::vector<ContactLcp>& lcps,
   for (size_t c = 0; c < lcps.size(); ++c) {
     const ContactLcp& lcp = lcps[c];
     ComponentMargin& cm = r.components[c];
+    LpLedger lps;
     int body = -1;
     for (size_t b = 0; b < lcp.bodies.size(); ++b)
       if (lcp.bodies[b].part == req.part) body = static_cast<int>(b);
     const Loads F0 = GravityLoads(lcp);
     if (body < 0) {  // not loaded: it only has to stand
-      cm.holds_at_nominal = Carried(lcp, F0, false, &cm.lps);
+      cm.holds_at_nominal = Carried(lcp, F0, false, &lps);
       cm.critical.push_back(std::nullopt);
+      if (!Close(lps, cm, r)) return;
       continue;
     }
     side.component = static_cast<int>(c);
     Loads F1(lcp.bodies.size(), Vector6::Zero());
     F1[body].head<3>() = req.direction;
     F1[body].tail<3>() = (req.point - lcp.bodies[body].p_WBcm).cross(req.direction);
-    Interval s = End(lcp, F0, F1, true, 0.0, false, &cm.lps);
+    Interval s = End(lcp, F0, F1, true, 0.0, false, &lps);
+    if (!Close(lps, cm, r)) return;
     cm.holds_at_nominal = !s.empty;
     cm.critical.push_back(s.empty ? std::optional<double>(0.0) : s.end);
     if (s.end && !s.empty) {
       side.equilibrium = ToCertificate(lcp, s.lp.equilibrium, *s.end);
       const double past = *s.end * (1 + kPastStep) + kPastStep * r.part_weight;
       side.mechanism =
-          ToCertificate(lcp, MechanismPast(WithLoads(lcp, Sum(F0, Scaled(F1, past))), s.lp), past);
+          ToCertificate(assembly, lcp, MechanismPast(WithLoads(lcp, Sum(F0, Scaled(F1, past))), s.lp), past);
     }
-    if (s.empty) side.mechanism = ToCertificate(lcp, FindMechanism(lcp), 0.0);
+    if (s.empty) side.mechanism = ToCertificate(assembly, lcp, FindMechanism(lcp), 0.0);
     // The strong range: the same LP with normal forces only (left empty when
     // not even the unloaded assembly has a frictionless equilibrium).
-    int strong_lps = 0;
+    LpLedger strong_lps;
     const Interval strong = End(lcp, F0, F1, true, 0.0, true, &strong_lps);
+    if (strong_lps.failed()) lps.Fail(strong_lps.failure);
+    if (!Close(lps, cm, r)) return;
     if (!strong.empty) side.strong = strong.end;
     side.critical = cm.critical.back();
   }
@@ -243,7 +293,7 @@ struct TiltEnd {
 };
 
 TiltEnd TiltSense(const ContactLcp& lcp, const Loads& F0, const Loads& F1, bool positive,
-                  bool frictionless, int* lps) {
+                  bool frictionless, LpLedger* lps) {
   TiltEnd out;
   const double inf = -std::numeric_limits<double>::infinity();
   const Interval near = End(lcp, F0, F1, positive, inf, frictionless, lps);
@@ -289,7 +339,7 @@ Loads TiltLoads(const ContactLcp& lcp, const Vector3& g) {
 // The general axis (a·g ≠ 0): a scan by kTiltScanStep, then a bisection on
 // the first step that fails; every probe one equilibrium LP.
 std::optional<double> TiltBisect(const ContactLcp& lcp, const Vector3& g, const Vector3& a,
-                                 bool positive, int* lps) {
+                                 bool positive, LpLedger* lps) {
   const double sign = positive ? 1.0 : -1.0;
   const auto holds = [&](double theta) {
     return Carried(lcp, TiltLoads(lcp, TurnedGravity(g, a, sign * theta)), false, lps);
@@ -314,7 +364,7 @@ std::optional<double> TiltBisect(const ContactLcp& lcp, const Vector3& g, const 
 void TiltMargin(const Assembly& assembly, const std::vector<ContactLcp>& lcps,
                 const MarginRequest& req, MarginResult& r) {
   const Vector3 g = assembly.gravity();
-  const Vector3 a = *UnitVector(req.axis);  // CheckRequest refused a zero axis
+  const Vector3 a = *UnitVector(req.axis);  // CheckMarginRequest refused a zero axis
   r.axis = a;
   const Vector3 down = UnitVector(g).value_or(Vector3::Zero());
   const bool exact = std::abs(a.dot(down)) <= kPerpendicular;
@@ -329,6 +379,7 @@ void TiltMargin(const Assembly& assembly, const std::vector<ContactLcp>& lcps,
   for (size_t c = 0; c < lcps.size(); ++c) {
     const ContactLcp& lcp = lcps[c];
     ComponentMargin& cm = r.components[c];
+    LpLedger lps;
     const Loads F0 = GravityLoads(lcp);
     // Both ends first where the axis is exact: S = {t : F0 + t F1 carried}
     // is an interval, and the assembly stands as it is exactly when it holds
@@ -337,12 +388,13 @@ void TiltMargin(const Assembly& assembly, const std::vector<ContactLcp>& lcps,
     TiltEnd ends[2];
     if (exact) {
       const Loads F1 = TiltLoads(lcp, -a.cross(g));
-      for (int s = 0; s < 2; ++s) ends[s] = TiltSense(lcp, F0, F1, s == 1, false, &cm.lps);
+      for (int s = 0; s < 2; ++s) ends[s] = TiltSense(lcp, F0, F1, s == 1, false, &lps);
       cm.holds_at_nominal = !ends[0].empty && (!ends[0].theta || *ends[0].theta <= 0) &&
                             (!ends[1].theta || *ends[1].theta >= 0);
     } else {
-      cm.holds_at_nominal = Carried(lcp, F0, false, &cm.lps);
+      cm.holds_at_nominal = Carried(lcp, F0, false, &lps);
     }
+    if (!Close(lps, cm, r)) return;
     cm.critical.assign(2, std::nullopt);
     for (int s = 0; s < 2; ++s) {
       const bool positive = s == 1;
@@ -354,7 +406,7 @@ void TiltMargin(const Assembly& assembly, const std::vector<ContactLcp>& lcps,
         side.critical = 0.0;
         side.component = static_cast<int>(c);
         side.equilibrium.reset();
-        side.mechanism = ToCertificate(lcp, FindMechanism(lcp), 0.0);
+        side.mechanism = ToCertificate(assembly, lcp, FindMechanism(lcp), 0.0);
         continue;
       }
       std::optional<double> theta;
@@ -362,7 +414,8 @@ void TiltMargin(const Assembly& assembly, const std::vector<ContactLcp>& lcps,
       if (exact) {
         theta = end.theta;
       } else if (!along) {
-        theta = TiltBisect(lcp, g, a, positive, &cm.lps);
+        theta = TiltBisect(lcp, g, a, positive, &lps);
+        if (!Close(lps, cm, r)) return;
       }
       if (theta) cm.critical[s] = *theta * kDeg;
       // This component decides the sense when it fails first.
@@ -383,7 +436,7 @@ void TiltMargin(const Assembly& assembly, const std::vector<ContactLcp>& lcps,
       const double past = *theta + (positive ? step : -step);
       const ContactLcp past_lcp = WithLoads(lcp, TiltLoads(lcp, TurnedGravity(g, a, past)));
       side.mechanism = ToCertificate(
-          lcp, exact ? MechanismPast(past_lcp, end.lp) : FindMechanism(past_lcp), past * kDeg);
+          assembly, lcp, exact ? MechanismPast(past_lcp, end.lp) : FindMechanism(past_lcp), past * kDeg);
       if (exact && end.lp.status == LoadParameterResult::Status::kOptimal)
         r.tolerance = std::max(r.tolerance, kLpRelative * std::abs(*side.critical));
     }
@@ -403,12 +456,18 @@ void TiltMargin(const Assembly& assembly, const std::vector<ContactLcp>& lcps,
   std::vector<std::array<TiltEnd, 2>> ends(lcps.size());
   for (size_t c = 0; c < lcps.size(); ++c) {
     const ContactLcp& lcp = lcps[c];
-    int lps = 0;
-    const bool ask_first = static_cast<int>(lcp.contacts.size()) + 1 >= kMarginBarrierColumns;
-    if (ask_first && !Carried(lcp, GravityLoads(lcp), true, &lps)) return;
+    LpLedger lps;  // not counted: the strong range certifies, like the certificates
+    const bool ask_first =
+        FirstLpMethod(LpForm::kParametric, static_cast<int>(lcp.contacts.size()) + 1) !=
+        LpMethod::kDualSimplex;
+    if (ask_first && !Carried(lcp, GravityLoads(lcp), true, &lps)) {
+      Report(lps, r);
+      return;
+    }
     for (int s = 0; s < 2; ++s)
       ends[c][s] =
           TiltSense(lcp, GravityLoads(lcp), TiltLoads(lcp, -a.cross(g)), s == 1, true, &lps);
+    if (!Report(lps, r)) return;
     const TiltEnd& below = ends[c][0];
     const TiltEnd& above = ends[c][1];
     if (below.empty || (below.theta && *below.theta > 0) || (above.theta && *above.theta < 0))
@@ -463,7 +522,7 @@ enum class Probe {
   kUndecided,  // a positive deficit that neither proves nor refutes
 };
 
-FrictionBracket NewtonFriction(const ContactLcp& lcp, double k_max, int* lps) {
+FrictionBracket NewtonFriction(const ContactLcp& lcp, double k_max, LpLedger* lps) {
   FrictionBracket out;
   FrictionDeficitLp deficit(lcp);
   // Below this factor a jammed component's equilibrium needs forces of
@@ -477,7 +536,7 @@ FrictionBracket NewtonFriction(const ContactLcp& lcp, double k_max, int* lps) {
   // A component whose margin LPs go to the interior-point method.
   int columns = 0;
   for (int f : lcp.friction_of) columns += f < 0 ? 1 : lcp.num_directions;
-  const bool large = columns + 1 >= kMarginBarrierColumns;
+  const bool large = FirstLpMethod(LpForm::kParametric, columns + 1) != LpMethod::kDualSimplex;
   bool proved_any = false;
   double proved = 0;
   // A factor proved to stand: hi is the friction use ρ ≤ k of its verified
@@ -500,10 +559,12 @@ FrictionBracket NewtonFriction(const ContactLcp& lcp, double k_max, int* lps) {
   // optimum of an LP solved to its solver's tolerance (the interior-point
   // method's objective is good to its gap): near 0 it proves nothing.
   const auto probe = [&](double k) {
+    if (lps->failed()) return Probe::kUndecided;
     FrictionDeficit d = deficit.Solve(k);
-    if (!d.solved)
-      throw std::runtime_error("friction deficit LP failed at factor " + std::to_string(k) + ": " +
-                               d.message);
+    if (!d.solved) {
+      lps->Fail("friction deficit LP failed at factor " + std::to_string(k) + ": " + d.message);
+      return Probe::kUndecided;
+    }
     if (std::isinf(d.deficit)) {  // no factor holds
       lo = proved = k_max;
       proved_any = true;
@@ -516,7 +577,7 @@ FrictionBracket NewtonFriction(const ContactLcp& lcp, double k_max, int* lps) {
       EquilibriumOptions options;
       options.frictionless = k == 0;
       StaticEquilibrium e = FindStaticEquilibrium(at_k, options);
-      ++*lps;
+      ++lps->solved;
       if (e.solved && e.exists) return stands(k, std::move(e));
       fails = e.solved;
     } else if (!fails) {
@@ -525,7 +586,7 @@ FrictionBracket NewtonFriction(const ContactLcp& lcp, double k_max, int* lps) {
       // forces failed the re-check); the mechanism LP may prove it fails, and
       // otherwise the factor stays undecided.
       fails = FindMechanism(at_k).found;
-      ++*lps;
+      ++lps->solved;
     }
     if (k >= lo) {
       lo = k;
@@ -546,7 +607,9 @@ FrictionBracket NewtonFriction(const ContactLcp& lcp, double k_max, int* lps) {
   const auto within = [&](double below) {
     return out.hi && (*out.hi - below <= kFrictionTolerance * *out.hi || *out.hi <= k_floor);
   };
-  for (int i = 0; i < kMaxFrictionSteps && !within(proved) && (out.hi || proved < k_max); ++i) {
+  for (int i = 0; i < kMaxFrictionSteps && !lps->failed() && !within(proved) &&
+                  (out.hi || proved < k_max);
+       ++i) {
     // 2. The next factor: Newton's from lo (a lower estimate of k*); once it
     // is within the tolerance of lo, a factor just above it, which should
     // stand and close the bracket; a bisection when Newton's factor is past
@@ -581,7 +644,7 @@ FrictionBracket NewtonFriction(const ContactLcp& lcp, double k_max, int* lps) {
     probe(k);
     slow = before > 0 && *out.hi - lo > 0.5 * before ? slow + 1 : 0;
   }
-  *lps += deficit.lps();
+  lps->solved += deficit.lps();
   out.lo = proved;
   out.lo_proved = proved_any;
   if (lo == proved) out.motion_at_lo = std::move(motion_lo);
@@ -593,25 +656,22 @@ FrictionBracket NewtonFriction(const ContactLcp& lcp, double k_max, int* lps) {
 // the mechanism's check there; else the mechanism LP kPastStep below k*, or
 // at lo where the bracket is wider than that (near k* gravity does so little
 // work along the motion that the check's slack can refuse it).
-MarginMechanism FrictionMechanism(const ContactLcp& lcp, const FrictionBracket& b) {
+MarginMechanism FrictionMechanism(const Assembly& scene, const ContactLcp& lcp, const FrictionBracket& b) {
   if (b.lo_proved && !b.motion_at_lo.empty()) {
     const Mechanism m = VerifyMechanism(WithFrictionFactor(lcp, b.lo), b.motion_at_lo);
-    if (m.found) return ToCertificate(lcp, m, b.lo);
+    if (m.found) return ToCertificate(scene, lcp, m, b.lo);
   }
   const double past = std::min(*b.hi * (1 - kPastStep), b.lo_proved ? b.lo : *b.hi);
-  return ToCertificate(lcp, FindMechanism(WithFrictionFactor(lcp, past)), past);
+  return ToCertificate(scene, lcp, FindMechanism(WithFrictionFactor(lcp, past)), past);
 }
 
-void FrictionMargin(const AssemblyDef& def, const Configuration& config, MarginResult& r) {
-  // The base model: μ = 1 everywhere (k is then μ itself), or the scene's
-  // friction pairs as they are (k scales them).
-  const FrictionScaling scaling = FrictionScalingOf(def);
+// `lcps` are the components of the base model (scaling.At(scene, 1)).
+void FrictionMargin(const FrictionScaling& scaling, const Assembly& scene,
+                    const Configuration& config, const std::vector<ContactLcp>& lcps,
+                    MarginResult& r) {
   r.factor = scaling.factor;
   r.nominal = scaling.nominal;
-  const AssemblyDef& base = scaling.base;
   const double k_max = scaling.k_max;
-  const Assembly assembly = Assembly::Create(base);
-  const std::vector<ContactLcp> lcps = BuildComponentLcps(assembly, config);
   r.method =
       "Newton's method from below on the friction deficit LP (safeguarded by bisection; "
       "interior point on large components)";
@@ -622,7 +682,9 @@ void FrictionMargin(const AssemblyDef& def, const Configuration& config, MarginR
   for (size_t c = 0; c < lcps.size(); ++c) {
     const ContactLcp& lcp = lcps[c];
     ComponentMargin& cm = r.components[c];
-    FrictionBracket b = NewtonFriction(lcp, k_max, &cm.lps);
+    LpLedger lps;
+    FrictionBracket b = NewtonFriction(lcp, k_max, &lps);
+    if (!Close(lps, cm, r)) return;
     cm.critical.push_back(b.hi);
     cm.holds_at_nominal = b.hi && *b.hi <= r.nominal;
     any_friction_needed = any_friction_needed || !b.hi || *b.hi > 0;
@@ -633,7 +695,7 @@ void FrictionMargin(const AssemblyDef& def, const Configuration& config, MarginR
       side.component = static_cast<int>(c);
       side.critical.reset();
       side.equilibrium.reset();
-      side.mechanism = ToCertificate(lcp, FindMechanism(WithFrictionFactor(lcp, k_max)), k_max);
+      side.mechanism = ToCertificate(scene, lcp, FindMechanism(WithFrictionFactor(lcp, k_max)), k_max);
       continue;
     }
     r.tolerance = std::max(r.tolerance, *b.hi - b.lo);
@@ -644,7 +706,7 @@ void FrictionMargin(const AssemblyDef& def, const Configuration& config, MarginR
     deciding_lo = b.lo;
     side.equilibrium = ToCertificate(WithFrictionFactor(lcp, *b.hi), b.at_hi, *b.hi);
     side.mechanism.reset();
-    if (*b.hi > 0) side.mechanism = FrictionMechanism(lcp, b);
+    if (*b.hi > 0) side.mechanism = FrictionMechanism(scene, lcp, b);
   }
   // Strong stability: a frictionless equilibrium in every component (k* = 0
   // everywhere, proved by it) certifies it at every μ.
@@ -654,7 +716,7 @@ void FrictionMargin(const AssemblyDef& def, const Configuration& config, MarginR
   if (side.critical && *side.critical > 0) {
     const double below = std::min(*side.critical * (1 - kPastStep), deciding_lo);
     r.failing_at = below;
-    const Assembly weaker = Assembly::Create(ScaleFriction(base, below));
+    const Assembly weaker = scaling.At(scene, below);
     StabilityOptions options;
     options.check_equilibrium = true;
     const StabilityResult check = AnalyzeConfiguration(weaker, config, options);
@@ -663,36 +725,38 @@ void FrictionMargin(const AssemblyDef& def, const Configuration& config, MarginR
   }
 }
 
-void CheckRequest(const Assembly& assembly, const Configuration& config, const MarginRequest& req) {
+}  // namespace
+
+void CheckMarginRequest(const Assembly& assembly, const MarginRequest& req,
+                        const std::string& file) {
   if (req.quantity == MarginQuantity::kTilt) {
-    if (!UnitVector(req.axis))
-      throw InputError("", "--tilt", "the axis must be a finite, non-zero vector");
+    if (!req.axis.allFinite()) throw InputError(file, "--tilt", "must be finite numbers");
+    if (!UnitVector(req.axis)) throw InputError(file, "--tilt", "the axis must not be zero");
     if (!assembly.is_3d() && (req.axis.x() != 0 || req.axis.y() != 0))
-      throw InputError("", "--tilt",
+      throw InputError(file, "--tilt",
                        "a 2-D scene turns in its plane: the axis must be 0,0,1 or 0,0,-1");
   }
   if (req.quantity == MarginQuantity::kLoad) {
     if (req.part < 0 || req.part >= assembly.num_parts())
-      throw InputError("", "--load", "no such part");
-    const std::string& name = assembly.part(req.part).name;
+      throw InputError(file, "--load", "no such part");
     if (assembly.part(req.part).fixed)
-      throw InputError("", "--load",
-                       "part \"" + name + "\" is fixed: a load on it goes to the ground");
-    if (!config.present[req.part])
-      throw InputError("", "--load", "part \"" + name + "\" is taken away (--without)");
-    if (!UnitVector(req.direction))
-      throw InputError("", "--direction", "must be a finite, non-zero vector");
-    if (!req.point.allFinite()) throw InputError("", "--point", "must be finite");
+      throw InputError(file, "--load",
+                       "part \"" + assembly.part(req.part).name +
+                           "\" is fixed: a load on it goes to the ground");
+    if (!req.point.allFinite()) throw InputError(file, "--point", "must be finite numbers");
     if (req.point.cwiseAbs().maxCoeff() > limits::kMaxCoordinate)
-      throw InputError("", "--point",
+      throw InputError(file, "--point",
                        "must be within the scene's coordinate range, |x| <= " +
                            FormatNumber(limits::kMaxCoordinate));
+    if (!req.direction.allFinite())
+      throw InputError(file, "--direction", "must be finite numbers");
+    if (!UnitVector(req.direction))
+      throw InputError(file, "--direction", "must not be the zero vector");
     if (!assembly.is_3d() && (req.direction.z() != 0 || req.point.z() != 0))
-      throw InputError("", "--direction", "a 2-D scene takes 2 numbers");
+      throw InputError(file, "--direction", "a 2-D scene takes 2 numbers");
   }
 }
 
-}  // namespace
 
 const char* to_string(MarginQuantity q) {
   switch (q) {
@@ -709,8 +773,7 @@ const char* to_string(MarginQuantity q) {
 FrictionScaling FrictionScalingOf(const AssemblyDef& def) {
   FrictionScaling s;
   s.factor = !def.friction_pairs.empty();
-  s.base = def;
-  if (!s.factor) s.base.friction = 1.0;
+  s.base_mu = s.factor ? def.friction : 1.0;
   s.nominal = s.factor ? 1.0 : def.friction;
   double largest_mu = s.factor ? def.friction : 1.0;
   for (const FrictionPairDef& p : def.friction_pairs) largest_mu = std::max(largest_mu, p.mu);
@@ -728,34 +791,37 @@ AssemblyDef ScaleFriction(const AssemblyDef& def, double factor) {
 MarginResult ComputeMargin(const AssemblyDef& def, const Assembly& assembly,
                            const Configuration& config, const MarginRequest& request) {
   MarginRequest req = request;
-  CheckRequest(assembly, config, req);
+  CheckMarginRequest(assembly, req);
+  if (req.quantity == MarginQuantity::kLoad && !config.present[req.part])
+    throw InputError("", "--load",
+                     "part \"" + assembly.part(req.part).name + "\" is taken away (--without)");
   if (req.quantity == MarginQuantity::kLoad) req.direction = *UnitVector(req.direction);
   MarginResult r;
   r.quantity = req.quantity;
-  // 1. The components, as the check splits them.
-  const std::vector<ContactLcp> lcps = BuildComponentLcps(assembly, config);
+  // 1. The components, as the check splits them: of the scene, or for the
+  // friction margin of its base model (μ = 1, or the pairs as they are),
+  // whose factor k the margin finds.
+  const FrictionScaling scaling = FrictionScalingOf(def);
+  const bool friction = req.quantity == MarginQuantity::kFriction;
+  const std::vector<ContactLcp> lcps =
+      BuildComponentLcps(friction ? scaling.At(assembly, 1.0) : assembly, config);
   for (const ContactLcp& lcp : lcps) {
     ComponentMargin cm;
     for (const BodyDynamics& b : lcp.bodies) cm.parts.push_back(b.part);
     r.components.push_back(cm);
   }
-  // 2–4. Each component's margin, the worst one's, the certificates.
-  try {
-    switch (req.quantity) {
-      case MarginQuantity::kFriction:
-        FrictionMargin(def, config, r);
-        break;
-      case MarginQuantity::kTilt:
-        TiltMargin(assembly, lcps, req, r);
-        break;
-      case MarginQuantity::kLoad:
-        LoadMargin(assembly, lcps, req, r);
-        break;
-    }
-  } catch (const std::runtime_error& e) {
-    if (dynamic_cast<const InputError*>(&e)) throw;
-    r.solved = false;
-    r.message = e.what();
+  // 2–4. Each component's margin, the worst one's, the certificates (an LP
+  // that fails stops them: r.solved, r.message).
+  switch (req.quantity) {
+    case MarginQuantity::kFriction:
+      FrictionMargin(scaling, assembly, config, lcps, r);
+      break;
+    case MarginQuantity::kTilt:
+      TiltMargin(assembly, lcps, req, r);
+      break;
+    case MarginQuantity::kLoad:
+      LoadMargin(assembly, lcps, req, r);
+      break;
   }
   r.holds_at_nominal = true;
   for (const ComponentMargin& cm : r.components) {

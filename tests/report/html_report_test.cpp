@@ -158,7 +158,7 @@ TEST(SimulationPage, OneFramePerTickWithThePosesAndForcesOfThatTick) {
     EXPECT_LT((got - want).norm(), 1e-6) << "frame " << k;
     // The forces of the tick: the timeline's, in the same order.
     double page_sum = 0, timeline_sum = 0;
-    for (double f : pf[k]["contacts"]["fn"]) page_sum += f;
+    for (const json& c : pf[k]["contacts"]) page_sum += c["normal_force"].get<double>();
     for (const TimelineRow& row : result.timeline)
       if (row.step == pf[k]["step"] && row.tick == pf[k]["tick"])
         timeline_sum += row.contact.normal_force;
@@ -207,7 +207,6 @@ TEST(PlanPage, EveryNodeOfTheListedSequencesCarriesItsWeight) {
   ASSERT_FALSE(r.sequences.empty());
   const json data = PageData(PlanPage(a, r, PlannerToJson(a, r, "fig1"), {}));
   EXPECT_EQ(data["plan"]["sequences_shown"], r.sequences.size());
-  const int table = a.FindPart("E");
   ASSERT_FALSE(data["plan"]["nodes"].empty());
   for (const auto& [key, c] : data["plan"]["nodes"].items()) {
     double weight = 0;
@@ -218,10 +217,10 @@ TEST(PlanPage, EveryNodeOfTheListedSequencesCarriesItsWeight) {
       at = comma + 1;
     }
     double on_table = 0;  // the table's push on the blocks (b = E) and theirs on it (a = E)
-    for (size_t k = 0; k < c["a"].size(); ++k) {
-      const double up = c["n"][3 * k + 1].get<double>() * c["fn"][k].get<double>();
-      if (c["b"][k] == table) on_table += up;
-      if (c["a"][k] == table) on_table -= up;
+    for (const json& k : c) {
+      const double up = k["normal"][1].get<double>() * k["normal_force"].get<double>();
+      if (k["parts"][1] == "E") on_table += up;
+      if (k["parts"][0] == "E") on_table -= up;
     }
     EXPECT_NEAR(on_table, weight, 1e-6 * weight) << "node " << key;
   }

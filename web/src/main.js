@@ -42,6 +42,11 @@ class Page {
     this.index = new Map(this.names.map((n, i) => [n, i]));
     this.unit = this.result.force_unit || this.scene.force_unit || 'force units';
     this.indexOf = (name) => (this.index.has(name) ? this.index.get(name) : -1);
+    // The frames' and plan nodes' contacts are the records --json writes;
+    // the drawing takes them in compact form.
+    for (const f of data.frames || []) f.contacts = contactsFromReport(f.contacts, this.indexOf);
+    const nodes = (data.plan && data.plan.nodes) || {};
+    for (const key of Object.keys(nodes)) nodes[key] = contactsFromReport(nodes[key], this.indexOf);
     this.buildLayout();
     this.view = new SceneView(this.viewEl, this.scene);
     this.view.setForceReference(this.forceReference());

@@ -166,6 +166,11 @@ class Assembly {
   double Friction(int i, int j) const;
   /// True when every contact in the scene is frictionless.
   bool IsFrictionless() const;
+  /// This model with the scene's default μ replaced by `default_mu` and every
+  /// friction pair's μ multiplied by `pair_factor` (both finite, ≥ 0): what
+  /// Create would build from the definition so changed, without building it
+  /// again (the friction margin probes one scene at many μ).
+  Assembly WithFriction(double default_mu, double pair_factor) const;
   /// The diagonal of the bounding box of all parts (length).
   double scene_size() const { return scene_size_; }
   /// The largest weight of a movable part, m |g| (force units; 0 without

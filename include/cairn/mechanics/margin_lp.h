@@ -65,13 +65,10 @@ struct LoadParameterResult {
   std::string message;
 };
 
-/// From this many columns (generators + 1) on, OptimizeLoadParameter solves
-/// by Clp's interior-point method without crossover, below by the dual
-/// simplex (measured: docs/benchmarks.md, "Margins"). The simplex proves an
-/// empty S as fast as the equilibrium LP; the interior-point method does not
-/// (it runs to its iteration limit first), which callers may weigh.
-inline constexpr int kMarginBarrierColumns = 1000;
-
+/// OptimizeLoadParameter solves by the LP policy's method for a parametric
+/// LP (cairn/mechanics/lp_policy.h; columns: generators + 1). The simplex
+/// proves an empty S as fast as the equilibrium LP; the interior-point method
+/// does not (it runs to its iteration limit first), which callers may weigh.
 /// max s (maximize) or min s over S ∩ [lower_bound, ∞) (see the file
 /// comment); `load` has one wrench per body of `lcp` (force units per unit of
 /// s); `frictionless` solves with normal forces only (the strong-stability

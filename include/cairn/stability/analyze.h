@@ -44,6 +44,17 @@ enum class MotionKind {
 /// "at rest", "slides", "tips", "falls".
 const char* to_string(MotionKind kind);
 
+/// How a part moving by (linear, angular) about its centroid moves (the one
+/// classification of the check, the simulation and the margins' mechanisms):
+/// falls when it keeps no closed contact; tips when its instantaneous axis
+/// (Chasles: its point nearest the centroid is ω × v / |ω|²) passes within
+/// the larger of twice the part's radius `size` and half the scene's size
+/// `scene_size` (lengths); else slides (a far-away axis is a translation
+/// with a little spin). `pivot`, when given and the part tips, receives that
+/// point relative to the centroid. A part at rest is the caller's to say.
+MotionKind ClassifyRigidMotion(const Vector3& linear, const Vector3& angular, bool keeps_contact,
+                               double size, double scene_size, Vector3* pivot = nullptr);
+
 /// What a part is doing in a configuration.
 enum class PartRole {
   kJudged,      ///< should stay put: any motion makes the configuration unstable

@@ -68,6 +68,9 @@ struct MarginMechanism {
   bool found = false;       ///< verified (false: see message)
   std::vector<int> parts;   ///< part indices that move
   std::vector<Vector6> nu;  ///< their (v, ω), in the order of `parts` (a direction)
+  /// How each of `parts` moves (ClassifyRigidMotion, keeping contact: a
+  /// mechanism is a direction of motion from the contacts, slides or tips).
+  std::vector<MotionKind> kinds;
   double power = 0;         ///< the loads' power along it (force · length/s)
   std::string message;
 };
@@ -127,13 +130,20 @@ struct MarginResult {
 };
 
 /// Computes the margin of `config` (see the file comment). `def` is the
-/// model's definition (the friction margin rebuilds the assembly with scaled
-/// friction). @throws InputError for a request that makes no sense (a fixed
+/// model's definition (its friction: FrictionScalingOf); the friction margin
+/// varies μ on `assembly` itself (Assembly::WithFriction). @throws InputError for a request that makes no sense (a fixed
 /// or absent part, a zero or non-finite axis or direction, a point beyond
 /// the scene's coordinate range, a 2-D tilt off z). The axis and direction
 /// may have any finite length (UnitVector).
 MarginResult ComputeMargin(const AssemblyDef& def, const Assembly& assembly,
                            const Configuration& config, const MarginRequest& request);
+
+/// The checks ComputeMargin makes of a request on `assembly` (all but the
+/// loaded part's presence in the configuration), for front ends that check
+/// before they load more. @throws InputError naming `file` and the flag
+/// (--tilt, --load, --point, --direction) and what is wrong.
+void CheckMarginRequest(const Assembly& assembly, const MarginRequest& request,
+                        const std::string& file = "");
 
 /// The model with every friction coefficient multiplied by `factor` (the
 /// default μ and every friction pair's): what the friction margin scales.
@@ -145,9 +155,12 @@ AssemblyDef ScaleFriction(const AssemblyDef& def, double factor);
 /// μ (`nominal` = 1). `k_max` keeps every μ within limits::kMaxFriction.
 struct FrictionScaling {
   bool factor = false;  ///< k scales the scene's friction pairs (else k is μ)
-  AssemblyDef base;
+  double base_mu = 1;   ///< base's default μ (1, or the scene's with pairs)
   double nominal = 0;
   double k_max = 0;
+  /// The scene's model (built from the definition this scaling was made of)
+  /// at factor k: base scaled by k, without building it again.
+  Assembly At(const Assembly& scene, double k) const { return scene.WithFriction(base_mu * k, k); }
 };
 FrictionScaling FrictionScalingOf(const AssemblyDef& def);
 

@@ -1,0 +1,1 @@
+// The test file of tested.cpp in the fixture (never built).
