@@ -10,7 +10,7 @@
 // and results after, with the GIL held.
 
 #include <pybind11/pybind11.h>
-#include <pybind11/stl.h>
+#include <pybind11/stl.h>  // IWYU pragma: keep
 
 #include <cstdint>
 #include <memory>
@@ -28,7 +28,6 @@
 #include "cairn/app/plan.h"
 #include "cairn/app/simulate.h"
 #include "cairn/core/error.h"
-#include "cairn/core/format.h"
 #include "cairn/geometry/plan.h"
 #include "cairn/io/compas_reader.h"
 

@@ -4,13 +4,10 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <filesystem>
-#include <fstream>
 #include <functional>
 #include <map>
 #include <optional>
 #include <ostream>
-#include <sstream>
 
 #include "cairn/core/error.h"
 #include "cairn/core/tolerances.h"

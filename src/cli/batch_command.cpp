@@ -30,7 +30,6 @@
 #include "cairn/io/input_file.h"
 #include "cairn/io/json_line.h"
 #include "cairn/mechanics/rest_solution.h"
-#include "cli/margin_command.h"
 #include "cli/mpi.h"
 #include "cli/output_files.h"
 #include "cli/progress.h"

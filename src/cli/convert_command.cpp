@@ -3,7 +3,6 @@
 
 #include <ostream>
 
-#include "cairn/app/model.h"
 #include "cairn/core/format.h"
 #include "cairn/io/scene_writer.h"
 #include "cli/command.h"

@@ -1,6 +1,6 @@
 // cairn: the command-line tool. See docs/cli.md.
 
-#include <CLI/CLI.hpp>
+#include <CLI/CLI.hpp>  // IWYU pragma: keep
 #include <algorithm>
 #include <cctype>
 #include <cmath>

@@ -8,12 +8,11 @@
 
 #include <algorithm>
 #include <array>
-#include <boost/geometry.hpp>
+#include <boost/geometry.hpp>  // IWYU pragma: keep
 #include <boost/geometry/geometries/linestring.hpp>
 #include <boost/geometry/geometries/point_xy.hpp>
 #include <boost/geometry/geometries/polygon.hpp>
 #include <cmath>
-#include <map>
 #include <utility>
 #include <vector>
 

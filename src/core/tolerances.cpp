@@ -1,7 +1,5 @@
 #include "cairn/core/tolerances.h"
 
-#include <algorithm>
-
 namespace cairn {
 
 Tolerances Tolerances::Scaled(double scene_size, double gravity, double dt, double weight,

@@ -6,7 +6,6 @@
 #include <limits>
 #include <numeric>
 #include <optional>
-#include <sstream>
 #include <unordered_map>
 
 #include "cairn/core/check.h"

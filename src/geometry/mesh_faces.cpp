@@ -1,6 +1,6 @@
 #include "cairn/geometry/mesh_faces.h"
 
-#include <Eigen/Geometry>
+#include <Eigen/Geometry>  // IWYU pragma: keep
 #include <algorithm>
 #include <cmath>
 #include <cstdint>

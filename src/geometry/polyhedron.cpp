@@ -1,18 +1,17 @@
 #include "cairn/geometry/polyhedron.h"
 
-#include <Eigen/Geometry>
+#include <Eigen/Geometry>  // IWYU pragma: keep
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <map>
 #include <numeric>
 #include <queue>
-#include <sstream>
 #include <stdexcept>
 #include <utility>
 
 #include "cairn/core/check.h"
-#include "cairn/core/error.h"
+#include "cairn/core/error.h"  // IWYU pragma: keep
 #include "cairn/geometry/box_grid.h"
 #include "cairn/geometry/polygon.h"
 

@@ -1,9 +1,8 @@
 #include "cairn/io/asap_reader.h"
 
-#include <Eigen/Geometry>
+#include <Eigen/Geometry>  // IWYU pragma: keep
 #include <algorithm>
 #include <filesystem>
-#include <nlohmann/json.hpp>
 
 #include "cairn/core/error.h"
 #include "cairn/io/mesh_reader.h"

@@ -1,9 +1,7 @@
 #include "cairn/io/sidecar_reader.h"
 
 #include <algorithm>
-#include <nlohmann/json.hpp>
 
-#include "cairn/core/error.h"
 #include "cairn/core/tolerances.h"
 #include "io/json_checks.h"
 

@@ -42,7 +42,7 @@
 
 #include "cairn/lcp/factored_lcp.h"
 
-#include <Eigen/LU>
+#include <Eigen/LU>  // IWYU pragma: keep
 #include <algorithm>
 #include <cmath>
 #include <cstdint>

@@ -59,7 +59,7 @@
 
 #include "cairn/lcp/lemke.h"
 
-#include <Eigen/LU>
+#include <Eigen/LU>  // IWYU pragma: keep
 #include <algorithm>
 #include <cmath>
 #include <limits>

@@ -1,6 +1,6 @@
 #include "cairn/mechanics/contact_model.h"
 
-#include <Eigen/Cholesky>
+#include <Eigen/Cholesky>  // IWYU pragma: keep
 #include <algorithm>
 #include <cmath>
 

@@ -2,7 +2,7 @@
 
 #include <glpk.h>
 
-#include <Eigen/Eigenvalues>
+#include <Eigen/Eigenvalues>  // IWYU pragma: keep
 #include <algorithm>
 #include <cmath>
 #include <cstdint>

@@ -1,11 +1,10 @@
 #include "cairn/mechanics/static_equilibrium.h"
 
-#include <Eigen/SparseCholesky>
-#include <Eigen/SparseCore>
+#include <Eigen/SparseCholesky>  // IWYU pragma: keep
+#include <Eigen/SparseCore>      // IWYU pragma: keep
 #include <algorithm>
 #include <cmath>
 #include <coin/ClpSimplex.hpp>
-#include <coin/CoinPackedMatrix.hpp>
 #include <vector>
 
 #include "cairn/mechanics/lp_policy.h"

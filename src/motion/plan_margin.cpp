@@ -2,7 +2,6 @@
 
 #include <algorithm>
 
-#include "cairn/core/tolerances.h"
 #include "cairn/stability/margin.h"
 
 namespace cairn {

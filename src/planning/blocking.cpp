@@ -86,7 +86,6 @@
 #include <numbers>
 #include <optional>
 #include <sstream>
-#include <stdexcept>
 #include <string>
 #include <tuple>
 #include <utility>

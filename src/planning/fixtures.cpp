@@ -3,11 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
-#include <sstream>
 #include <tuple>
 
 #include "cairn/core/check.h"
-#include "cairn/core/error.h"
 #include "cairn/core/format.h"
 #include "cairn/geometry/polygon.h"
 #include "cairn/geometry/polyhedron.h"

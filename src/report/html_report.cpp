@@ -163,14 +163,14 @@ json Frames(const Assembly& a, const SimulationResult& result,
     for (size_t i = 0; i < f.present.size(); ++i)
       if (!f.present[i]) absent.push_back(static_cast<int>(i));
     const auto it = contacts.find({f.step, f.tick});
-    out.push_back(
-        {{"step", f.step},
-         {"tick", f.tick},
-         {"time", Short(f.time)},
-         {"poses", MovedPoses(f.poses)},
-         {"absent", absent},
-         {"roles", Roles(a, f.roles)},
-         {"contacts", it != contacts.end() ? Contacts(a, it->second, force_scale) : json::array()}});
+    out.push_back({{"step", f.step},
+                   {"tick", f.tick},
+                   {"time", Short(f.time)},
+                   {"poses", MovedPoses(f.poses)},
+                   {"absent", absent},
+                   {"roles", Roles(a, f.roles)},
+                   {"contacts",
+                    it != contacts.end() ? Contacts(a, it->second, force_scale) : json::array()}});
   }
   return out;
 }

@@ -5,7 +5,6 @@
 
 #include "cairn/core/format.h"
 #include "cairn/report/words.h"
-#include "cairn/stability/analyze.h"
 #include "report/report_common.h"
 
 namespace cairn {

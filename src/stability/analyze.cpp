@@ -1,13 +1,11 @@
 #include "cairn/stability/analyze.h"
 
 #include <algorithm>
-#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <limits>
 #include <numeric>
-#include <sstream>
 #include <unordered_map>
 
 #include "cairn/contact/contact_reduction.h"

@@ -258,8 +258,8 @@ void LoadMargin(const Assembly& assembly, const std::vector<ContactLcp>& lcps,
     if (s.end && !s.empty) {
       side.equilibrium = ToCertificate(lcp, s.lp.equilibrium, *s.end);
       const double past = *s.end * (1 + kPastStep) + kPastStep * r.part_weight;
-      side.mechanism =
-          ToCertificate(assembly, lcp, MechanismPast(WithLoads(lcp, Sum(F0, Scaled(F1, past))), s.lp), past);
+      side.mechanism = ToCertificate(
+          assembly, lcp, MechanismPast(WithLoads(lcp, Sum(F0, Scaled(F1, past))), s.lp), past);
     }
     if (s.empty) side.mechanism = ToCertificate(assembly, lcp, FindMechanism(lcp), 0.0);
     // The strong range: the same LP with normal forces only (left empty when
@@ -436,7 +436,8 @@ void TiltMargin(const Assembly& assembly, const std::vector<ContactLcp>& lcps,
       const double past = *theta + (positive ? step : -step);
       const ContactLcp past_lcp = WithLoads(lcp, TiltLoads(lcp, TurnedGravity(g, a, past)));
       side.mechanism = ToCertificate(
-          assembly, lcp, exact ? MechanismPast(past_lcp, end.lp) : FindMechanism(past_lcp), past * kDeg);
+          assembly, lcp, exact ? MechanismPast(past_lcp, end.lp) : FindMechanism(past_lcp),
+          past * kDeg);
       if (exact && end.lp.status == LoadParameterResult::Status::kOptimal)
         r.tolerance = std::max(r.tolerance, kLpRelative * std::abs(*side.critical));
     }
@@ -607,8 +608,8 @@ FrictionBracket NewtonFriction(const ContactLcp& lcp, double k_max, LpLedger* lp
   const auto within = [&](double below) {
     return out.hi && (*out.hi - below <= kFrictionTolerance * *out.hi || *out.hi <= k_floor);
   };
-  for (int i = 0; i < kMaxFrictionSteps && !lps->failed() && !within(proved) &&
-                  (out.hi || proved < k_max);
+  for (int i = 0;
+       i < kMaxFrictionSteps && !lps->failed() && !within(proved) && (out.hi || proved < k_max);
        ++i) {
     // 2. The next factor: Newton's from lo (a lower estimate of k*); once it
     // is within the tolerance of lo, a factor just above it, which should
@@ -656,7 +657,8 @@ FrictionBracket NewtonFriction(const ContactLcp& lcp, double k_max, LpLedger* lp
 // the mechanism's check there; else the mechanism LP kPastStep below k*, or
 // at lo where the bracket is wider than that (near k* gravity does so little
 // work along the motion that the check's slack can refuse it).
-MarginMechanism FrictionMechanism(const Assembly& scene, const ContactLcp& lcp, const FrictionBracket& b) {
+MarginMechanism FrictionMechanism(const Assembly& scene, const ContactLcp& lcp,
+                                  const FrictionBracket& b) {
   if (b.lo_proved && !b.motion_at_lo.empty()) {
     const Mechanism m = VerifyMechanism(WithFrictionFactor(lcp, b.lo), b.motion_at_lo);
     if (m.found) return ToCertificate(scene, lcp, m, b.lo);
@@ -695,7 +697,8 @@ void FrictionMargin(const FrictionScaling& scaling, const Assembly& scene,
       side.component = static_cast<int>(c);
       side.critical.reset();
       side.equilibrium.reset();
-      side.mechanism = ToCertificate(scene, lcp, FindMechanism(WithFrictionFactor(lcp, k_max)), k_max);
+      side.mechanism =
+          ToCertificate(scene, lcp, FindMechanism(WithFrictionFactor(lcp, k_max)), k_max);
       continue;
     }
     r.tolerance = std::max(r.tolerance, *b.hi - b.lo);
@@ -748,15 +751,13 @@ void CheckMarginRequest(const Assembly& assembly, const MarginRequest& req,
       throw InputError(file, "--point",
                        "must be within the scene's coordinate range, |x| <= " +
                            FormatNumber(limits::kMaxCoordinate));
-    if (!req.direction.allFinite())
-      throw InputError(file, "--direction", "must be finite numbers");
+    if (!req.direction.allFinite()) throw InputError(file, "--direction", "must be finite numbers");
     if (!UnitVector(req.direction))
       throw InputError(file, "--direction", "must not be the zero vector");
     if (!assembly.is_3d() && (req.direction.z() != 0 || req.point.z() != 0))
       throw InputError(file, "--direction", "a 2-D scene takes 2 numbers");
   }
 }
-
 
 const char* to_string(MarginQuantity q) {
   switch (q) {

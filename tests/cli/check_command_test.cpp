@@ -1,7 +1,6 @@
 // The `cairn check` command, run as a user runs it: the real binary, its
 // stdout, stderr and exit code.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
 #include <cctype>
 #include <cstdio>

@@ -3,7 +3,6 @@
 // the candidate normals the pair detectors find and the ones the rule keeps.
 #include <gtest/gtest.h>
 
-#include <algorithm>
 #include <cmath>
 
 #include "cairn/contact/detect_contacts.h"

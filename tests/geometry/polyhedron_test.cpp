@@ -2,7 +2,7 @@
 
 #include <gtest/gtest.h>
 
-#include <Eigen/Geometry>
+#include <Eigen/Geometry>  // IWYU pragma: keep
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>

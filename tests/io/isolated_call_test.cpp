@@ -41,11 +41,7 @@ TEST(RunIsolated, ACrashIsAStatusWithItsSignal) {
 }
 
 TEST(RunIsolated, AnExitWithoutAResultIsACrashWithItsCode) {
-  const IsolatedResult r = RunIsolated(
-      []() -> std::string {
-        _exit(3);
-      },
-      Seconds(60));
+  const IsolatedResult r = RunIsolated([]() -> std::string { _exit(3); }, Seconds(60));
   EXPECT_EQ(r.status, IsolatedResult::Status::kCrashed);
   EXPECT_EQ(r.signal, 0);
   EXPECT_EQ(r.exit_code, 3);

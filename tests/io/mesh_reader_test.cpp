@@ -5,7 +5,7 @@
 
 #include <gtest/gtest.h>
 
-#include <Eigen/Geometry>
+#include <Eigen/Geometry>  // IWYU pragma: keep
 #include <filesystem>
 #include <fstream>
 #include <set>

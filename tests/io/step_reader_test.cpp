@@ -12,7 +12,6 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
-#include <map>
 
 #include "cairn/core/error.h"
 #include "cairn/io/asap_reader.h"

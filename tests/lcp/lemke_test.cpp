@@ -5,7 +5,7 @@
 
 #include <gtest/gtest.h>
 
-#include <Eigen/LU>
+#include <Eigen/LU>  // IWYU pragma: keep
 #include <cmath>
 #include <limits>
 #include <random>

@@ -2,7 +2,7 @@
 
 #include <gtest/gtest.h>
 
-#include <Eigen/Eigenvalues>
+#include <Eigen/Eigenvalues>  // IWYU pragma: keep
 
 #include "cairn/lcp/lemke.h"
 

@@ -7,7 +7,6 @@
 // examples/jenga.json with its plan.
 #include <gtest/gtest.h>
 
-#include <algorithm>
 #include <cmath>
 #include <string>
 

@@ -9,7 +9,6 @@
 #include "cairn/io/plan_reader.h"
 #include "cairn/io/scene_reader.h"
 #include "cairn/motion/simulate.h"
-#include "scene_builders.h"
 #include "test_paths.h"
 
 namespace cairn {

@@ -10,7 +10,6 @@
 #include <vector>
 
 #include "cairn/io/plan_reader.h"
-#include "cairn/io/scene_reader.h"
 #include "example_scene.h"
 #include "failure_brief.h"
 

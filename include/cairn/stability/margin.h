@@ -71,7 +71,7 @@ struct MarginMechanism {
   /// How each of `parts` moves (ClassifyRigidMotion, keeping contact: a
   /// mechanism is a direction of motion from the contacts, slides or tips).
   std::vector<MotionKind> kinds;
-  double power = 0;         ///< the loads' power along it (force · length/s)
+  double power = 0;  ///< the loads' power along it (force · length/s)
   std::string message;
 };
 
@@ -131,8 +131,8 @@ struct MarginResult {
 
 /// Computes the margin of `config` (see the file comment). `def` is the
 /// model's definition (its friction: FrictionScalingOf); the friction margin
-/// varies μ on `assembly` itself (Assembly::WithFriction). @throws InputError for a request that makes no sense (a fixed
-/// or absent part, a zero or non-finite axis or direction, a point beyond
+/// varies μ on `assembly` itself (Assembly::WithFriction). @throws InputError for a request that
+/// makes no sense (a fixed or absent part, a zero or non-finite axis or direction, a point beyond
 /// the scene's coordinate range, a 2-D tilt off z). The axis and direction
 /// may have any finite length (UnitVector).
 MarginResult ComputeMargin(const AssemblyDef& def, const Assembly& assembly,
