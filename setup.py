@@ -38,9 +38,14 @@ class CMakeBuild(build_ext):
     def build_extension(self, ext):
         target = self.get_ext_fullpath(ext.name)
         prebuilt = os.environ.get("CAIRN_PREBUILT_EXTENSION")
+        # cairn-step-reader, the program that reads STEP files (OpenCASCADE
+        # runs only there), goes beside the module, where it looks first.
+        reader = os.path.join(os.path.dirname(target), "cairn-step-reader")
         if prebuilt:
             os.makedirs(os.path.dirname(target), exist_ok=True)
             shutil.copy2(prebuilt, target)
+            build = os.path.dirname(os.path.dirname(os.path.dirname(prebuilt)))
+            shutil.copy2(os.path.join(build, "cairn-step-reader"), reader)
             return
         build = os.path.join(os.path.abspath(self.build_temp), "cmake")
         subprocess.check_call([
@@ -48,9 +53,11 @@ class CMakeBuild(build_ext):
             "-DCAIRN_BUILD_TESTS=OFF", "-DCAIRN_BUILD_PYTHON=ON",
             f"-DPython_EXECUTABLE={sys.executable}"])
         jobs = os.environ.get("CMAKE_BUILD_PARALLEL_LEVEL", "2")
-        subprocess.check_call(["cmake", "--build", build, "--target", "cairn_python", "-j", jobs])
+        subprocess.check_call(["cmake", "--build", build, "--target", "cairn_python",
+                               "cairn_step_reader", "-j", jobs])
         os.makedirs(os.path.dirname(target), exist_ok=True)
         shutil.copy2(os.path.join(build, "python", "cairn", os.path.basename(target)), target)
+        shutil.copy2(os.path.join(build, "cairn-step-reader"), reader)
 
 
 setup(

@@ -25,10 +25,9 @@
 #include <vector>
 
 // LeakSanitizer: OpenCASCADE keeps the tables of its STEP session to the end
-// of the process, and its writer leaks each direction's coordinates (see
-// src/io/step_reader.cpp, whose own definition, strong, wins where it is
-// linked). Weak here, for the test binaries that write STEP without reading
-// it in-process.
+// of the process, and its writer leaks each direction's coordinates (as
+// cairn-step-reader suppresses for reading, src/io/step/occt_reader.cpp), in
+// the test binaries that write STEP files.
 #if defined(__SANITIZE_ADDRESS__)
 extern "C" __attribute__((weak)) const char* __lsan_default_suppressions() {
   return "leak:IFSelect_Editor::IFSelect_Editor\n"

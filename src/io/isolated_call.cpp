@@ -5,6 +5,7 @@
 
 #include <fcntl.h>
 #include <poll.h>
+#include <sys/mman.h>
 #include <sys/prctl.h>
 #include <sys/resource.h>
 #include <sys/wait.h>
@@ -15,6 +16,7 @@
 #include <chrono>
 #include <csignal>
 #include <cstring>
+#include <vector>
 
 namespace cairn::io_internal {
 
@@ -32,23 +34,11 @@ constexpr bool kAsan = false;
 constexpr bool kAsan = false;
 #endif
 
-// Writes all of `data` to `fd`; false when the pipe broke.
-bool WriteAll(int fd, const char* data, size_t size) {
-  while (size > 0) {
-    const ssize_t n = ::write(fd, data, size);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) return false;
-    data += n;
-    size -= static_cast<size_t>(n);
-  }
-  return true;
-}
-
-// The child: limits, the work, its result (length first) on `fd`, _exit.
-[[noreturn]] void Child(int fd, const std::function<std::string()>& work,
-                        const IsolationLimits& limits, pid_t parent) {
-  // Dies with the parent (also if it died before this line); the parent's
-  // handlers (temporary files to remove on SIGTERM) are not the child's.
+// What every child does first: die with the parent (also if it died before
+// this line), leave the parent's signal handlers (temporary files to remove on
+// SIGTERM are not the child's), write nothing to the parent's standard output
+// or error, and take the memory limit.
+void EnterChild(const IsolationLimits& limits, pid_t parent) {
   ::prctl(PR_SET_PDEATHSIG, SIGKILL);
   if (::getppid() != parent) ::_exit(3);
   for (const int s : {SIGTERM, SIGINT, SIGHUP, SIGQUIT, SIGPIPE}) std::signal(s, SIG_DFL);
@@ -61,6 +51,10 @@ bool WriteAll(int fd, const char* data, size_t size) {
     const rlimit limit{limits.memory_limit, limits.memory_limit};
     ::setrlimit(RLIMIT_AS, &limit);
   }
+}
+
+// The child of RunIsolated: the work, its result (length first) on `fd`.
+[[noreturn]] void Child(int fd, const std::function<std::string()>& work) {
   const std::string output = work();
   const std::uint64_t size = output.size();
   char header[sizeof size];
@@ -73,13 +67,27 @@ bool WriteAll(int fd, const char* data, size_t size) {
 
 bool UnderAddressSanitizer() { return kAsan; }
 
+bool WriteAll(int fd, const char* data, size_t size) {
+  while (size > 0) {
+    const ssize_t n = ::write(fd, data, size);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) return false;
+    data += n;
+    size -= static_cast<size_t>(n);
+  }
+  return true;
+}
+
 std::string SignalName(int signal) {
   const char* abbrev = ::sigabbrev_np(signal);
   return abbrev ? std::string("SIG") + abbrev : "signal " + std::to_string(signal);
 }
 
-IsolatedResult RunIsolated(const std::function<std::string()>& work,
-                           const IsolationLimits& limits) {
+namespace {
+
+// Starts a child that runs `child` (which never returns) with its answer's
+// end of a pipe, and reads the answer against the deadline.
+IsolatedResult Run(const std::function<void(int)>& child, const IsolationLimits& limits) {
   IsolatedResult result;
   int fds[2];
   if (::pipe2(fds, O_CLOEXEC) != 0) {
@@ -99,7 +107,9 @@ IsolatedResult RunIsolated(const std::function<std::string()>& work,
   }
   if (pid == 0) {
     ::close(fds[0]);
-    Child(fds[1], work, limits, parent);
+    EnterChild(limits, parent);
+    child(fds[1]);
+    ::_exit(3);
   }
   ::close(fds[1]);
 
@@ -149,6 +159,41 @@ IsolatedResult RunIsolated(const std::function<std::string()>& work,
   result.status = IsolatedResult::Status::kCrashed;
   if (WIFSIGNALED(status)) result.signal = WTERMSIG(status);
   if (WIFEXITED(status)) result.exit_code = WEXITSTATUS(status);
+  return result;
+}
+
+}  // namespace
+
+IsolatedResult RunIsolated(const std::function<std::string()>& work,
+                           const IsolationLimits& limits) {
+  return Run([&](int fd) { Child(fd, work); }, limits);
+}
+
+IsolatedResult RunIsolatedProgram(const std::vector<std::string>& argv, const std::string& input,
+                                  const IsolationLimits& limits) {
+  // The input in memory, as the program's standard input: written whole
+  // before it starts (no pipe to fill, no SIGPIPE if it dies early).
+  const int in = ::memfd_create("cairn-input", MFD_CLOEXEC);
+  if (in < 0 || !WriteAll(in, input.data(), input.size()) || ::lseek(in, 0, SEEK_SET) != 0) {
+    const int error = errno;
+    if (in >= 0) ::close(in);
+    IsolatedResult result;
+    result.status = IsolatedResult::Status::kNoFork;
+    result.output = std::string("cannot pass the input: ") + std::strerror(error);
+    return result;
+  }
+  std::vector<char*> args;
+  for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
+  args.push_back(nullptr);
+  IsolatedResult result = Run(
+      [&](int fd) {
+        ::dup2(in, STDIN_FILENO);
+        ::dup2(fd, STDOUT_FILENO);
+        ::execv(args[0], args.data());
+        ::_exit(127);  // not started: a crash with this code
+      },
+      limits);
+  ::close(in);
   return result;
 }
 

@@ -10,9 +10,11 @@
 // process checks) runs twice. Its standard output and error go to /dev/null:
 // what it has to say is its result.
 
+#include <cstddef>
 #include <cstdint>
 #include <functional>
 #include <string>
+#include <vector>
 
 namespace cairn::io_internal {
 
@@ -39,6 +41,18 @@ struct IsolatedResult {
 /// Runs `work` in a child process under `limits`. `work` must not throw
 /// (an exception escaping it is a crash).
 IsolatedResult RunIsolated(const std::function<std::string()>& work, const IsolationLimits& limits);
+
+/// Runs the program `argv[0]` (a path) with `argv` in a child process under
+/// `limits`, `input` as its standard input. The program writes its answer as
+/// RunIsolated's child does (its length, 8 bytes in native order, then the
+/// bytes) on standard output and exits 0; anything else is kCrashed (exit
+/// code 127: it could not be started).
+IsolatedResult RunIsolatedProgram(const std::vector<std::string>& argv, const std::string& input,
+                                  const IsolationLimits& limits);
+
+/// Writes all of `data` to the file descriptor `fd` (through EINTR and short
+/// writes); false when it cannot (a broken pipe).
+bool WriteAll(int fd, const char* data, size_t size);
 
 /// "SIGSEGV", "SIGKILL", ...; "signal N" for one without a name.
 std::string SignalName(int signal);

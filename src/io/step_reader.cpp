@@ -1,593 +1,42 @@
-// STEP assemblies through OpenCASCADE's XCAF (include/cairn/io/step_reader.h,
-// docs/step-format.md). The only source of Cairn that includes OpenCASCADE.
+// STEP assemblies (include/cairn/io/step_reader.h, docs/step-format.md):
+// Cairn's side. OpenCASCADE itself runs in another process,
+// cairn-step-reader (src/io/step/), so that no other process of Cairn loads
+// its libraries.
 //
 // ReadStepAssembly, as a table of contents:
 //   0. The file checked and read whole (ReadInputFile), its text checked
 //      (CheckStepText: NUL bytes, numbers that are not finite, references to
-//      entities the file does not define), then everything below in a child
-//      process (RunIsolated: a crash, a hang or a runaway allocation of
-//      OpenCASCADE is an InputError of the file), the model passed back
-//      serialised (ModelWriter, ModelReader).
-//   1. ReadDocument: the text into an XCAF document (names on), its length unit.
-//   2. CollectLeaves: the assembly tree walked from the free shapes; each leaf
-//      instance with its composed location (world = L_root · ... · L_leaf).
-//   3. PartNames: product names, instances of one product numbered.
-//   4. OneSolid: each leaf's single solid, closed (no free edge).
-//   5. The chordal tolerance: one for the assembly (step_reader.h).
-//   6. ToPolyhedron: exact planar faces and tessellated others, welded, the
-//      tessellated triangles merged where coplanar.
+//      entities the file does not define).
+//   1. FindStepReader: the reading program, beside the code of this function
+//      (the `cairn` executable, the Python module) or where the build or the
+//      install put it.
+//   2. RunIsolatedProgram: the text read there under the limits of time and
+//      memory (a crash, a hang or a runaway allocation of OpenCASCADE is an
+//      InputError of the file); its answer decoded (step_codec.h).
 
 #include "cairn/io/step_reader.h"
 
-#include <BRepAdaptor_Curve.hxx>
-#include <BRepAdaptor_Surface.hxx>
-#include <BRepBndLib.hxx>
-#include <BRepGProp.hxx>
-#include <BRepMesh_IncrementalMesh.hxx>
-#include <BRepTools.hxx>
-#include <BRepTools_WireExplorer.hxx>
-#include <BRep_Tool.hxx>
-#include <Bnd_Box.hxx>
-#include <GProp_GProps.hxx>
-#include <IFSelect_ReturnStatus.hxx>
-#include <Message.hxx>
-#include <Message_Messenger.hxx>
-#include <Message_PrinterOStream.hxx>
-#include <Poly_PolygonOnTriangulation.hxx>
-#include <Poly_Triangulation.hxx>
-#include <Precision.hxx>
-#include <STEPCAFControl_Reader.hxx>
-#include <Standard_Failure.hxx>
-#include <TDF_Label.hxx>
-#include <TDF_LabelSequence.hxx>
-#include <TDataStd_Name.hxx>
-#include <TDocStd_Document.hxx>
-#include <TopExp.hxx>
-#include <TopExp_Explorer.hxx>
-#include <TopTools_IndexedDataMapOfShapeListOfShape.hxx>
-#include <TopoDS.hxx>
-#include <TopoDS_Edge.hxx>
-#include <TopoDS_Face.hxx>
-#include <TopoDS_Shape.hxx>
-#include <TopoDS_Solid.hxx>
-#include <TopoDS_Wire.hxx>  // IWYU pragma: keep
-#include <XCAFApp_Application.hxx>
-#include <XCAFDoc_DocumentTool.hxx>
-#include <XCAFDoc_ShapeTool.hxx>
+#include <dlfcn.h>
+#include <unistd.h>
+
 #include <algorithm>
-#include <array>
-#include <cmath>
-#include <cstdint>
+#include <cstdio>
 #include <cstdlib>
-#include <cstring>
 #include <filesystem>
 #include <map>
-#include <mutex>
-#include <new>
 #include <set>
-#include <sstream>
+#include <stdexcept>
+#include <vector>
 
 #include "cairn/core/error.h"
 #include "cairn/core/format.h"
 #include "cairn/core/tolerances.h"
-#include "cairn/geometry/mesh_faces.h"
-#include "cairn/geometry/polyhedron.h"
-#include "cairn/io/input_file.h"
 #include "io/isolated_call.h"
-
-// LeakSanitizer (the CI's sanitized build): OpenCASCADE 7.6 (Debian) keeps
-// the tables its STEP session builds once (IFSelect_Editor's, the singleton of
-// TPrsStd_DriverTable, and what they hold, allocated by its own allocator) to
-// the end of the process without freeing them, which LSan reports as leaks
-// (about 3 kB, the same for every file read). Its libraries have no frame
-// pointers, so those stacks end in OpenCASCADE's allocator: these frames of
-// OpenCASCADE, and nothing of Cairn's, are suppressed, in the binaries that
-// read STEP (this object is linked only where ReadStepAssembly is used).
-#if defined(__SANITIZE_ADDRESS__)
-#define CAIRN_LSAN_OCCT 1
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-#define CAIRN_LSAN_OCCT 1
-#endif
-#endif
-#ifdef CAIRN_LSAN_OCCT
-extern "C" const char* __lsan_default_suppressions() {
-  return "leak:IFSelect_Editor::IFSelect_Editor\n"
-         "leak:TPrsStd_DriverTable::Get\n"
-         "leak:Standard_MMgrRaw::Allocate\n"
-         "leak:Standard_MMgrRaw::Reallocate\n"
-         // The tests write STEP files with OpenCASCADE (tests/step_writer.h):
-         // its writer leaks each direction's coordinate array.
-         "leak:GeomToStep_MakeDirection::GeomToStep_MakeDirection\n";
-}
-// ... without the summary of the suppressions used on standard error, which
-// is the command's own.
-extern "C" const char* __lsan_default_options() { return "print_suppressions=0"; }
-#endif
+#include "io/step_codec.h"
 
 namespace cairn {
 
 namespace {
-
-// The coplanarity tolerances of the merge of tessellated triangles: normals
-// within 1e-5 rad, as ReadMesh's (MeshReadOptions); vertices within the
-// model's length tolerance of the region's plane (MergeTolerance), with which
-// Polyhedron::Check will judge the faces.
-constexpr double kMergeAngleTol = 1e-5;
-// Welding: positions closer than this fraction of the part's size are one
-// vertex (BRepMesh gives the faces of a shared edge the same nodes; this only
-// absorbs the last bit of a location's arithmetic).
-constexpr double kWeldFactor = 1e-9;
-// Deeper assembly trees than this are taken for a cycle in a broken file.
-constexpr int kMaxAssemblyDepth = 64;
-
-// OpenCASCADE prints its warnings on stdout; Cairn's output is its own.
-void SilenceOcct() {
-  static std::once_flag once;
-  std::call_once(once, [] {
-    Message::DefaultMessenger()->RemovePrinters(STANDARD_TYPE(Message_PrinterOStream));
-  });
-}
-
-// The XCAF document of one file, closed (its memory released) on scope exit.
-class Document {
- public:
-  Document() {
-    app_ = XCAFApp_Application::GetApplication();
-    app_->NewDocument("MDTV-XCAF", doc_);
-  }
-  ~Document() {
-    if (!doc_.IsNull() && doc_->IsOpened()) app_->Close(doc_);
-  }
-  Document(const Document&) = delete;
-  Document& operator=(const Document&) = delete;
-  Handle(TDocStd_Document) doc() const { return doc_; }
-
- private:
-  Handle(XCAFApp_Application) app_;
-  Handle(TDocStd_Document) doc_;
-};
-
-// 1. The file's `text` into `doc`; returns the length unit of the shapes in
-// metres.
-double ReadDocument(const std::string& path, const std::string& text, Document& document) {
-  STEPCAFControl_Reader reader;
-  reader.SetNameMode(true);
-  reader.SetColorMode(false);
-  reader.SetLayerMode(false);
-  reader.SetPropsMode(false);
-  std::istringstream stream(text);
-  if (reader.ChangeReader().ReadStream(path.c_str(), stream) != IFSelect_RetDone)
-    throw InputError(path, "", "not a STEP file (OpenCASCADE cannot read it)");
-  Handle(TDocStd_Document) doc = document.doc();
-  if (!reader.Transfer(doc))
-    throw InputError(path, "", "the STEP file's shapes cannot be transferred (no solids?)");
-  // The reader converts the file's unit to the document's, which it records
-  // (OCCT 7.6: millimetres unless the document says otherwise).
-  double unit = 0.001;
-  if (!XCAFDoc_DocumentTool::GetLengthUnit(document.doc(), unit) || !(unit > 0)) unit = 0.001;
-  return unit;
-}
-
-// A label's TDataStd_Name as UTF-8; empty when it has none.
-std::string LabelName(const TDF_Label& label) {
-  Handle(TDataStd_Name) name;
-  if (!label.FindAttribute(TDataStd_Name::GetID(), name)) return "";
-  const TCollection_ExtendedString& s = name->Get();
-  std::string out(static_cast<size_t>(s.LengthOfCString()) + 1, '\0');
-  char* buf = out.data();
-  const int n = s.ToUTF8CString(buf);
-  out.resize(static_cast<size_t>(std::max(n, 0)));
-  return out;
-}
-
-// One leaf instance: its product's name, its instance's name, its shape placed
-// in the world (the file's unit).
-struct Leaf {
-  std::string product;
-  std::string instance;
-  TopoDS_Shape shape;
-};
-
-// 2. The leaves under `label`, placed by `loc` (the composed locations of
-// the instances above).
-void CollectLeaves(const Handle(XCAFDoc_ShapeTool) & tool, const TDF_Label& label,
-                   const TopLoc_Location& loc, const std::string& instance, int depth,
-                   const std::string& path, std::vector<Leaf>& out) {
-  if (depth > kMaxAssemblyDepth)
-    throw InputError(path, "",
-                     "the assembly tree is deeper than " + std::to_string(kMaxAssemblyDepth) +
-                         " levels (a cycle?)");
-  if (XCAFDoc_ShapeTool::IsAssembly(label)) {
-    TDF_LabelSequence components;
-    XCAFDoc_ShapeTool::GetComponents(label, components, false);
-    for (int k = 1; k <= components.Length(); ++k) {
-      const TDF_Label& component = components.Value(k);
-      TDF_Label referred;
-      if (!XCAFDoc_ShapeTool::GetReferredShape(component, referred)) continue;
-      CollectLeaves(tool, referred, loc * XCAFDoc_ShapeTool::GetLocation(component),
-                    LabelName(component), depth + 1, path, out);
-    }
-    return;
-  }
-  const TopoDS_Shape shape = XCAFDoc_ShapeTool::GetShape(label);
-  if (shape.IsNull()) return;
-  out.push_back({LabelName(label), instance, shape.Moved(loc)});
-}
-
-// 3. Part names: the product's name; the instances of a product used several
-// times numbered `name`, `name_2`, ... in file order; a product without a
-// name takes its instance's, or "part_<k>". Unique in the end.
-std::vector<std::string> PartNames(const std::vector<Leaf>& leaves) {
-  std::vector<std::string> base(leaves.size());
-  std::map<std::string, int> uses;
-  for (size_t k = 0; k < leaves.size(); ++k) {
-    base[k] = !leaves[k].product.empty()    ? leaves[k].product
-              : !leaves[k].instance.empty() ? leaves[k].instance
-                                            : "part_" + std::to_string(k + 1);
-    ++uses[base[k]];
-  }
-  std::vector<std::string> names(leaves.size());
-  std::map<std::string, int> seen;
-  std::map<std::string, bool> taken;
-  for (const auto& [name, n] : uses) taken[name] = true;
-  for (size_t k = 0; k < leaves.size(); ++k) {
-    const int nth = ++seen[base[k]];
-    if (nth == 1) {
-      names[k] = base[k];
-      continue;
-    }
-    int suffix = nth;
-    std::string name = base[k] + "_" + std::to_string(suffix);
-    while (taken.count(name)) name = base[k] + "_" + std::to_string(++suffix);
-    taken[name] = true;
-    names[k] = name;
-  }
-  return names;
-}
-
-// 4. The one solid of a leaf, closed. @throws InputError naming the part.
-TopoDS_Solid OneSolid(const TopoDS_Shape& shape, const std::string& path, const std::string& part) {
-  std::vector<TopoDS_Solid> solids;
-  for (TopExp_Explorer e(shape, TopAbs_SOLID); e.More(); e.Next())
-    solids.push_back(TopoDS::Solid(e.Current()));
-  if (solids.empty())
-    throw InputError(path, "",
-                     "part '" + part +
-                         "' has no solid (a surface model or an open shell): Cairn needs closed "
-                         "solids");
-  if (solids.size() > 1)
-    throw InputError(path, "",
-                     "part '" + part + "' has " + std::to_string(solids.size()) +
-                         " solids: Cairn takes one solid per part (make each body a part of "
-                         "its own in the CAD system)");
-  // Closed: every edge (but the degenerate ones, a cone's apex) bounds two
-  // faces, or is a seam (one face on both sides).
-  TopTools_IndexedDataMapOfShapeListOfShape edge_faces;
-  TopExp::MapShapesAndUniqueAncestors(solids[0], TopAbs_EDGE, TopAbs_FACE, edge_faces);
-  int free_edges = 0;
-  for (int k = 1; k <= edge_faces.Extent(); ++k) {
-    const TopoDS_Edge& edge = TopoDS::Edge(edge_faces.FindKey(k));
-    if (BRep_Tool::Degenerated(edge)) continue;
-    const TopTools_ListOfShape& faces = edge_faces.FindFromIndex(k);
-    if (faces.Extent() >= 2) continue;
-    if (faces.Extent() == 1 && BRep_Tool::IsClosed(edge, TopoDS::Face(faces.First()))) continue;
-    ++free_edges;
-  }
-  if (free_edges > 0)
-    throw InputError(path, "",
-                     "part '" + part + "' is not closed: its shell is open (" +
-                         std::to_string(free_edges) + " edge" + (free_edges == 1 ? "" : "s") +
-                         " bound only one face)");
-  return solids[0];
-}
-
-// The diagonal of a shape's bounding box (the file's unit).
-double Diagonal(const TopoDS_Shape& shape) {
-  Bnd_Box box;
-  BRepBndLib::AddOptimal(shape, box, false, false);
-  if (box.IsVoid()) return 0;
-  return std::sqrt(box.SquareExtent());
-}
-
-Vector3 ToVector(const gp_Pnt& p, double unit) {
-  return Vector3(p.X() * unit, p.Y() * unit, p.Z() * unit);
-}
-
-// Welds positions closer than `eps` into one vertex: a hash grid of cell
-// `eps`, each point looked up in its cell and the 26 around it.
-class Welder {
- public:
-  explicit Welder(double eps) : eps_(eps) {}
-  int Add(const Vector3& p) {
-    const std::array<long long, 3> c = Cell(p);
-    for (long long dx = -1; dx <= 1; ++dx)
-      for (long long dy = -1; dy <= 1; ++dy)
-        for (long long dz = -1; dz <= 1; ++dz) {
-          const auto it = grid_.find({c[0] + dx, c[1] + dy, c[2] + dz});
-          if (it == grid_.end()) continue;
-          for (const int v : it->second)
-            if ((vertices_[v] - p).norm() <= eps_) return v;
-        }
-    const int v = static_cast<int>(vertices_.size());
-    vertices_.push_back(p);
-    grid_[c].push_back(v);
-    return v;
-  }
-  const std::vector<Vector3>& vertices() const { return vertices_; }
-
- private:
-  std::array<long long, 3> Cell(const Vector3& p) const {
-    return {static_cast<long long>(std::floor(p.x() / eps_)),
-            static_cast<long long>(std::floor(p.y() / eps_)),
-            static_cast<long long>(std::floor(p.z() / eps_))};
-  }
-  double eps_;
-  std::vector<Vector3> vertices_;
-  std::map<std::array<long long, 3>, std::vector<int>> grid_;
-};
-
-// A planar face bounded by straight edges: its triangles are exact (no
-// chordal error).
-bool IsPlanarStraight(const TopoDS_Face& face) {
-  if (BRepAdaptor_Surface(face).GetType() != GeomAbs_Plane) return false;
-  for (TopExp_Explorer e(face, TopAbs_EDGE); e.More(); e.Next()) {
-    const TopoDS_Edge& edge = TopoDS::Edge(e.Current());
-    if (BRep_Tool::Degenerated(edge) || !BRep_Tool::IsGeometric(edge)) return false;
-    if (BRepAdaptor_Curve(edge).GetType() != GeomAbs_Line) return false;
-  }
-  return true;
-}
-
-// ... and without holes: one polygon, its outer wire.
-bool IsExactPlanar(const TopoDS_Face& face) {
-  int wires = 0;
-  for (TopExp_Explorer w(face, TopAbs_WIRE); w.More(); w.Next()) ++wires;
-  return wires == 1 && IsPlanarStraight(face);
-}
-
-// The outward unit normal of a planar face (the plane's normal, reversed
-// for a reversed face).
-gp_Dir OutwardNormal(const TopoDS_Face& face) {
-  const gp_Pln plane = BRepAdaptor_Surface(face).Plane();
-  gp_Dir n = plane.Axis().Direction();
-  if (face.Orientation() == TopAbs_REVERSED) n.Reverse();
-  return n;
-}
-
-// The polygon of an exact planar face: its outer wire in order, each edge
-// with the nodes BRepMesh put on it (shared with the neighbouring faces'
-// triangles, so the solid stays closed where a tessellated face meets it),
-// turned to the face's outward normal (right-hand rule).
-std::vector<Vector3> ExactPolygon(const TopoDS_Face& face, const Handle(Poly_Triangulation) & tri,
-                                  const TopLoc_Location& tri_loc, double unit) {
-  const gp_Trsf to_world = tri_loc.Transformation();
-  std::vector<Vector3> polygon;
-  for (BRepTools_WireExplorer we(BRepTools::OuterWire(face), face); we.More(); we.Next()) {
-    const TopoDS_Edge& edge = we.Current();
-    const gp_Pnt start = BRep_Tool::Pnt(we.CurrentVertex());
-    std::vector<gp_Pnt> nodes;
-    const Handle(Poly_PolygonOnTriangulation)& on_tri =
-        BRep_Tool::PolygonOnTriangulation(edge, tri, tri_loc);
-    if (!on_tri.IsNull()) {
-      for (int k = 1; k <= on_tri->NbNodes(); ++k)
-        nodes.push_back(tri->Node(on_tri->Node(k)).Transformed(to_world));
-      // The nodes follow the edge's parameter: walk them from this wire's
-      // current vertex.
-      if (nodes.size() >= 2 &&
-          nodes.back().SquareDistance(start) < nodes.front().SquareDistance(start))
-        std::reverse(nodes.begin(), nodes.end());
-      nodes.pop_back();  // the next edge's first node
-    } else {
-      nodes.push_back(start);
-    }
-    for (const gp_Pnt& p : nodes) polygon.push_back(ToVector(p, unit));
-  }
-  // Newell's normal of the polygon against the face's outward normal.
-  Vector3 newell(0, 0, 0);
-  for (size_t k = 0; k < polygon.size(); ++k)
-    newell += polygon[k].cross(polygon[(k + 1) % polygon.size()]);
-  const gp_Dir n = OutwardNormal(face);
-  if (newell.dot(Vector3(n.X(), n.Y(), n.Z())) < 0) std::reverse(polygon.begin(), polygon.end());
-  return polygon;
-}
-
-// 6. The polyhedron of one solid (placed, in metres), tessellated to
-// `deflection` (the file's unit).
-PolyhedronDef ToPolyhedron(const TopoDS_Solid& solid, double deflection, double unit, double size_m,
-                           double merge_tol, StepPartReport& report) {
-  const BRepMesh_IncrementalMesh mesher(solid, deflection, false, kMeshAngularDeflection, false);
-  if (!mesher.IsDone()) throw Standard_Failure("BRepMesh_IncrementalMesh did not finish");
-  Welder welder(kWeldFactor * size_m);
-  std::vector<std::array<int, 3>> triangles;
-  std::vector<std::vector<int>> polygons;
-  int face_index = 0;
-  for (TopExp_Explorer e(solid, TopAbs_FACE); e.More(); e.Next(), ++face_index) {
-    const TopoDS_Face& face = TopoDS::Face(e.Current());
-    TopLoc_Location tri_loc;
-    const Handle(Poly_Triangulation)& tri = BRep_Tool::Triangulation(face, tri_loc);
-    if (tri.IsNull())
-      throw Standard_Failure(("face " + std::to_string(face_index) + " has no triangles").c_str());
-    if (IsExactPlanar(face)) {
-      std::vector<int> polygon;
-      for (const Vector3& p : ExactPolygon(face, tri, tri_loc, unit)) {
-        const int v = welder.Add(p);
-        if (polygon.empty() || polygon.back() != v) polygon.push_back(v);
-      }
-      while (polygon.size() > 1 && polygon.front() == polygon.back()) polygon.pop_back();
-      polygons.push_back(std::move(polygon));
-      ++report.exact_faces;
-      continue;
-    }
-    // Tessellated: the face's triangles, turned outward for a reversed face
-    // (exact still for a planar face with holes and straight edges).
-    const gp_Trsf to_world = tri_loc.Transformation();
-    std::vector<int> index(static_cast<size_t>(tri->NbNodes()) + 1);
-    for (int k = 1; k <= tri->NbNodes(); ++k)
-      index[k] = welder.Add(ToVector(tri->Node(k).Transformed(to_world), unit));
-    const bool reversed = face.Orientation() == TopAbs_REVERSED;
-    for (int t = 1; t <= tri->NbTriangles(); ++t) {
-      int a = 0, b = 0, c = 0;
-      tri->Triangle(t).Get(a, b, c);
-      if (reversed) std::swap(b, c);
-      triangles.push_back({index[a], index[b], index[c]});
-    }
-    if (IsPlanarStraight(face))
-      ++report.exact_faces;
-    else
-      ++report.tessellated_faces;
-  }
-  report.approximated = report.tessellated_faces > 0;
-  PolyhedronDef def;
-  if (triangles.empty()) {
-    def.vertices = welder.vertices();
-  } else {
-    def = MergeCoplanarTriangles(welder.vertices(), triangles, kMergeAngleTol, merge_tol);
-  }
-  for (std::vector<int>& polygon : polygons) def.faces.push_back(std::move(polygon));
-  return def;
-}
-
-// The chordal tolerance's faults name `--mesh-tolerance` when the user gave
-// one (it is the option's fault); with the default they are the file's, and
-// say that the option exists.
-[[noreturn]] void TessellationFault(const std::string& path, const StepReadOptions& options,
-                                    double default_m, const std::string& what) {
-  if (options.mesh_tolerance > 0)
-    throw InputError("", "--mesh-tolerance",
-                     FormatNumber(options.mesh_tolerance) + " m: " + what + " in " + path +
-                         " (the default for this file is " + FormatNumber(default_m) + " m)");
-  throw InputError(path, "",
-                   what + " (tessellated within the default chordal tolerance " +
-                       FormatNumber(default_m) + " m; --mesh-tolerance sets another)");
-}
-
-StepModel ReadStepModel(const std::string& path, const std::string& text,
-                        const StepReadOptions& options) {
-  SilenceOcct();
-  Document document;
-  StepModel model;
-  model.length_unit = ReadDocument(path, text, document);
-  const double unit = model.length_unit;
-
-  // 2. Leaves, placed.
-  const Handle(XCAFDoc_ShapeTool) tool = XCAFDoc_DocumentTool::ShapeTool(document.doc()->Main());
-  TDF_LabelSequence roots;
-  tool->GetFreeShapes(roots);
-  std::vector<Leaf> leaves;
-  for (int k = 1; k <= roots.Length(); ++k)
-    CollectLeaves(tool, roots.Value(k), TopLoc_Location(), LabelName(roots.Value(k)), 0, path,
-                  leaves);
-  // Leaves without faces (points, curves, empty products) are not parts.
-  leaves.erase(std::remove_if(leaves.begin(), leaves.end(),
-                              [](const Leaf& leaf) {
-                                return !TopExp_Explorer(leaf.shape, TopAbs_FACE).More();
-                              }),
-               leaves.end());
-  if (leaves.empty()) throw InputError(path, "", "the STEP file has no solids");
-
-  // 3.–4. Names and solids.
-  const std::vector<std::string> names = PartNames(leaves);
-  std::vector<TopoDS_Solid> solids;
-  std::vector<double> diagonals;
-  for (size_t k = 0; k < leaves.size(); ++k) {
-    solids.push_back(OneSolid(leaves[k].shape, path, names[k]));
-    diagonals.push_back(Diagonal(solids.back()));
-  }
-
-  // 5. One chordal tolerance (the file's unit) for the whole assembly: the
-  // user's within what OpenCASCADE tessellates (Precision::Confusion() of
-  // the file's unit), not finer than kMinMeshToleranceFactor of the smallest
-  // part, and below its size.
-  const size_t smallest_k =
-      static_cast<size_t>(std::min_element(diagonals.begin(), diagonals.end()) - diagonals.begin());
-  const double smallest = diagonals[smallest_k];
-  if (!(smallest > 0) || !std::isfinite(smallest))
-    throw InputError(
-        path, "", "part '" + EscapedName(names[smallest_k]) + "' has no extent (an empty solid?)");
-  const double default_deflection = kDefaultMeshToleranceFactor * smallest;
-  const double default_m = default_deflection * unit;
-  if (options.mesh_tolerance > 0) {
-    if (!(options.mesh_tolerance / unit >= Precision::Confusion()))
-      throw InputError("", "--mesh-tolerance",
-                       FormatNumber(options.mesh_tolerance) +
-                           " m is finer than OpenCASCADE tessellates " + path + ": at least " +
-                           FormatNumber(Precision::Confusion() * unit) +
-                           " m (the default for this file is " + FormatNumber(default_m) + " m)");
-    const double finest = kMinMeshToleranceFactor * smallest;
-    if (!(options.mesh_tolerance / unit >= finest))
-      throw InputError("", "--mesh-tolerance",
-                       FormatNumber(options.mesh_tolerance) + " m is finer than " +
-                           FormatNumber(kMinMeshToleranceFactor) + " of the part '" +
-                           EscapedName(names[smallest_k]) + "' of " + path + " (" +
-                           FormatNumber(smallest * unit) + " m across): at least " +
-                           FormatNumber(finest * unit) + " m (the default for this file is " +
-                           FormatNumber(default_m) + " m)");
-    if (!(options.mesh_tolerance / unit < smallest))
-      throw InputError("", "--mesh-tolerance",
-                       FormatNumber(options.mesh_tolerance) + " m is larger than the part '" +
-                           EscapedName(names[smallest_k]) + "' of " + path + " (" +
-                           FormatNumber(smallest * unit) +
-                           " m across): give less (the default for this file is " +
-                           FormatNumber(default_m) + " m)");
-  }
-  const double deflection =
-      options.mesh_tolerance > 0 ? options.mesh_tolerance / unit : default_deflection;
-
-  // 6. The parts.
-  model.def.name = std::filesystem::path(path).stem().string();
-  for (size_t k = 0; k < leaves.size(); ++k) {
-    StepPartReport report;
-    report.name = names[k];
-    report.mesh_tolerance = deflection * unit;
-    GProp_GProps props;
-    BRepGProp::VolumeProperties(solids[k], props);
-    report.exact_volume = std::abs(props.Mass()) * unit * unit * unit;
-    GProp_GProps surface;
-    BRepGProp::SurfaceProperties(solids[k], surface);
-    report.exact_area = surface.Mass() * unit * unit;
-    PartDef part;
-    part.name = names[k];
-    // The length tolerance the model will have: the scene default, or for
-    // tessellated parts kStepLengthToleranceOfChord × the chord (below).
-    const double tol = std::max(ToleranceFactors{}.length * diagonals[k] * unit,
-                                kStepLengthToleranceOfChord * deflection * unit);
-    try {
-      part.polyhedron = ToPolyhedron(solids[k], deflection, unit, diagonals[k] * unit, tol, report);
-    } catch (const Standard_Failure& e) {
-      TessellationFault(path, options, default_m,
-                        "part '" + EscapedName(names[k]) + "' cannot be tessellated (" +
-                            (e.GetMessageString() && *e.GetMessageString() ? e.GetMessageString()
-                                                                           : "OpenCASCADE") +
-                            ")");
-    }
-    if (!Polyhedron::Check(*part.polyhedron, tol))
-      report.volume = Polyhedron::Create(*part.polyhedron, tol).mass().volume;
-    model.def.parts.push_back(std::move(part));
-    model.parts.push_back(report);
-  }
-  // A model with tessellated surfaces is no more accurate than its facets,
-  // and CAD models of fits are often off by microns (the pen's button sits
-  // 0.6 µm off its bore's axis): the length tolerance (contact distance,
-  // allowed overlap) of such a model is a tenth of the chordal tolerance
-  // unless the user gives one. (Larger, the polyhedron checks would take the
-  // thin facets at a cone's apex for intersecting faces.)
-  if (std::any_of(model.parts.begin(), model.parts.end(),
-                  [](const StepPartReport& r) { return r.approximated; })) {
-    model.def.tolerance = kStepLengthToleranceOfChord * deflection * unit;
-    model.def.tolerance_option = "--mesh-tolerance";
-    // Each part a valid solid at that tolerance: a tessellation too coarse
-    // (facets that cross) is the chordal tolerance's fault.
-    for (size_t k = 0; k < model.def.parts.size(); ++k) {
-      const auto fault = Polyhedron::Check(*model.def.parts[k].polyhedron, model.def.tolerance);
-      if (fault)
-        TessellationFault(path, options, default_m,
-                          "the tessellation of part '" + EscapedName(names[k]) +
-                              "' is not a valid solid (" + fault->message + ")");
-    }
-  }
-  return model;
-}
 
 // 0. What OpenCASCADE crashes on or spins on, found in the text first and
 // said with its line: a NUL byte, a number that is not finite (1.E400, NAN,
@@ -712,167 +161,49 @@ void CheckStepText(const std::string& text, const std::string& path) {
       fail(r.line, r.entity, "refers to #" + r.id + ", which the file does not define");
 }
 
-// The child's answer: 'M' and the model, or 'E' and an InputError.
-class Writer {
- public:
-  void Byte(char c) { out_ += c; }
-  void U64(std::uint64_t x) { out_.append(reinterpret_cast<const char*>(&x), sizeof x); }
-  void F64(double x) { out_.append(reinterpret_cast<const char*>(&x), sizeof x); }
-  void Str(const std::string& s) {
-    U64(s.size());
-    out_ += s;
-  }
-  const std::string& str() const { return out_; }
-
- private:
-  std::string out_;
-};
-
-// Reads what Writer wrote. @throws std::runtime_error on a short answer.
-class Reader {
- public:
-  explicit Reader(const std::string& in) : in_(in) {}
-  char Byte() { return Take(1)[0]; }
-  std::uint64_t U64() {
-    std::uint64_t x = 0;
-    std::memcpy(&x, Take(sizeof x), sizeof x);
-    return x;
-  }
-  double F64() {
-    double x = 0;
-    std::memcpy(&x, Take(sizeof x), sizeof x);
-    return x;
-  }
-  std::string Str() {
-    const std::uint64_t size = U64();
-    if (size > in_.size()) throw std::runtime_error("STEP reader: a short answer from its process");
-    return std::string(Take(static_cast<size_t>(size)), static_cast<size_t>(size));
-  }
-  // A count of items of at least `bytes` each: no more than the bytes left.
-  size_t Count(size_t bytes) {
-    const std::uint64_t count = U64();
-    if (count > (in_.size() - pos_) / bytes)
-      throw std::runtime_error("STEP reader: a short answer from its process");
-    return static_cast<size_t>(count);
-  }
-
- private:
-  const char* Take(size_t size) {
-    if (size > in_.size() - pos_)
-      throw std::runtime_error("STEP reader: a short answer from its process");
-    const char* p = in_.data() + pos_;
-    pos_ += size;
-    return p;
-  }
-  const std::string& in_;
-  size_t pos_ = 0;
-};
-
-void WriteModel(const StepModel& model, Writer& w) {
-  w.Byte('M');
-  w.F64(model.length_unit);
-  w.Str(model.def.name);
-  w.F64(model.def.tolerance);
-  w.Str(model.def.tolerance_option);
-  w.U64(model.def.parts.size());
-  for (size_t k = 0; k < model.def.parts.size(); ++k) {
-    const PartDef& part = model.def.parts[k];
-    w.Str(part.name);
-    w.U64(part.polyhedron->vertices.size());
-    for (const Vector3& v : part.polyhedron->vertices) w.F64(v.x()), w.F64(v.y()), w.F64(v.z());
-    w.U64(part.polyhedron->faces.size());
-    for (const std::vector<int>& face : part.polyhedron->faces) {
-      w.U64(face.size());
-      for (const int v : face) w.U64(static_cast<std::uint64_t>(v));
+// 1. The reading program: $CAIRN_STEP_READER when set; else
+// cairn-step-reader in the folder of the binary that holds this code (the
+// `cairn` executable, or the Python module's library), in its ../bin, where
+// `cmake --install` put it, and where the build made it. Throws (a runtime
+// error, exit 4: an incomplete installation, not bad input) naming where it
+// looked.
+std::string FindStepReader() {
+  namespace fs = std::filesystem;
+  constexpr const char* kName = "cairn-step-reader";
+  std::vector<fs::path> candidates;
+  if (const char* given = std::getenv("CAIRN_STEP_READER"); given && *given)
+    candidates.emplace_back(given);
+  Dl_info info{};
+  if (::dladdr(reinterpret_cast<void*>(&ReadStepAssembly), &info) && info.dli_fname) {
+    std::error_code ec;
+    const fs::path self = fs::canonical(info.dli_fname, ec);
+    if (!ec) {
+      candidates.push_back(self.parent_path() / kName);
+      candidates.push_back(self.parent_path().parent_path() / "bin" / kName);
     }
-    const StepPartReport& r = model.parts[k];
-    w.Str(r.name);
-    w.Byte(r.approximated ? 1 : 0);
-    w.U64(static_cast<std::uint64_t>(r.exact_faces));
-    w.U64(static_cast<std::uint64_t>(r.tessellated_faces));
-    w.F64(r.mesh_tolerance);
-    w.F64(r.exact_volume);
-    w.F64(r.exact_area);
-    w.F64(r.volume);
   }
+#ifdef CAIRN_STEP_READER_INSTALLED
+  candidates.emplace_back(CAIRN_STEP_READER_INSTALLED);
+#endif
+#ifdef CAIRN_STEP_READER_BUILT
+  candidates.emplace_back(CAIRN_STEP_READER_BUILT);
+#endif
+  std::string looked;
+  for (const fs::path& c : candidates) {
+    if (::access(c.c_str(), X_OK) == 0) return c.string();
+    looked += (looked.empty() ? "" : ", ") + c.string();
+  }
+  throw std::runtime_error(
+      "STEP reader: the program cairn-step-reader, which reads STEP files, is not installed "
+      "(looked in: " +
+      looked + "; CAIRN_STEP_READER names another)");
 }
 
-StepModel ReadModel(Reader& r) {
-  StepModel model;
-  model.length_unit = r.F64();
-  model.def.name = r.Str();
-  model.def.tolerance = r.F64();
-  model.def.tolerance_option = r.Str();
-  const size_t parts = r.Count(8);
-  for (size_t k = 0; k < parts; ++k) {
-    PartDef part;
-    part.name = r.Str();
-    PolyhedronDef poly;
-    poly.vertices.resize(r.Count(24));
-    for (Vector3& v : poly.vertices) {
-      const double x = r.F64(), y = r.F64(), z = r.F64();
-      v = Vector3(x, y, z);
-    }
-    poly.faces.resize(r.Count(8));
-    for (std::vector<int>& face : poly.faces) {
-      face.resize(r.Count(8));
-      for (int& v : face) v = static_cast<int>(r.U64());
-    }
-    part.polyhedron = std::move(poly);
-    model.def.parts.push_back(std::move(part));
-    StepPartReport report;
-    report.name = r.Str();
-    report.approximated = r.Byte() != 0;
-    report.exact_faces = static_cast<int>(r.U64());
-    report.tessellated_faces = static_cast<int>(r.U64());
-    report.mesh_tolerance = r.F64();
-    report.exact_volume = r.F64();
-    report.exact_area = r.F64();
-    report.volume = r.F64();
-    model.parts.push_back(report);
-  }
-  return model;
-}
-
-void WriteError(const std::string& file, const std::string& json_path, const std::string& message,
-                Writer& w) {
-  w.Byte('E');
-  w.Str(file);
-  w.Str(json_path);
-  w.Str(message);
-}
-
-// What the child does: the model or the error, serialised. Never throws.
-std::string ReadInChild(const std::string& path, const std::string& text,
-                        const StepReadOptions& options) noexcept {
-  Writer w;
-  try {
-    WriteModel(ReadStepModel(path, text, options), w);
-  } catch (const InputError& e) {
-    w = Writer();
-    WriteError(e.file(), e.json_path(), e.message(), w);
-  } catch (const Standard_Failure& e) {
-    // OpenCASCADE's own exceptions on broken geometry: bad input, not a crash.
-    w = Writer();
-    WriteError(path, "",
-               std::string("OpenCASCADE failed on this file: ") +
-                   (e.GetMessageString() && *e.GetMessageString() ? e.GetMessageString()
-                                                                  : e.DynamicType()->Name()),
-               w);
-  } catch (const std::bad_alloc&) {
-    w = Writer();
-    WriteError(path, "",
-               "OpenCASCADE could not read this file: it needs more memory than the limit, " +
-                   DescribeByteSize(options.memory_limit),
-               w);
-  } catch (const std::exception& e) {
-    w = Writer();
-    WriteError(path, "", std::string("OpenCASCADE could not read this file: ") + e.what(), w);
-  } catch (...) {
-    w = Writer();
-    WriteError(path, "", "OpenCASCADE could not read this file", w);
-  }
-  return w.str();
+// A number as text that reads back to the same double.
+std::string Exact(double x) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.17g", x);
+  return buffer;
 }
 
 }  // namespace
@@ -883,13 +214,14 @@ StepModel ReadStepAssembly(const std::string& path, const StepReadOptions& optio
   io_internal::IsolationLimits limits;
   limits.time_limit = options.time_limit;
   limits.memory_limit = options.memory_limit;
-  const io_internal::IsolatedResult result =
-      io_internal::RunIsolated([&] { return ReadInChild(path, text, options); }, limits);
+  const io_internal::IsolatedResult result = io_internal::RunIsolatedProgram(
+      {FindStepReader(), path, Exact(options.mesh_tolerance), std::to_string(options.memory_limit)},
+      text, limits);
   using Status = io_internal::IsolatedResult::Status;
   switch (result.status) {
     case Status::kDone: {
-      Reader r(result.output);
-      if (r.Byte() == 'M') return ReadModel(r);
+      step_codec::Reader r(result.output);
+      if (r.Byte() == 'M') return step_codec::ReadModel(r);
       std::string file = r.Str(), json_path = r.Str(), message = r.Str();
       throw InputError(std::move(file), std::move(json_path), std::move(message));
     }
@@ -898,6 +230,8 @@ StepModel ReadStepAssembly(const std::string& path, const StepReadOptions& optio
                        "OpenCASCADE could not read this file (it took longer than " +
                            FormatNumber(options.time_limit) + " s)");
     case Status::kCrashed:
+      if (result.signal == 0 && result.exit_code == 127)
+        throw std::runtime_error("STEP reader: cairn-step-reader could not be started");
       throw InputError(path, "",
                        "OpenCASCADE could not read this file (it crashed" +
                            (result.signal ? " with " + io_internal::SignalName(result.signal)

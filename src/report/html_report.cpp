@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <map>
 #include <set>
+#include <utility>
 
 #include "report/report_common.h"
 #include "viewer_bundle.h"
@@ -92,10 +93,23 @@ json SceneData(const Assembly& a, const ReportOptions& options) {
 
 // --- contacts: the records --json writes (report_common.h, ContactRecord) ---
 
+// Every number of `j` to 7 significant digits (Short).
+void ShortNumbers(json& j) {
+  if (j.is_number_float()) j = Short(j.get<double>());
+  if (j.is_array() || j.is_object())
+    for (json& x : j) ShortNumbers(x);
+}
+
+// The records, their numbers short: the page of Jenga's pull (47 ticks, 29 000
+// contacts) is 5.7 MB so, 6.2 MB with every double's 17 digits.
 json Contacts(const Assembly& a, const std::vector<ContactReport>& contacts, double force_scale) {
   const double forces = ForceRoundoffScale(a, force_scale);
   json out = json::array();
-  for (const ContactReport& c : contacts) out.push_back(ContactRecord(a, c, force_scale, forces));
+  for (const ContactReport& c : contacts) {
+    json record = ContactRecord(a, c, force_scale, forces);
+    ShortNumbers(record);
+    out.push_back(std::move(record));
+  }
   return out;
 }
 
