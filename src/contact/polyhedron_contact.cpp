@@ -59,13 +59,21 @@ using MultiPolygon2 = bg::model::multi_polygon<Polygon2>;
 using Line2 = bg::model::linestring<Point2>;
 using MultiLine2 = bg::model::multi_linestring<Line2>;
 
+// A face's corner whose turn, |a × b| / (|a| |b|) = sin of its exterior
+// angle, is below this is flat (a vertex inside a straight edge) rather than
+// convex (dimensionless: the roundoff of unit vectors' cross products).
+constexpr double kCornerFlat = 1e-9;
+
 // A polyhedron placed in the world, with the adjacency the tests need.
 struct Placed {
-  std::vector<Vector3> v;                      // vertices, world
-  std::vector<Vector3> n;                      // face normals, world
-  std::vector<double> offset;                  // n · x on each face's plane
-  std::vector<Vector3> lo, hi;                 // face bounding boxes
-  std::vector<std::vector<int>> neighbours;    // vertex → adjacent vertices
+  std::vector<Vector3> v;                    // vertices, world
+  std::vector<Vector3> n;                    // face normals, world
+  std::vector<double> offset;                // n · x on each face's plane
+  std::vector<Vector3> lo, hi;               // face bounding boxes
+  std::vector<std::vector<int>> neighbours;  // vertex → adjacent vertices
+  // vertex → its corners: (previous vertex, next vertex, face), one per face
+  // around it, in the face's outward (counter-clockwise) order.
+  std::vector<std::vector<std::array<int, 3>>> corners;
   std::vector<std::array<int, 2>> edges;       // PolyhedronEdges order
   std::vector<std::array<int, 2>> edge_faces;  // edge → its two faces
   const Polyhedron* shape = nullptr;
@@ -82,6 +90,7 @@ struct Placed {
       hi.push_back(h);
     }
     neighbours.resize(v.size());
+    corners.resize(v.size());
     edges = PolyhedronEdges(p);
     edge_faces.assign(edges.size(), {-1, -1});
     for (int f = 0; f < nf; ++f) {
@@ -89,6 +98,7 @@ struct Placed {
       for (size_t i = 0; i < face.size(); ++i) {
         const int a = face[i], b = face[(i + 1) % face.size()];
         neighbours[a].push_back(b);
+        corners[b].push_back({a, face[(i + 2) % face.size()], f});
         const std::array<int, 2> key{std::min(a, b), std::max(a, b)};
         const auto e = std::lower_bound(edges.begin(), edges.end(), key) - edges.begin();
         (edge_faces[e][0] < 0 ? edge_faces[e][0] : edge_faces[e][1]) = f;
@@ -129,11 +139,31 @@ BoxGrid EdgeGrid(const Placed& P, double tol) {
   return BoxGrid(lo, hi, tol);
 }
 
-// Whether every neighbour of vertex i of P lies on the +n side of the plane
-// n · x = c (within tol): P's material near i is on that side.
+// Whether P's material near vertex i lies on the +n side of the plane
+// n · x = c (within tol): every corner of a face at i does. A corner is the
+// sector of its face between the edges a = p − v and b = q − v (p, q the
+// face's vertices before and after i). A convex corner (angle < π) lies on
+// that side when a and b do. A flat corner (i inside a straight edge of the
+// face: a and b opposite) is a half-plane, which also needs its inward
+// direction m = a × n_f on that side; a reflex one (angle > π) holds −a and
+// −b as well, so a and b must lie in the plane. Testing only the vertices
+// next to i missed both: the middle vertex of a cube's split vertical edge,
+// whose neighbours are on that edge, passed as "above" the face of a wall
+// beside the cube, and a contact whose normal was that face's held the cube
+// up by a squeeze (issue 31).
 bool MaterialAbove(const Placed& P, int i, const Vector3& n, double c, double tol) {
-  for (int j : P.neighbours[i])
-    if (n.dot(P.v[j]) - c < -tol) return false;
+  const Vector3& v = P.v[i];
+  const auto below = [&](const Vector3& d) { return n.dot(v + d) - c < -tol; };
+  for (const auto& [p, q, f] : P.corners[i]) {
+    const Vector3 a = P.v[p] - v, b = P.v[q] - v;
+    if (below(a) || below(b)) return false;
+    // Convex when turning from the edge into i to the edge out of it is a
+    // left turn about the outward normal (by more than roundoff).
+    const Vector3& nf = P.n[f];
+    const double turn = (-a).cross(b).dot(nf);
+    if (turn > kCornerFlat * a.norm() * b.norm()) continue;
+    if (below(a.cross(nf)) || below(-a) || below(-b)) return false;
+  }
   return true;
 }
 

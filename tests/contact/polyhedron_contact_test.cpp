@@ -52,6 +52,52 @@ bool HasPoint(const std::vector<PolyhedronContactPoint>& cs, const Vector3& p) {
                      [&](const PolyhedronContactPoint& c) { return (c.p_W - p).norm() < 1e-9; });
 }
 
+// A unit cube whose two vertical edges at x = 1 carry an extra vertex at
+// mid-height (8 on y = 0, 9 on y = 1): the same solid, its faces split.
+Polyhedron CubeWithSplitEdges() {
+  PolyhedronDef d;
+  for (int k = 0; k < 8; ++k) d.vertices.emplace_back(k & 1, (k >> 1) & 1, (k >> 2) & 1);
+  d.vertices.emplace_back(1, 0, 0.5);
+  d.vertices.emplace_back(1, 1, 0.5);
+  d.faces = {{0, 2, 3, 1},    {4, 5, 7, 6}, {0, 1, 8, 5, 4},
+             {2, 6, 7, 9, 3}, {0, 4, 6, 2}, {1, 3, 9, 7, 5, 8}};
+  return Polyhedron::Create(d, kTol);
+}
+
+// The cube beside a wall (x from 1 to 2), touching only its face x = 1: with
+// the edges split, the middle vertices lie on the edges of the wall's faces
+// y = 0 and y = 1, but the cube is beside those faces, not across them, so
+// they add no contact (issue 31: their normals (0, ±1, 0) made a squeeze
+// that held the falling cube up). The contacts are the face-face patch
+// alone, as without the split, the points at the split vertices aside.
+TEST(PolyhedronContact, AVertexInsideAStraightEdgeBesideAFaceAddsNoContact) {
+  const Polyhedron wall = Box({1, 0, 0}, {2, 1, 1});
+  for (const Polyhedron& cube : {Box({0, 0, 0}, {1, 1, 1}), CubeWithSplitEdges()}) {
+    for (const bool swap : {false, true}) {
+      const auto cs = swap ? Contacts(wall, Iso::Identity(), cube, Iso::Identity())
+                           : Contacts(cube, Iso::Identity(), wall, Iso::Identity());
+      ASSERT_FALSE(cs.empty());
+      for (const auto& c : cs) {
+        EXPECT_EQ(c.kind, ContactKind3::kFaceFace) << c.p_W.transpose();
+        EXPECT_NEAR(std::abs(c.n_W.x()), 1.0, 1e-12) << c.p_W.transpose();
+        EXPECT_NEAR(c.p_W.x(), 1.0, 1e-12);
+      }
+      for (const Vector3& p :
+           {Vector3(1, 0, 0), Vector3(1, 1, 0), Vector3(1, 1, 1), Vector3(1, 0, 1)})
+        EXPECT_TRUE(HasPoint(cs, p)) << p.transpose();
+    }
+  }
+}
+
+// The same cube on a table: the split vertices are above the table, and its
+// bottom face is one patch of four points either way.
+TEST(PolyhedronContact, SplitEdgesLeaveACubesRestingContactsAsTheyWere) {
+  const Polyhedron table = Box({-2, -2, -1}, {2, 2, 0});
+  const auto cs = Contacts(CubeWithSplitEdges(), Iso::Identity(), table, Iso::Identity());
+  ASSERT_EQ(cs.size(), 4u);
+  for (const auto& c : cs) EXPECT_NEAR((c.n_W - Vector3::UnitZ()).norm(), 0.0, 1e-12);
+}
+
 TEST(PolyhedronContact, ACubeOnATableTouchesWithItsWholeBottomFace) {
   const Polyhedron table = Box({-2, -2, -1}, {2, 2, 0});
   const Polyhedron cube = Box({0, 0, 0}, {1, 1, 1});

@@ -172,6 +172,38 @@ AssemblyDef DiamondOverEdge(double c, double mu) {
   return def;
 }
 
+// A free cube beside a fixed wall, touching only its vertical face x = 1 and
+// nothing below it, falls: no equilibrium exists at any μ. With the cube's
+// vertical edges at x = 1 split at mid-height (the same solid), the verdict
+// and the contacts are the same (issue 31: the split vertices gave contacts
+// with normals (0, ±1, 0) whose squeeze made it "weakly stable").
+TEST(CubeBesideAWall, FallsWithItsEdgesSplitOrNot) {
+  for (const bool split : {false, true}) {
+    SCOPED_TRACE(split ? "split edges" : "plain");
+    AssemblyDef def;
+    def.friction = 0.5;
+    PartDef cube = Box3("cube", {0, 0, 0}, {1, 1, 1});
+    if (split) {
+      PolyhedronDef& p = *cube.polyhedron;
+      // Box3's vertex k is at (x, y, z) = (k & 1, k & 2, k & 4) of the box.
+      p.vertices.emplace_back(1, 0, 0.5);  // 8: on the edge 1–5 (y = 0)
+      p.vertices.emplace_back(1, 1, 0.5);  // 9: on the edge 3–7 (y = 1)
+      p.faces = {{0, 2, 3, 1},    {4, 5, 7, 6}, {0, 1, 8, 5, 4},
+                 {2, 6, 7, 9, 3}, {0, 4, 6, 2}, {1, 3, 9, 7, 5, 8}};
+    }
+    def.parts = {Box3("wall", {1, 0, 0}, {2, 1, 1}, true), cube};
+    const Assembly a = Assembly::Create(def);
+    const StabilityResult r = Check(a);
+    EXPECT_FALSE(r.stable());
+    ASSERT_TRUE(r.static_equilibrium.has_value());
+    EXPECT_FALSE(*r.static_equilibrium);
+    for (const ContactReport& c : r.contacts) EXPECT_NEAR(std::abs(c.contact.n_W.x()), 1.0, 1e-12);
+    const PartMotion* m = MotionOf(a, r, "cube");
+    ASSERT_NE(m, nullptr);
+    EXPECT_LT(m->linear.z(), 0.0);
+  }
+}
+
 TEST(DiagonalOverhang, StandsIffTheCentroidIsOverTheTable) {
   for (const double mu : {0.0, 0.5}) {
     for (const double c : {-0.05, 0.05}) {
