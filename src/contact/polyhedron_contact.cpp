@@ -66,11 +66,10 @@ constexpr double kCornerFlat = 1e-9;
 
 // A polyhedron placed in the world, with the adjacency the tests need.
 struct Placed {
-  std::vector<Vector3> v;                    // vertices, world
-  std::vector<Vector3> n;                    // face normals, world
-  std::vector<double> offset;                // n · x on each face's plane
-  std::vector<Vector3> lo, hi;               // face bounding boxes
-  std::vector<std::vector<int>> neighbours;  // vertex → adjacent vertices
+  std::vector<Vector3> v;       // vertices, world
+  std::vector<Vector3> n;       // face normals, world
+  std::vector<double> offset;   // n · x on each face's plane
+  std::vector<Vector3> lo, hi;  // face bounding boxes
   // vertex → its corners: (previous vertex, next vertex, face), one per face
   // around it, in the face's outward (counter-clockwise) order.
   std::vector<std::vector<std::array<int, 3>>> corners;
@@ -89,7 +88,6 @@ struct Placed {
       lo.push_back(l);
       hi.push_back(h);
     }
-    neighbours.resize(v.size());
     corners.resize(v.size());
     edges = PolyhedronEdges(p);
     edge_faces.assign(edges.size(), {-1, -1});
@@ -97,7 +95,6 @@ struct Placed {
       const auto& face = p.faces()[f];
       for (size_t i = 0; i < face.size(); ++i) {
         const int a = face[i], b = face[(i + 1) % face.size()];
-        neighbours[a].push_back(b);
         corners[b].push_back({a, face[(i + 2) % face.size()], f});
         const std::array<int, 2> key{std::min(a, b), std::max(a, b)};
         const auto e = std::lower_bound(edges.begin(), edges.end(), key) - edges.begin();
