@@ -116,6 +116,9 @@ void NoteApproximations(const std::string& file, const StepModel& step, std::ost
           << " m (chordal), " << r.exact_faces << " planar face" << (r.exact_faces == 1 ? "" : "s")
           << " exact; volume " << FormatNumber(r.volume) << " m^3 against "
           << FormatNumber(r.exact_volume) << " m^3 exact (" << percent << ")\n";
+    if (!r.fallback.empty())
+      notes << "cairn: note: " << file << ": part '" << EscapedName(r.name) << "': " << r.fallback
+            << "\n";
   }
 }
 

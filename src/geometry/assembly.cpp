@@ -7,6 +7,7 @@
 #include <numeric>
 #include <optional>
 #include <unordered_map>
+#include <variant>
 
 #include "cairn/core/check.h"
 #include "cairn/core/error.h"
@@ -212,9 +213,10 @@ Part Make2dPart(const PartDef& p, const std::string& path, double tol, const Val
 
 // A 3-D part's validated polyhedron and mass properties.
 Part Make3dPart(const PartDef& p, const std::string& path, double tol, const Validator& check) {
-  if (const auto fault = Polyhedron::Check(*p.polyhedron, tol)) check.Fail(path, fault->message);
+  auto made = Polyhedron::CheckAndCreate(*p.polyhedron, tol);
+  if (const auto* fault = std::get_if<PolyhedronFault>(&made)) check.Fail(path, fault->message);
   Part part;
-  part.polyhedron = std::make_shared<const Polyhedron>(Polyhedron::Create(*p.polyhedron, tol));
+  part.polyhedron = std::make_shared<const Polyhedron>(std::get<Polyhedron>(std::move(made)));
   part.vertices = part.polyhedron->vertices();
   const PolyhedronMass& pm = part.polyhedron->mass();
   part.area = pm.volume;

@@ -6,6 +6,7 @@
 #include <limits>
 #include <map>
 #include <numeric>
+#include <optional>
 #include <queue>
 #include <stdexcept>
 #include <utility>
@@ -586,8 +587,16 @@ std::optional<PolyhedronFault> Polyhedron::Check(const PolyhedronDef& def, doubl
 }
 
 Polyhedron Polyhedron::Create(const PolyhedronDef& def, double tol) {
+  auto made = CheckAndCreate(def, tol);
+  if (auto* fault = std::get_if<PolyhedronFault>(&made))
+    throw std::invalid_argument(fault->message);
+  return std::get<Polyhedron>(std::move(made));
+}
+
+std::variant<Polyhedron, PolyhedronFault> Polyhedron::CheckAndCreate(const PolyhedronDef& def,
+                                                                     double tol) {
   Checked checked;
-  if (const auto fault = Validate(def, tol, checked)) throw std::invalid_argument(fault->message);
+  if (auto fault = Validate(def, tol, checked)) return std::move(*fault);
   Polyhedron p;
   p.vertices_ = def.vertices;
   p.faces_ = std::move(checked.faces);
@@ -656,10 +665,51 @@ struct Triangles {
   }
 };
 
+// The parity of the crossings of the ray from p straight up (+z) with the
+// closed surface `tris`: odd inside, even outside. Only the triangles the grid
+// puts in the ray's column can cross it. A crossing is counted where (p.x,
+// p.y) lies strictly inside the triangle's projection on the xy plane (the
+// signed areas w0, w1, w2 of its sub-triangles all of the sign of the whole,
+// d) and the hit, z = (w0 a.z + w1 b.z + w2 c.z) / d, is above p. Where the
+// ray grazes an edge or a vertex, or a vertical triangle (|w| within
+// kGraze of the triangle's area scale), parity is not defined: nullopt, and
+// the caller takes the winding number instead.
+std::optional<bool> RayParityInside(const Triangles& tris, const Vector3& p) {
+  // Relative to the triangle's squared size: a signed area this small is a
+  // graze (dimensionless).
+  constexpr double kGraze = 1e-10;
+  const Vector3 top(p.x(), p.y(), std::max(p.z(), tris.hi.z()));
+  bool inside = false;
+  for (const int k : tris.grid.Query(p, top)) {
+    const auto& c = tris.corners[k];
+    const auto orient = [](const Vector3& u, const Vector3& v, const Vector3& q) {
+      return (v.x() - u.x()) * (q.y() - u.y()) - (v.y() - u.y()) * (q.x() - u.x());
+    };
+    const double w0 = orient(c[1], c[2], p), w1 = orient(c[2], c[0], p), w2 = orient(c[0], c[1], p);
+    const double scale = std::max(
+        {(c[1] - c[0]).squaredNorm(), (c[2] - c[1]).squaredNorm(), (c[0] - c[2]).squaredNorm()});
+    const double eps = kGraze * scale;
+    const bool pos = w0 > eps && w1 > eps && w2 > eps;
+    const bool neg = w0 < -eps && w1 < -eps && w2 < -eps;
+    if (!pos && !neg) {
+      // Outside the projection unless every |w| is small or all lean one way.
+      const bool out = (w0 < -eps || w1 < -eps || w2 < -eps) && (w0 > eps || w1 > eps || w2 > eps);
+      if (out) continue;
+      return std::nullopt;  // on an edge or a vertex of the projection
+    }
+    const double d = w0 + w1 + w2;
+    const double z = (w0 * c[0].z() + w1 * c[1].z() + w2 * c[2].z()) / d;
+    if (z > p.z()) inside = !inside;
+  }
+  return inside;
+}
+
 // SignedDistance(poly, p) < −tol for a point p in poly's own frame, cheapest
 // test first: outside the bounding box grown by tol it cannot be; within tol
 // of a triangle (only those the grid puts near p can be) it is not; only
-// then the winding number (inside at all?), which needs every triangle.
+// then inside at all?, by the ray's parity (RayParityInside: the triangles of
+// one column), or where the ray grazes an edge, by the winding number, which
+// needs every triangle.
 bool DeeperInside(const Triangles& tris, const Vector3& p, double tol) {
   if ((p.array() < tris.lo.array() - tol).any() || (p.array() > tris.hi.array() + tol).any())
     return false;
@@ -667,6 +717,7 @@ bool DeeperInside(const Triangles& tris, const Vector3& p, double tol) {
     const auto& c = tris.corners[k];
     if ((ClosestPointOnTriangle(p, c[0], c[1], c[2]) - p).norm() <= tol) return false;
   }
+  if (const std::optional<bool> parity = RayParityInside(tris, p)) return *parity;
   double winding = 0;
   for (const auto& c : tris.corners) winding += SolidAngle(c[0] - p, c[1] - p, c[2] - p);
   return winding > 2 * M_PI;

@@ -96,6 +96,7 @@ inline void WriteModel(const StepModel& model, Writer& w) {
     w.F64(r.exact_volume);
     w.F64(r.exact_area);
     w.F64(r.volume);
+    w.Str(r.fallback);
   }
 }
 
@@ -131,6 +132,7 @@ inline StepModel ReadModel(Reader& r) {
     report.exact_volume = r.F64();
     report.exact_area = r.F64();
     report.volume = r.F64();
+    report.fallback = r.Str();
     model.parts.push_back(report);
   }
   return model;

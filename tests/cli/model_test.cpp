@@ -12,6 +12,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <string>
@@ -92,11 +93,25 @@ Vector3 ForceOn(const json& doc, const std::string& a) {
 }
 
 // Every free block balanced by the reported contact forces: their sum on it
-// is its weight, 9.81 × mass, straight up (COMPAS gravity is −z).
+// is its weight, 9.81 × mass, straight up (COMPAS gravity is −z). The forces
+// are summed in one pass over the contacts (ForceOn per part would read the
+// document parts × contacts times: a minute on the Armadillo vault's 399
+// blocks and 5031 contacts in the sanitized build).
 void ExpectEveryBlockBalanced(const json& doc) {
+  std::map<std::string, Vector3> force;
+  for (const json& c : doc["contacts"]) {
+    Vector3 on_first;
+    for (int k = 0; k < 3; ++k)
+      on_first[k] = c["normal_force"].get<double>() * c["normal"][k].get<double>() +
+                    c["friction_force"][k].get<double>();
+    const std::string a = c["parts"][0], b = c["parts"][1];
+    force.try_emplace(a, Vector3::Zero()).first->second += on_first;
+    force.try_emplace(b, Vector3::Zero()).first->second -= on_first;
+  }
   for (const json& p : doc["parts"]) {
     if (p["fixed"]) continue;
-    const Vector3 f = ForceOn(doc, p["name"]);
+    const auto it = force.find(p["name"]);
+    const Vector3 f = it == force.end() ? Vector3::Zero() : it->second;
     const double w = 9.81 * p["mass"].get<double>();
     EXPECT_NEAR(f.z(), w, 1e-6 * w) << p["name"];
     EXPECT_NEAR(f.head<2>().norm(), 0, 1e-6 * w) << p["name"];

@@ -522,5 +522,38 @@ TEST(PolyhedronOverlap, ANonConvexSolidsCentroidIsNotSampledWhenOutsideIt) {
   EXPECT_TRUE(FindPolyhedronOverlap(in_arm, I, l, I, kTol));
 }
 
+// Whether a sample lies inside is decided by the parity of a vertical ray's
+// crossings, and by the winding number where the ray grazes an edge or runs
+// in a vertical face: small cubes on a grid of step 0.25 over the L prism put
+// samples exactly over its vertical faces (x or y = 0, 1, 3) and the diagonals
+// of its triangulated caps. Each overlaps exactly when its box meets one of
+// the L's two arms (by at least 0.05: the grid keeps the cubes' faces off the
+// L's), in both orders.
+TEST(PolyhedronOverlap, SamplesOverEdgesAndVerticalFacesAreJudgedRight) {
+  const double h = 2;
+  const Polyhedron l = Polyhedron::Create(LPrism(h), kTol);
+  const Eigen::Isometry3d I = Eigen::Isometry3d::Identity();
+  const std::array<std::array<double, 4>, 2> arms = {{{0, 3, 0, 1}, {0, 1, 1, 3}}};
+  int overlaps = 0, cases = 0;
+  for (int i = -1; i <= 13; ++i)
+    for (int j = -1; j <= 13; ++j)
+      for (const double z : {0.5, 1.0, 2.25}) {
+        const Vector3 c(0.25 * i, 0.25 * j, z);
+        bool expected = false;
+        for (const auto& arm : arms)
+          expected |= c.x() >= arm[0] && c.x() <= arm[1] && c.y() >= arm[2] && c.y() <= arm[3] &&
+                      c.z() <= h;
+        const Polyhedron cube =
+            Polyhedron::Create(Box(0.1, 0.1, 0.1, c - Vector3(0.05, 0.05, 0.05)), kTol);
+        SCOPED_TRACE(testing::Message() << "cube at " << c.transpose());
+        EXPECT_EQ(FindPolyhedronOverlap(l, I, cube, I, kTol).has_value(), expected);
+        EXPECT_EQ(FindPolyhedronOverlap(cube, I, l, I, kTol).has_value(), expected);
+        overlaps += expected;
+        ++cases;
+      }
+  EXPECT_EQ(cases, 15 * 15 * 3);
+  EXPECT_GT(overlaps, 100);
+}
+
 }  // namespace
 }  // namespace cairn

@@ -13,6 +13,7 @@
 #include <array>
 #include <optional>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include "cairn/core/types.h"
@@ -54,6 +55,10 @@ class Polyhedron {
   /// As Check, but builds the polyhedron. @throws std::invalid_argument with
   /// the fault's message when Check finds one.
   static Polyhedron Create(const PolyhedronDef& def, double tol);
+  /// Check and Create in one validation (the costly part of both, O(faces²)
+  /// for a mesh): the polyhedron, or the fault Check would return.
+  static std::variant<Polyhedron, PolyhedronFault> CheckAndCreate(const PolyhedronDef& def,
+                                                                  double tol);
 
   const std::vector<Vector3>& vertices() const { return vertices_; }
   /// Faces oriented outward (counter-clockwise seen from outside).

@@ -103,6 +103,10 @@ struct StepPartReport {
   double exact_volume = 0;    ///< m³, of the exact solid (OCCT's BRepGProp)
   double exact_area = 0;      ///< m², of the exact solid's surface (BRepGProp)
   double volume = 0;          ///< m³, of the polyhedron the model holds
+  /// What the reader did where OpenCASCADE's mesher failed, e.g. "face 6 (a
+  /// cone) could not be meshed: the part was converted to B-spline surfaces
+  /// and meshed again"; empty when the mesher succeeded at once.
+  std::string fallback;
 };
 
 /// A STEP assembly as Cairn's model.

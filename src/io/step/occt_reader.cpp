@@ -12,7 +12,8 @@
 //   4. OneSolid: each leaf's single solid, closed (no free edge).
 //   5. The chordal tolerance: one for the assembly (step_reader.h).
 //   6. ToPolyhedron: exact planar faces and tessellated others, welded, the
-//      tessellated triangles merged where coplanar.
+//      tessellated triangles merged where coplanar; a solid OpenCASCADE's
+//      mesher fails on converted to B-spline surfaces and meshed again.
 //   7. The model or the error, serialised (step_codec.h).
 
 #include "io/step/occt_reader.h"
@@ -20,6 +21,7 @@
 #include <BRepAdaptor_Curve.hxx>
 #include <BRepAdaptor_Surface.hxx>
 #include <BRepBndLib.hxx>
+#include <BRepBuilderAPI_NurbsConvert.hxx>
 #include <BRepGProp.hxx>
 #include <BRepMesh_IncrementalMesh.hxx>
 #include <BRepTools.hxx>
@@ -392,12 +394,86 @@ std::vector<Vector3> ExactPolygon(const TopoDS_Face& face, const Handle(Poly_Tri
   return polygon;
 }
 
-// 6. The polyhedron of one solid (placed, in metres), tessellated to
-// `deflection` (the file's unit).
-PolyhedronDef ToPolyhedron(const TopoDS_Solid& solid, double deflection, double unit, double size_m,
-                           double merge_tol, StepPartReport& report) {
+// The name of a face's surface type, for the notes.
+std::string SurfaceKind(const TopoDS_Face& face) {
+  switch (BRepAdaptor_Surface(face).GetType()) {
+    case GeomAbs_Plane:
+      return "plane";
+    case GeomAbs_Cylinder:
+      return "cylinder";
+    case GeomAbs_Cone:
+      return "cone";
+    case GeomAbs_Sphere:
+      return "sphere";
+    case GeomAbs_Torus:
+      return "torus";
+    case GeomAbs_BezierSurface:
+      return "Bezier surface";
+    case GeomAbs_BSplineSurface:
+      return "B-spline surface";
+    case GeomAbs_SurfaceOfRevolution:
+      return "surface of revolution";
+    case GeomAbs_SurfaceOfExtrusion:
+      return "surface of extrusion";
+    case GeomAbs_OffsetSurface:
+      return "offset surface";
+    default:
+      return "surface";
+  }
+}
+
+// BRepMesh over `solid` to `deflection`; the index of the first face it left
+// without triangles (TopExp_Explorer's order), or −1.
+int Mesh(const TopoDS_Solid& solid, double deflection) {
   const BRepMesh_IncrementalMesh mesher(solid, deflection, false, kMeshAngularDeflection, false);
   if (!mesher.IsDone()) throw Standard_Failure("BRepMesh_IncrementalMesh did not finish");
+  int face_index = 0;
+  for (TopExp_Explorer e(solid, TopAbs_FACE); e.More(); e.Next(), ++face_index) {
+    TopLoc_Location loc;
+    if (BRep_Tool::Triangulation(TopoDS::Face(e.Current()), loc).IsNull()) return face_index;
+  }
+  return -1;
+}
+
+// 6a. The solid meshed. OpenCASCADE's mesher leaves some valid faces without
+// triangles (cones whose parametrisation it mishandles: OCCT issue #572, the
+// shear mold's part 14_001 and the APLAN benchmark's pump and clutch). Then
+// the whole solid is converted to B-spline surfaces (BRepBuilderAPI_NurbsConvert:
+// the same geometry, the topology kept, so shared edges stay shared) and
+// meshed again, and the part's note says so. Its planar faces, B-splines
+// now, are tessellated too, and merged back into polygons with the others.
+TopoDS_Solid MeshedSolid(const TopoDS_Solid& solid, double deflection, StepPartReport& report) {
+  const int failed = Mesh(solid, deflection);
+  if (failed < 0) return solid;
+  TopExp_Explorer e(solid, TopAbs_FACE);
+  for (int k = 0; k < failed; ++k) e.Next();
+  const std::string what =
+      "face " + std::to_string(failed) + " (a " + SurfaceKind(TopoDS::Face(e.Current())) + ")";
+  BRepBuilderAPI_NurbsConvert convert(solid, true);
+  TopoDS_Solid nurbs;
+  if (convert.IsDone())
+    for (TopExp_Explorer s(convert.Shape(), TopAbs_SOLID); s.More() && nurbs.IsNull(); s.Next())
+      nurbs = TopoDS::Solid(s.Current());
+  if (nurbs.IsNull())
+    throw Standard_Failure((what + " has no triangles, and the solid cannot be converted to "
+                                   "B-spline surfaces")
+                               .c_str());
+  const int again = Mesh(nurbs, deflection);
+  if (again >= 0)
+    throw Standard_Failure((what + " has no triangles, nor face " + std::to_string(again) +
+                            " of the solid converted to B-spline surfaces")
+                               .c_str());
+  report.fallback = what +
+                    " could not be meshed by OpenCASCADE: the part was converted to B-spline "
+                    "surfaces and meshed again";
+  return nurbs;
+}
+
+// 6. The polyhedron of one solid (placed, in metres), tessellated to
+// `deflection` (the file's unit).
+PolyhedronDef ToPolyhedron(const TopoDS_Solid& exact, double deflection, double unit, double size_m,
+                           double merge_tol, StepPartReport& report) {
+  const TopoDS_Solid solid = MeshedSolid(exact, deflection, report);
   Welder welder(kWeldFactor * size_m);
   std::vector<std::array<int, 3>> triangles;
   std::vector<std::vector<int>> polygons;
