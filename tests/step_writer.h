@@ -5,6 +5,7 @@
 // STEPCAFControl_Writer, as a CAD system would export it.
 #include <BRepAlgoAPI_Cut.hxx>
 #include <BRepPrimAPI_MakeBox.hxx>
+#include <BRepPrimAPI_MakeCylinder.hxx>
 #include <BRep_Builder.hxx>
 #include <Message.hxx>
 #include <Message_Messenger.hxx>
@@ -20,6 +21,7 @@
 #include <XCAFApp_Application.hxx>
 #include <XCAFDoc_DocumentTool.hxx>
 #include <XCAFDoc_ShapeTool.hxx>
+#include <cmath>
 #include <gp_Trsf.hxx>
 #include <string>
 #include <vector>
@@ -114,6 +116,13 @@ inline gp_Trsf Translation(double x, double y, double z) {
 
 inline TopoDS_Shape Box(double x0, double y0, double z0, double x1, double y1, double z1) {
   return BRepPrimAPI_MakeBox(gp_Pnt(x0, y0, z0), gp_Pnt(x1, y1, z1)).Shape();
+}
+
+/// A cylinder of radius r standing on (x, y, z0), height h, along +z, its
+/// parametrisation's origin (its seam) turned by `turn` radians about z.
+inline TopoDS_Shape Cylinder(double x, double y, double z0, double r, double h, double turn = 0) {
+  const gp_Ax2 axes(gp_Pnt(x, y, z0), gp_Dir(0, 0, 1), gp_Dir(std::cos(turn), std::sin(turn), 0));
+  return BRepPrimAPI_MakeCylinder(axes, r, h).Shape();
 }
 
 // The test model, in millimetres (the equivalent scene: PegSceneJson, in

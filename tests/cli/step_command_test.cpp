@@ -358,6 +358,46 @@ TEST(StepCommand, BourjaultPenPlanFindsDisassemblySequences) {
   }
 }
 
+// Pins in the holes of a plate (mm), written by OpenCASCADE: `tight` of the
+// hole's radius, 5 (the surfaces coincide), and `line` of radius 4.9 moved 0.1
+// along +x, touching its hole along one line; each pin's seam turned 0.1 rad
+// from its hole's. They load at the defaults. Along the pins' axis everything
+// slides free; across it each pin and the plate block each other (a pin with
+// its 0.2 mm of play is still blocked on the way to infinity), and along x
+// the pins block each other.
+TEST(StepCommand, PinsInHolesLoadAndBlockAcrossTheirAxisOnly) {
+  const std::string dir = testing::TempDir("step_pins");
+  std::filesystem::create_directories(dir);
+  const std::string step = dir + "/pins.step";
+  const TopoDS_Shape plate = BRepAlgoAPI_Cut(BRepAlgoAPI_Cut(testing::Box(0, 0, 0, 60, 40, 10),
+                                                             testing::Cylinder(15, 20, -1, 5, 12))
+                                                 .Shape(),
+                                             testing::Cylinder(45, 20, -1, 5, 12))
+                                 .Shape();
+  ASSERT_TRUE(
+      testing::WriteStepAssembly(step, "pins",
+                                 {{"plate", plate, gp_Trsf()},
+                                  {"tight", testing::Cylinder(15, 20, -10, 5, 30), gp_Trsf()},
+                                  {"line", testing::Cylinder(45.1, 20, -10, 4.9, 30), gp_Trsf()}}));
+  const auto up = Cairn("blocking " + step + " --format step --direction 0,0,1 --json");
+  ASSERT_EQ(up.exit_code, 0) << up.err;
+  EXPECT_EQ(InfinityArcs(up.out), Arcs{});
+  const Arcs pins_and_plate = {
+      {"line", "plate"}, {"plate", "line"}, {"plate", "tight"}, {"tight", "plate"}};
+  // Along ±x the pins also meet each other on the way out.
+  Arcs plus_x = pins_and_plate, minus_x = pins_and_plate;
+  plus_x.insert({"tight", "line"});
+  minus_x.insert({"line", "tight"});
+  for (const auto& [d, expected] : std::vector<std::pair<std::string, Arcs>>{
+           {"1,0,0", plus_x}, {"-1,0,0", minus_x}, {"0,1,0", pins_and_plate}}) {
+    SCOPED_TRACE(d);
+    const auto across = Cairn("blocking " + step + " --format step --direction " + d + " --json");
+    ASSERT_EQ(across.exit_code, 0) << across.err;
+    EXPECT_EQ(InfinityArcs(across.out), expected);
+  }
+  std::filesystem::remove_all(dir);
+}
+
 // ASAP's beams on their posts (README): every mesh loads; a top beam leaves
 // straight up, and the post under it is held by it. (Beam 0 and its post 2
 // only: the full assembly, whose base beam has 24 606 triangles, takes 35 s
