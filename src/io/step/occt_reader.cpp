@@ -66,6 +66,7 @@
 #include <new>
 #include <set>
 #include <sstream>
+#include <variant>
 
 #include "cairn/core/error.h"
 #include "cairn/core/format.h"
@@ -637,8 +638,9 @@ StepModel ReadStepModel(const std::string& path, const std::string& text,
                                                                            : "OpenCASCADE") +
                             ")");
     }
-    if (!Polyhedron::Check(*part.polyhedron, tol))
-      report.volume = Polyhedron::Create(*part.polyhedron, tol).mass().volume;
+    const auto made = Polyhedron::CheckAndCreate(*part.polyhedron, tol);
+    if (const auto* polyhedron = std::get_if<Polyhedron>(&made))
+      report.volume = polyhedron->mass().volume;
     model.def.parts.push_back(std::move(part));
     model.parts.push_back(report);
   }
