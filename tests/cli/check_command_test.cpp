@@ -28,6 +28,11 @@ struct ExampleVerdict {
   int exit_code;
 };
 
+// Its CTest name's "GetParam() = ...": the case, not the struct's bytes.
+void PrintTo(const ExampleVerdict& c, std::ostream* os) {
+  *os << c.file << " without '" << c.without << "'";
+}
+
 class BundledExamples : public ::testing::TestWithParam<ExampleVerdict> {};
 
 TEST_P(BundledExamples, ExitCodeIsTheVerdict) {

@@ -323,6 +323,8 @@ struct CompasCase {
   std::string file, options;
 };
 
+void PrintTo(const CompasCase& c, std::ostream* os) { *os << c.file << " " << c.options; }
+
 class CompasFrictionMargin : public ::testing::TestWithParam<CompasCase> {};
 
 std::string Number(double x) {

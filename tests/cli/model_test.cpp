@@ -838,6 +838,8 @@ struct SharedCase {
   const char* model;
 };
 
+void PrintTo(const SharedCase& c, std::ostream* os) { *os << c.file << " " << c.model; }
+
 class EveryFriction : public ::testing::TestWithParam<SharedCase> {};
 
 TEST_P(EveryFriction, AVerdictWithItsEvidence) {

@@ -14,11 +14,11 @@ namespace {
 using testing::Box;
 using testing::Box3;
 
-constexpr double kTol = 1e-9;
-constexpr double kAngle = 1e-6;
+constexpr double kCornerTol = 1e-9;
+constexpr double kCornerAngle = 1e-6;
 
 std::vector<Contact> Detect(const Assembly& a) {
-  return DetectContacts(a, Configuration::Assembled(a), kTol, kAngle);
+  return DetectContacts(a, Configuration::Assembled(a), kCornerTol, kCornerAngle);
 }
 
 // The contacts between the parts named x and y (either order).
@@ -73,7 +73,7 @@ TEST(CornerRule, AFlushJointAcrossAGapKeepsOnlyTheFlushSurfacesNormal) {
   // The pair detector alone still finds both candidates.
   std::vector<Contact> raw;
   DetectPairContacts(a.part(a.FindPart("B")).polygon, a.part(a.FindPart("L")).polygon, 0, 1, 0,
-                     kTol, kAngle, raw);
+                     kCornerTol, kCornerAngle, raw);
   EXPECT_EQ(raw.size(), 2u);
   // B–S: the two ends of the overlap x ∈ [2.5, 4], upwards.
   const auto bs = Between(a, cs, "B", "S");

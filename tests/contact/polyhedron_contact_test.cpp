@@ -11,8 +11,8 @@
 namespace cairn {
 namespace {
 
-constexpr double kTol = 1e-9;
-constexpr double kAngle = 1e-6;
+constexpr double kPatchTol = 1e-9;
+constexpr double kPatchAngle = 1e-6;
 using Iso = Eigen::Isometry3d;
 
 Polyhedron Box(const Vector3& lo, const Vector3& hi) {
@@ -21,7 +21,7 @@ Polyhedron Box(const Vector3& lo, const Vector3& hi) {
     d.vertices.emplace_back(k & 1 ? hi.x() : lo.x(), k & 2 ? hi.y() : lo.y(),
                             k & 4 ? hi.z() : lo.z());
   d.faces = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
-  return Polyhedron::Create(d, kTol);
+  return Polyhedron::Create(d, kPatchTol);
 }
 
 // A triangular prism along `axis` (x or y) with its ridge up (apex at z = h)
@@ -39,12 +39,12 @@ Polyhedron Prism(char axis, bool ridge_up, double length, double h) {
     }
   }
   d.faces = {{0, 1, 2}, {3, 5, 4}, {0, 3, 4, 1}, {1, 4, 5, 2}, {2, 5, 3, 0}};
-  return Polyhedron::Create(d, kTol);
+  return Polyhedron::Create(d, kPatchTol);
 }
 
 std::vector<PolyhedronContactPoint> Contacts(const Polyhedron& a, const Iso& xa,
                                              const Polyhedron& b, const Iso& xb) {
-  return FindPolyhedronContacts(a, xa, b, xb, kTol, kAngle);
+  return FindPolyhedronContacts(a, xa, b, xb, kPatchTol, kPatchAngle);
 }
 
 bool HasPoint(const std::vector<PolyhedronContactPoint>& cs, const Vector3& p) {
@@ -61,7 +61,7 @@ Polyhedron CubeWithSplitEdges() {
   d.vertices.emplace_back(1, 1, 0.5);
   d.faces = {{0, 2, 3, 1},    {4, 5, 7, 6}, {0, 1, 8, 5, 4},
              {2, 6, 7, 9, 3}, {0, 4, 6, 2}, {1, 3, 9, 7, 5, 8}};
-  return Polyhedron::Create(d, kTol);
+  return Polyhedron::Create(d, kPatchTol);
 }
 
 // The cube beside a wall (x from 1 to 2), touching only its face x = 1: with
@@ -210,7 +210,7 @@ TEST(PolyhedronContact, NonConvexFacesAreClippedExactly) {
     for (const auto& p : xy) l.vertices.emplace_back(p[0], p[1], z);
   l.faces = {{5, 4, 3, 2, 1, 0}, {6, 7, 8, 9, 10, 11}};
   for (int i = 0; i < 6; ++i) l.faces.push_back({i, (i + 1) % 6, (i + 1) % 6 + 6, i + 6});
-  const Polyhedron L = Polyhedron::Create(l, kTol);
+  const Polyhedron L = Polyhedron::Create(l, kPatchTol);
 
   const auto whole = Contacts(Box({0, 0, 1}, {2, 2, 2}), Iso::Identity(), L, Iso::Identity());
   ASSERT_EQ(whole.size(), 6u);

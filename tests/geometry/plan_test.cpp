@@ -9,18 +9,14 @@
 #include <string>
 
 #include "cairn/core/error.h"
+#include "scene_builders.h"
 
 namespace cairn {
 namespace {
 
 using ::testing::HasSubstr;
 
-PartDef Box(const std::string& name, double x0, double y0, double x1, double y1) {
-  PartDef p;
-  p.name = name;
-  p.polygon = {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}};
-  return p;
-}
+using testing::Box;
 
 // The blocks of paper Fig. 1 (examples/paper_fig1.json): A-D on the fixed
 // table E, plus a gripper pad G (a tool) lying on the table at the right.

@@ -12,7 +12,7 @@ namespace cairn {
 namespace {
 
 constexpr double kTol = 1e-6;  // planarity / intersection tolerance (length)
-constexpr double kEps = 1e-12;
+constexpr double kPolyhedronEps = 1e-12;
 
 using Faces = std::vector<std::vector<int>>;
 
@@ -142,13 +142,14 @@ bool Contains(const std::string& s, const std::string& part) {
 TEST(ComputePolyhedronMass, UnitCube) {
   const Polyhedron p = Polyhedron::Create(UnitCube(), kTol);
   const PolyhedronMass& m = p.mass();
-  EXPECT_NEAR(m.volume, 1, kEps);
-  EXPECT_LE((m.centroid - Vector3(0.5, 0.5, 0.5)).norm(), kEps);
+  EXPECT_NEAR(m.volume, 1, kPolyhedronEps);
+  EXPECT_LE((m.centroid - Vector3(0.5, 0.5, 0.5)).norm(), kPolyhedronEps);
   for (int i = 0; i < 3; ++i) {
-    for (int j = 0; j < 3; ++j) EXPECT_NEAR(m.inertia(i, j), i == j ? 1.0 / 6 : 0.0, kEps);
+    for (int j = 0; j < 3; ++j)
+      EXPECT_NEAR(m.inertia(i, j), i == j ? 1.0 / 6 : 0.0, kPolyhedronEps);
   }
   // The free function on the triangles agrees with the polyhedron's own.
-  ExpectMassNear(ComputePolyhedronMass(p.vertices(), AllTriangles(p)), m, kEps);
+  ExpectMassNear(ComputePolyhedronMass(p.vertices(), AllTriangles(p)), m, kPolyhedronEps);
 }
 
 TEST(ComputePolyhedronMass, BoxMatchesClosedForm) {
@@ -225,8 +226,8 @@ TEST(PolyhedronOrientation, OutwardInputIsKept) {
   EXPECT_EQ(p.faces(), def.faces);
   ExpectOutwardConvex(p);
   ExpectTrianglesMatchNormals(p);
-  EXPECT_LE((p.face_normals()[0] - Vector3(0, 0, -1)).norm(), kEps);
-  EXPECT_LE((p.face_normals()[5] - Vector3(1, 0, 0)).norm(), kEps);
+  EXPECT_LE((p.face_normals()[0] - Vector3(0, 0, -1)).norm(), kPolyhedronEps);
+  EXPECT_LE((p.face_normals()[5] - Vector3(1, 0, 0)).norm(), kPolyhedronEps);
 }
 
 TEST(PolyhedronOrientation, InsideOutInputIsTurnedOutward) {
@@ -237,7 +238,7 @@ TEST(PolyhedronOrientation, InsideOutInputIsTurnedOutward) {
   ExpectMassNear(p.mass(), reference.mass(), 1e-12);
   ASSERT_EQ(p.face_normals().size(), reference.face_normals().size());
   for (size_t f = 0; f < p.face_normals().size(); ++f) {
-    EXPECT_LE((p.face_normals()[f] - reference.face_normals()[f]).norm(), kEps) << f;
+    EXPECT_LE((p.face_normals()[f] - reference.face_normals()[f]).norm(), kPolyhedronEps) << f;
   }
   ExpectTrianglesMatchNormals(p);
 }
@@ -248,7 +249,7 @@ TEST(PolyhedronOrientation, InconsistentFacesAreFlipped) {
     std::reverse(def.faces[seed_face].begin(), def.faces[seed_face].end());
     std::reverse(def.faces[4].begin(), def.faces[4].end());
     const Polyhedron p = Polyhedron::Create(def, kTol);
-    ExpectMassNear(p.mass(), BoxMass(1, 1, 1, Vector3::Zero()), kEps);
+    ExpectMassNear(p.mass(), BoxMass(1, 1, 1, Vector3::Zero()), kPolyhedronEps);
     ExpectOutwardConvex(p);
     ExpectTrianglesMatchNormals(p);
   }
@@ -264,13 +265,13 @@ TEST(PolyhedronOrientation, StraightAngleVerticesAreNotIntersections) {
   const std::optional<PolyhedronFault> fault = Polyhedron::Check(def, kTol);
   EXPECT_FALSE(fault) << fault->message;
   const Polyhedron p = Polyhedron::Create(def, kTol);
-  ExpectMassNear(p.mass(), BoxMass(1, 1, 1, Vector3::Zero()), kEps);
+  ExpectMassNear(p.mass(), BoxMass(1, 1, 1, Vector3::Zero()), kPolyhedronEps);
   ExpectTrianglesMatchNormals(p);
 }
 
 TEST(PolyhedronOrientation, TriangulatedCubeIsValid) {
   const Polyhedron p = Polyhedron::Create(TriangulatedCube(), kTol);
-  ExpectMassNear(p.mass(), BoxMass(1, 1, 1, Vector3::Zero()), kEps);
+  ExpectMassNear(p.mass(), BoxMass(1, 1, 1, Vector3::Zero()), kPolyhedronEps);
 }
 
 // ---------------------------------------------------------------------------
@@ -545,7 +546,7 @@ TEST(PolyhedronOverlap, SamplesOverEdgesAndVerticalFacesAreJudgedRight) {
                       c.z() <= h;
         const Polyhedron cube =
             Polyhedron::Create(Box(0.1, 0.1, 0.1, c - Vector3(0.05, 0.05, 0.05)), kTol);
-        SCOPED_TRACE(testing::Message() << "cube at " << c.transpose());
+        SCOPED_TRACE(::testing::Message() << "cube at " << c.transpose());
         EXPECT_EQ(FindPolyhedronOverlap(l, I, cube, I, kTol).has_value(), expected);
         EXPECT_EQ(FindPolyhedronOverlap(cube, I, l, I, kTol).has_value(), expected);
         overlaps += expected;

@@ -36,7 +36,7 @@ using testing::WriteTemp;
 // save theirs: unit cube "0" (a support) and unit cube "1" on top of it
 // (density 2.5). Cube 1 has non-contiguous vertex keys (7 is "10") written out
 // of order, and a face key "10": both must sort by value, not as text.
-constexpr const char* kBase = R"({
+constexpr const char* kCompasBase = R"({
   "dtype": "compas_assembly.datastructures/Assembly",
   "data": {
     "attributes": {"name": "two cubes"},
@@ -89,7 +89,7 @@ std::vector<std::string> Names(const CompasAssembly& a) {
 }
 
 TEST(ParseCompasAssembly, TwoCubesExactly) {
-  const CompasAssembly a = ParseCompasAssembly(json::parse(kBase), "cubes.json");
+  const CompasAssembly a = ParseCompasAssembly(json::parse(kCompasBase), "cubes.json");
   EXPECT_EQ(a.name, "two cubes");
   ASSERT_EQ(a.blocks.size(), 2u);
 
@@ -116,7 +116,7 @@ TEST(ParseCompasAssembly, TwoCubesExactly) {
 }
 
 TEST(ParseCompasAssembly, NodesInNumericKeyOrder) {
-  json doc = json::parse(kBase);
+  json doc = json::parse(kCompasBase);
   json& nodes = doc["data"]["graph"]["data"]["node"];
   nodes["10"] = nodes["0"];
   nodes["9"] = nodes["1"];
@@ -131,7 +131,7 @@ TEST(ParseCompasAssembly, NodesInNumericKeyOrder) {
 }
 
 TEST(ParseCompasAssembly, DefaultNodeAttributesApply) {
-  json doc = json::parse(kBase);
+  json doc = json::parse(kCompasBase);
   json& graph = doc["data"]["graph"]["data"];
   graph["default_node_attributes"]["is_support"] = true;
   graph["default_node_attributes"]["density"] = 3.0;
@@ -147,7 +147,7 @@ TEST(ParseCompasAssembly, DefaultNodeAttributesApply) {
 // COMPAS 1 (compas_assembly 0.x): `dtype`/`value`, the assembly is the graph
 // itself with defaults in "dna", and a block is bare mesh data.
 TEST(ParseCompasAssembly, Compas1Layout) {
-  const json base = json::parse(kBase);
+  const json base = json::parse(kCompasBase);
   json node = base["data"]["graph"]["data"]["node"]["1"];
   node["block"] = node["block"]["data"];
   json doc = {{"dtype", "compas_assembly.datastructures/Assembly"},
@@ -171,7 +171,7 @@ TEST(ParseCompasAssembly, Compas1Layout) {
 }
 
 TEST(ReadCompasAssembly, ReadsAFile) {
-  const CompasAssembly a = ReadCompasAssembly(WriteTemp("compas_two_cubes.json", kBase));
+  const CompasAssembly a = ReadCompasAssembly(WriteTemp("compas_two_cubes.json", kCompasBase));
   EXPECT_EQ(Names(a), (std::vector<std::string>{"0", "1"}));
 }
 
@@ -203,7 +203,7 @@ TEST(ReadCompasAssembly, MissingFile) {
 #define GOOD_IFC IFC(R"([[0, 0, 1], [1, 0, 1], [1, 1, 1]])", FRAME_Z)
 
 // clang-format off
-const BadCase kBadCases[] = {
+const BadCase kCompasBadCases[] = {
   // The document as a whole.
   {"invalid_json", "{", nullptr, "", "invalid JSON"},
   {"top_array", "[]", nullptr, "", "must be a JSON object, not an array"},
@@ -294,12 +294,12 @@ class BadCompas : public ::testing::TestWithParam<BadCase> {};
 
 TEST_P(BadCompas, NamesFilePathAndFault) {
   const BadCase& c = GetParam();
-  const std::string text = CaseText(c, kBase);
+  const std::string text = CaseText(c, kCompasBase);
   const std::string file = WriteTemp(std::string("bad_compas_") + c.name + ".json", text);
   ExpectBadInput(c, text, file, [](const std::string& f) { ReadCompasAssembly(f); });
 }
 
-INSTANTIATE_TEST_SUITE_P(AllFaults, BadCompas, ::testing::ValuesIn(kBadCases),
+INSTANTIATE_TEST_SUITE_P(AllFaults, BadCompas, ::testing::ValuesIn(kCompasBadCases),
                          [](const auto& param) { return std::string(param.param.name); });
 
 // The shared COMPAS files (../shared/datasets), with counts made
@@ -503,7 +503,7 @@ TEST(SharedCompasFiles, WallParametersAreNotAnAssembly) {
 
 // ---- Stored interfaces ------------------------------------------------------
 
-// kBase with one interface on its edge (0, 1): the unit square where cube 1
+// kCompasBase with one interface on its edge (0, 1): the unit square where cube 1
 // stands on cube 0, as compas_assembly stores it (an Interface object, a
 // Frame whose xaxis × yaxis is the outward normal of u's face: +z, from 0
 // into 1). One point is a serialized Point. Forces and the rest are ignored.
@@ -518,7 +518,7 @@ constexpr const char* kOneInterface = R"({"data": {"graph": {"data": {"edge": {"
     "mesh": null}}]}}}}}}})";
 
 json WithPatch(const char* patch) {
-  json doc = json::parse(kBase);
+  json doc = json::parse(kCompasBase);
   doc.merge_patch(json::parse(patch));
   return doc;
 }
@@ -542,16 +542,16 @@ TEST(ParseCompasAssembly, OneStoredInterfaceExactly) {
   EXPECT_EQ(i.where, "data.graph.data.edge.0.1.interfaces[0]");
 }
 
-// Edges without interface data are skipped: kBase's empty edges, null,
+// Edges without interface data are skipped: kCompasBase's empty edges, null,
 // [] and compas_cra's unused "interface": null.
 TEST(ParseCompasAssembly, EdgesWithoutInterfacesAreSkipped) {
-  EXPECT_TRUE(ParseCompasAssembly(json::parse(kBase), "").interfaces.empty());
+  EXPECT_TRUE(ParseCompasAssembly(json::parse(kCompasBase), "").interfaces.empty());
   const CompasAssembly a = ParseCompasAssembly(WithPatch(R"({"data": {"graph": {"data": {"edge": {
         "0": {"1": {"interfaces": [], "interface": null}, "7": null},
         "1": {"0": {"interfaces": null}, "9": {}}, "5": null}}}}})"),
                                                "");
   EXPECT_TRUE(a.interfaces.empty());
-  json no_edges = json::parse(kBase);
+  json no_edges = json::parse(kCompasBase);
   no_edges["data"]["graph"]["data"].erase("edge");
   EXPECT_TRUE(ParseCompasAssembly(no_edges, "").interfaces.empty());
 }
@@ -589,7 +589,7 @@ TEST(ParseCompasAssembly, StoredInterfacesInEdgeOrder) {
 // attributes of compas_assembly's Network (interface_points, interface_uvw
 // with w the normal of u's face).
 TEST(ParseCompasAssembly, StoredInterfacesCompas1) {
-  const json base = json::parse(kBase);
+  const json base = json::parse(kCompasBase);
   json nodes = base["data"]["graph"]["data"]["node"];
   for (const char* key : {"0", "1"}) nodes[key]["block"] = nodes[key]["block"]["data"];
   json doc = json::parse(R"({"dtype": "compas_assembly.datastructures/Assembly", "value": {
@@ -771,7 +771,7 @@ bool HasEdge(const PolyhedronDef& def, int a, int b) {
 }
 
 TEST(CompasToModel, BlocksBecome3dPartsNamedByTheirKeys) {
-  const CompasAssembly a = ParseCompasAssembly(json::parse(kBase), "cubes.json");
+  const CompasAssembly a = ParseCompasAssembly(json::parse(kCompasBase), "cubes.json");
   const CompasModel m = CompasToModel(a, Friction(0.84), "cubes.json");
   EXPECT_EQ(m.def.name, "two cubes");
   EXPECT_EQ(m.def.friction, 0.84);
@@ -801,13 +801,13 @@ TEST(CompasToModel, BlocksBecome3dPartsNamedByTheirKeys) {
   EXPECT_TRUE(assembly.part(1).centroid.isApprox(Vector3(0.5, 0.5, 1.5), 1e-12));
   EXPECT_EQ(assembly.Friction(0, 1), 0.84);
 
-  const Assembly read = ReadCompasScene(WriteTemp("compas_model.json", kBase), Friction(0.5));
+  const Assembly read = ReadCompasScene(WriteTemp("compas_model.json", kCompasBase), Friction(0.5));
   EXPECT_EQ(read.num_parts(), 2);
   EXPECT_EQ(read.Friction(0, 1), 0.5);
 }
 
 TEST(CompasToModel, NameFallsBackToTheFileStemAndToleranceCanBeGiven) {
-  json doc = json::parse(kBase);
+  json doc = json::parse(kCompasBase);
   doc["data"].erase("attributes");
   CompasOptions options = Friction(0);
   options.tolerance = 1e-3;
@@ -885,7 +885,7 @@ TEST(CompasToModel, FacesWithinHalfTheToleranceAreKept) {
 // plays the part's name: `data.graph.data.node.1 ("1").block...`; a key with a
 // quote and a newline is escaped, so the message stays on one line.
 TEST(ReadCompasScene, FaultsInsideABlockNameTheBlock) {
-  json doc = json::parse(kBase);
+  json doc = json::parse(kCompasBase);
   doc["data"]["graph"]["data"]["node"]["1"]["block"]["data"]["face"]["2"] = {0, 1, 5, 99};
   const std::string file = WriteTemp("compas_bad_block.json", doc.dump());
   try {
@@ -895,7 +895,7 @@ TEST(ReadCompasScene, FaultsInsideABlockNameTheBlock) {
     EXPECT_EQ(e.json_path(), R"(data.graph.data.node.1 ("1").block.data.face.2[3])");
     EXPECT_THAT(e.message(), HasSubstr("vertex 99 does not exist"));
   }
-  json odd = json::parse(kBase);
+  json odd = json::parse(kCompasBase);
   json& nodes = odd["data"]["graph"]["data"]["node"];
   nodes["a\"b\n"] = nodes["1"];
   nodes["a\"b\n"]["density"] = -1;

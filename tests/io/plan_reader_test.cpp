@@ -41,7 +41,7 @@ constexpr const char* kScene = R"({
 })";
 
 // The example of docs/plan-format.md.
-constexpr const char* kDocExample = R"({
+constexpr const char* kPlanDocExample = R"({
   "cairn_plan": 1,
   "mode": "disassemble",
   "dt": 1.0,
@@ -55,7 +55,7 @@ constexpr const char* kDocExample = R"({
 
 // A small valid plan the bad cases patch (RFC 7386 merge patch: a null
 // removes a key, an array is replaced whole).
-constexpr const char* kBase = R"({
+constexpr const char* kPlanBase = R"({
   "cairn_plan": 1,
   "steps": [
     {"remove": ["C"], "path": [[0, 0], [0, 2]]},
@@ -68,7 +68,7 @@ Assembly Scene() { return Assembly::Create(ParseSceneJson(json::parse(kScene), "
 // Writes `text` to a file named `name` in the test's temporary folder.
 TEST(ReadPlan, DocumentedExampleOnPaperFig1) {
   const Assembly fig1 = ReadScene(testing::ExamplePath("paper_fig1.json"));
-  const Plan plan = ReadPlan(WriteTemp("plan_doc_example.json", kDocExample), fig1);
+  const Plan plan = ReadPlan(WriteTemp("plan_doc_example.json", kPlanDocExample), fig1);
   EXPECT_EQ(plan.mode, PlanMode::kDisassemble);
   EXPECT_EQ(plan.dt, 1.0);
   EXPECT_EQ(plan.speed, 1.0);
@@ -120,7 +120,7 @@ TEST(ReadPlan, EveryExamplePlanIsValid) {
 }
 
 TEST(ParsePlanJson, DefaultsAndIndices) {
-  const PlanDef def = ParsePlanJson(json::parse(kBase), "base.json");
+  const PlanDef def = ParsePlanJson(json::parse(kPlanBase), "base.json");
   EXPECT_EQ(def.mode, PlanMode::kDisassemble);
   EXPECT_EQ(def.dt, 1.0);
   EXPECT_EQ(def.speed, 1.0);
@@ -166,7 +166,7 @@ TEST(ReadPlan, AllKeysRoundTrip) {
 }
 
 // clang-format off
-const BadCase kBadCases[] = {
+const BadCase kPlanBadCases[] = {
   // JSON itself.
   {"syntax", "{\"cairn_plan\": 1,\n  \"steps\": [}", nullptr, "", "invalid JSON at line 2, column 13"},
   {"empty_file", "", nullptr, "", "invalid JSON at line 1"},
@@ -270,18 +270,18 @@ class BadPlan : public ::testing::TestWithParam<BadCase> {};
 
 TEST_P(BadPlan, NamesFilePathAndFault) {
   const BadCase& c = GetParam();
-  const std::string text = CaseText(c, kBase);
+  const std::string text = CaseText(c, kPlanBase);
   const std::string file = WriteTemp(std::string("bad_plan_") + c.name + ".json", text);
   const Assembly scene = Scene();
   ExpectBadInput(c, text, file, [&](const std::string& f) { ReadPlan(f, scene); });
 }
 
-INSTANTIATE_TEST_SUITE_P(AllFaults, BadPlan, ::testing::ValuesIn(kBadCases),
+INSTANTIATE_TEST_SUITE_P(AllFaults, BadPlan, ::testing::ValuesIn(kPlanBadCases),
                          [](const auto& param) { return std::string(param.param.name); });
 
 TEST(ReadPlan, BasePlanIsValid) {
   // The bad cases above fail for their own fault, not the base plan's.
-  EXPECT_NO_THROW(ReadPlan(WriteTemp("plan_base.json", kBase), Scene()));
+  EXPECT_NO_THROW(ReadPlan(WriteTemp("plan_base.json", kPlanBase), Scene()));
 }
 
 TEST(ReadPlan, MissingFile) {
@@ -327,7 +327,7 @@ TEST(ReadPlan, FaultsOfAStepNameItsParts) {
 
 TEST(ParsePlanJson, RejectsNonFiniteNumbersOfABuiltDocument) {
   // A document built in C++ (not parsed from text) can hold NaN and infinity.
-  json doc = json::parse(kBase);
+  json doc = json::parse(kPlanBase);
   doc["dt"] = std::nan("");
   try {
     ParsePlanJson(doc, "memory.json");
@@ -337,7 +337,7 @@ TEST(ParsePlanJson, RejectsNonFiniteNumbersOfABuiltDocument) {
     EXPECT_EQ(e.json_path(), "dt");
     EXPECT_THAT(e.message(), HasSubstr("must be a finite number (got nan)"));
   }
-  doc = json::parse(kBase);
+  doc = json::parse(kPlanBase);
   doc["steps"][0]["path"][1][0] = -HUGE_VAL;
   try {
     ParsePlanJson(doc, "");

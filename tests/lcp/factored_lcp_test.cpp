@@ -13,7 +13,7 @@
 namespace cairn {
 namespace {
 
-double Tol(const VectorX& q) { return 1e-8 * std::max(1.0, q.cwiseAbs().maxCoeff()); }
+double ResidualTol(const VectorX& q) { return 1e-8 * std::max(1.0, q.cwiseAbs().maxCoeff()); }
 
 // A random contact-like problem: `rows` rows of G, each touching one or two of
 // `bodies` bodies with 3 coordinates each; W block-diagonal SPD. With
@@ -161,7 +161,7 @@ TEST(FactoredLemke, SolvesRedundantPsdProblemsAndAgreesWithTheDenseSolver) {
     const Problem p = RandomContactProblem(contacts, bodies, false, 100 + seed, 0.5);
     const LcpResult r = SolveLemkeFactored(p.M, p.q);
     ASSERT_EQ(r.status, LcpStatus::kSolved) << "seed " << seed << ": " << r.message;
-    EXPECT_TRUE(IsLcpSolution(p.dense, p.q, r.z, Tol(p.q))) << "seed " << seed;
+    EXPECT_TRUE(IsLcpSolution(p.dense, p.q, r.z, ResidualTol(p.q))) << "seed " << seed;
     const LcpResult d = SolveLemke(p.dense, p.q);
     if (d.status != LcpStatus::kSolved) continue;
     ++dense_solved;
@@ -178,8 +178,8 @@ TEST(FactoredLemke, SolvesRedundantFrictionProblems) {
     const Problem p = RandomContactProblem(5 * bodies, bodies, true, 500 + seed, 0.5);
     const LcpResult r = SolveLemkeFactored(p.M, p.q);
     ASSERT_EQ(r.status, LcpStatus::kSolved) << "seed " << seed << ": " << r.message;
-    EXPECT_TRUE(IsLcpSolution(p.dense, p.q, r.z, Tol(p.q))) << "seed " << seed;
-    EXPECT_LE(LcpResidual(p.M, p.q, r.z), Tol(p.q));
+    EXPECT_TRUE(IsLcpSolution(p.dense, p.q, r.z, ResidualTol(p.q))) << "seed " << seed;
+    EXPECT_LE(LcpResidual(p.M, p.q, r.z), ResidualTol(p.q));
   }
 }
 
@@ -210,7 +210,7 @@ TEST(FactoredLemke, WarmPathFromAnInfeasibleBasisIsShorterThanACold) {
   ASSERT_EQ(cold.status, LcpStatus::kSolved) << cold.message;
   ASSERT_EQ(warm.status, LcpStatus::kSolved) << warm.message;
   EXPECT_FALSE(warm.warm_start_used);
-  EXPECT_TRUE(IsLcpSolution(p.dense, q2, warm.z, Tol(q2)));
+  EXPECT_TRUE(IsLcpSolution(p.dense, q2, warm.z, ResidualTol(q2)));
   EXPECT_LT(warm.pivots, cold.pivots);
 }
 
@@ -222,7 +222,7 @@ TEST(FactoredLemke, WarmStartFromAWrongBasisStillSolves) {
     for (int i = 0; i < p.M.size(); ++i) wrong.basic_z.push_back(rng() % 4 == 0);
     const LcpResult r = SolveLemkeFactored(p.M, p.q, {}, &wrong);
     ASSERT_EQ(r.status, LcpStatus::kSolved) << "trial " << trial << ": " << r.message;
-    EXPECT_TRUE(IsLcpSolution(p.dense, p.q, r.z, Tol(p.q)));
+    EXPECT_TRUE(IsLcpSolution(p.dense, p.q, r.z, ResidualTol(p.q)));
   }
 }
 

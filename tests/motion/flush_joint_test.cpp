@@ -42,10 +42,10 @@ using testing::Box;
 using testing::Box3;
 using testing::ExamplePath;
 
-constexpr double kGap = 0.5;  // between S and L (length)
+constexpr double kJointGap = 0.5;  // between S and L (length)
 
 // B [1, 3] on S [0, 4]; L from 4 + gap; the tops at 1 (2-D: y, 3-D: z).
-AssemblyDef Scene(int dimension, double mu_bs, double mu_sf, bool wall, double gap = kGap) {
+AssemblyDef Scene(int dimension, double mu_bs, double mu_sf, bool wall, double gap = kJointGap) {
   AssemblyDef def;
   def.friction = mu_sf;
   def.friction_pairs = {{"B", "S", mu_bs}};
@@ -82,7 +82,7 @@ Plan Slide(const Assembly& a, PlanMode mode) {
   return Plan::Create(def, a);
 }
 
-std::string Why(const SimulationResult& r) {
+std::string Explain(const SimulationResult& r) {
   return r.failure ? testing::Brief(*r.failure) : r.diagnostics;
 }
 
@@ -90,11 +90,11 @@ TEST(FlushJoint, TheExampleSlideIsStableInBothModes) {
   const Assembly a = ReadScene(ExamplePath("flush_joint.json"));
   const Plan plan = ReadPlan(ExamplePath("plans/flush_joint_slide.plan.json"), a);
   const SimulationResult r = SimulatePlan(a, plan);
-  EXPECT_EQ(r.verdict, MotionVerdict::kStable) << Why(r);
+  EXPECT_EQ(r.verdict, MotionVerdict::kStable) << Explain(r);
   ASSERT_EQ(r.steps.size(), 1u);
   EXPECT_EQ(r.steps[0].ticks, 17);  // 16 moves of 0.25, and the end
   const SimulationResult back = SimulatePlan(a, Slide(a, PlanMode::kAssemble));
-  EXPECT_EQ(back.verdict, MotionVerdict::kStable) << Why(back);
+  EXPECT_EQ(back.verdict, MotionVerdict::kStable) << Explain(back);
 }
 
 // examples/flush_joint_wall.json is the non-invertible variant below (2-D):
@@ -104,12 +104,12 @@ TEST(FlushJoint, TheExampleWithTheWallIsStableOnlyInAssembleMode) {
   const Assembly a = ReadScene(ExamplePath("flush_joint_wall.json"));
   const SimulationResult out =
       SimulatePlan(a, ReadPlan(ExamplePath("plans/flush_joint_wall_slide.plan.json"), a));
-  ASSERT_EQ(out.verdict, MotionVerdict::kUnstable) << Why(out);
+  ASSERT_EQ(out.verdict, MotionVerdict::kUnstable) << Explain(out);
   EXPECT_EQ(out.failure->parts, std::vector<int>{a.FindPart("S")});
   EXPECT_EQ(out.failure->tick, 1);
   const SimulationResult in =
       SimulatePlan(a, ReadPlan(ExamplePath("plans/flush_joint_wall_insert.plan.json"), a));
-  EXPECT_EQ(in.verdict, MotionVerdict::kStable) << Why(in);
+  EXPECT_EQ(in.verdict, MotionVerdict::kStable) << Explain(in);
 }
 
 class FlushJointIn : public ::testing::TestWithParam<int> {};
@@ -117,13 +117,13 @@ class FlushJointIn : public ::testing::TestWithParam<int> {};
 // With and without the gap (without it, B's corner meets S's and L's at a
 // vertex of three parts when it reaches the joint).
 TEST_P(FlushJointIn, LowFrictionUnderTheBlockSlidesAcrossInBothModes) {
-  for (double gap : {kGap, 0.0}) {
+  for (double gap : {kJointGap, 0.0}) {
     const Assembly a = Assembly::Create(Scene(GetParam(), 0.1, 0.5, false, gap));
     for (PlanMode mode : {PlanMode::kDisassemble, PlanMode::kAssemble}) {
       SCOPED_TRACE(std::string(mode == PlanMode::kAssemble ? "assemble" : "disassemble") +
                    ", gap " + std::to_string(gap));
       const SimulationResult r = SimulatePlan(a, Slide(a, mode));
-      EXPECT_EQ(r.verdict, MotionVerdict::kStable) << Why(r);
+      EXPECT_EQ(r.verdict, MotionVerdict::kStable) << Explain(r);
       ASSERT_EQ(r.steps.size(), 1u);
       EXPECT_EQ(r.steps[0].ticks, 17);
     }
@@ -135,7 +135,7 @@ TEST_P(FlushJointIn, AWallBehindTheSupportMakesTheSlideNonInvertible) {
   const Assembly a = Assembly::Create(Scene(GetParam(), 0.8, 0.1, true));
   const int S = a.FindPart("S");
   const SimulationResult out = SimulatePlan(a, Slide(a, PlanMode::kDisassemble));
-  ASSERT_EQ(out.verdict, MotionVerdict::kUnstable) << Why(out);
+  ASSERT_EQ(out.verdict, MotionVerdict::kUnstable) << Explain(out);
   ASSERT_TRUE(out.failure);
   EXPECT_EQ(out.failure->parts, std::vector<int>{S});
   // Dragged at the first move, before B reaches the joint (tick 6).
@@ -143,14 +143,14 @@ TEST_P(FlushJointIn, AWallBehindTheSupportMakesTheSlideNonInvertible) {
   ASSERT_FALSE(out.failure->motions.empty());
   EXPECT_GT(out.failure->motions[0].linear.x(), 0.0) << "S slides towards L, with B";
   const SimulationResult in = SimulatePlan(a, Slide(a, PlanMode::kAssemble));
-  EXPECT_EQ(in.verdict, MotionVerdict::kStable) << Why(in);
+  EXPECT_EQ(in.verdict, MotionVerdict::kStable) << Explain(in);
 }
 
 // The control: without the wall, the assembly drags S away from L.
 TEST_P(FlushJointIn, WithoutTheWallTheAssemblyDragsTheSupportToo) {
   const Assembly a = Assembly::Create(Scene(GetParam(), 0.8, 0.1, false));
   const SimulationResult in = SimulatePlan(a, Slide(a, PlanMode::kAssemble));
-  ASSERT_EQ(in.verdict, MotionVerdict::kUnstable) << Why(in);
+  ASSERT_EQ(in.verdict, MotionVerdict::kUnstable) << Explain(in);
   ASSERT_TRUE(in.failure);
   EXPECT_EQ(in.failure->parts, std::vector<int>{a.FindPart("S")});
   ASSERT_FALSE(in.failure->motions.empty());
@@ -164,7 +164,7 @@ TEST_P(FlushJointIn, WithoutAGapTheLedgeStopsTheSupportAndBothModesAreStable) {
   for (PlanMode mode : {PlanMode::kDisassemble, PlanMode::kAssemble}) {
     SCOPED_TRACE(mode == PlanMode::kAssemble ? "assemble" : "disassemble");
     const SimulationResult r = SimulatePlan(a, Slide(a, mode));
-    EXPECT_EQ(r.verdict, MotionVerdict::kStable) << Why(r);
+    EXPECT_EQ(r.verdict, MotionVerdict::kStable) << Explain(r);
   }
 }
 

@@ -30,13 +30,13 @@ Eigen::Isometry3d Rotation(double angle, const Vector3& axis,
   return X;
 }
 
-StabilityResult Check(const Assembly& a) {
+StabilityResult Analyze3d(const Assembly& a) {
   StabilityOptions options;
   options.check_equilibrium = true;
   return AnalyzeConfiguration(a, Configuration::Assembled(a), options);
 }
 
-const PartMotion* MotionOf(const Assembly& a, const StabilityResult& r, const std::string& name) {
+const PartMotion* FindMotion(const Assembly& a, const StabilityResult& r, const std::string& name) {
   for (const PartMotion& m : r.parts)
     if (a.part(m.part).name == name) return &m;
   return nullptr;
@@ -95,6 +95,10 @@ struct InclineCase {
   bool between;  // slope between pyramid edges (else along one)
 };
 
+void PrintTo(const InclineCase& c, std::ostream* os) {
+  *os << "D = " << c.D << (c.between ? ", between edges" : ", along an edge");
+}
+
 class Incline3d : public ::testing::TestWithParam<InclineCase> {};
 
 TEST_P(Incline3d, HoldsIffTanThetaIsWithinThePyramid) {
@@ -112,7 +116,7 @@ TEST_P(Incline3d, HoldsIffTanThetaIsWithinThePyramid) {
     const double theta = factor * critical;
     const TiltedBox scene = BoxOnIncline3d(theta, mu, D, phi);
     const Assembly a = Assembly::Create(scene.def);
-    const StabilityResult r = Check(a);
+    const StabilityResult r = Analyze3d(a);
     SCOPED_TRACE("D = " + std::to_string(D) + ", θ = " + std::to_string(theta * 180 / kPi) +
                  "°, critical " + std::to_string(critical * 180 / kPi) + "°");
     EXPECT_EQ(r.formulation, Formulation::kStewartTrinkle);
@@ -127,7 +131,7 @@ TEST_P(Incline3d, HoldsIffTanThetaIsWithinThePyramid) {
       }
     } else {
       ASSERT_FALSE(r.stable());
-      const PartMotion* m = MotionOf(a, r, "box");
+      const PartMotion* m = FindMotion(a, r, "box");
       ASSERT_NE(m, nullptr);
       EXPECT_EQ(m->kind, MotionKind::kSlides);
       EXPECT_LT(m->linear.z(), 0.0) << "downhill";
@@ -154,8 +158,8 @@ TEST(Incline3d, EightDirectionsComeCloserToTheExactCone) {
   const double mu = 0.5, theta = std::atan(0.9 * mu);
   const Assembly four = Assembly::Create(BoxOnIncline3d(theta, mu, 4, PhiBetweenEdges(4)).def);
   const Assembly eight = Assembly::Create(BoxOnIncline3d(theta, mu, 8, PhiBetweenEdges(8)).def);
-  EXPECT_FALSE(Check(four).stable());
-  EXPECT_TRUE(Check(eight).stable());
+  EXPECT_FALSE(Analyze3d(four).stable());
+  EXPECT_TRUE(Analyze3d(eight).stable());
 }
 
 // ---------------------------------------------------------------------------
@@ -193,12 +197,12 @@ TEST(CubeBesideAWall, FallsWithItsEdgesSplitOrNot) {
     }
     def.parts = {Box3("wall", {1, 0, 0}, {2, 1, 1}, true), cube};
     const Assembly a = Assembly::Create(def);
-    const StabilityResult r = Check(a);
+    const StabilityResult r = Analyze3d(a);
     EXPECT_FALSE(r.stable());
     ASSERT_TRUE(r.static_equilibrium.has_value());
     EXPECT_FALSE(*r.static_equilibrium);
     for (const ContactReport& c : r.contacts) EXPECT_NEAR(std::abs(c.contact.n_W.x()), 1.0, 1e-12);
-    const PartMotion* m = MotionOf(a, r, "cube");
+    const PartMotion* m = FindMotion(a, r, "cube");
     ASSERT_NE(m, nullptr);
     EXPECT_LT(m->linear.z(), 0.0);
   }
@@ -209,7 +213,7 @@ TEST(DiagonalOverhang, StandsIffTheCentroidIsOverTheTable) {
     for (const double c : {-0.05, 0.05}) {
       SCOPED_TRACE("μ = " + std::to_string(mu) + ", centroid x = " + std::to_string(c));
       const Assembly a = Assembly::Create(DiamondOverEdge(c, mu));
-      const StabilityResult r = Check(a);
+      const StabilityResult r = Analyze3d(a);
       // The patch: the diamond's vertex at x = c − 0.707 and the two points
       // where its edges cross x = 0 (and the vertices between).
       double min_x = 0, max_x = -1;
@@ -225,7 +229,7 @@ TEST(DiagonalOverhang, StandsIffTheCentroidIsOverTheTable) {
         continue;
       }
       ASSERT_FALSE(r.stable());
-      const PartMotion* m = MotionOf(a, r, "box");
+      const PartMotion* m = FindMotion(a, r, "box");
       ASSERT_NE(m, nullptr);
       EXPECT_EQ(m->kind, MotionKind::kTips);
       // About the table's edge: the rotation is about +y (the +x side drops).
@@ -273,7 +277,7 @@ TEST(VertexSupport, ACubeStandsOnATiltedVertexIffItsCentroidIsInTheHull) {
       ASSERT_LE(p.z(), 1e-12);
     }
     const Assembly a = Assembly::Create(def);
-    const StabilityResult r = Check(a);
+    const StabilityResult r = Analyze3d(a);
     const ContactReport* prop = nullptr;
     for (const ContactReport& cr : r.contacts) {
       if (a.part(cr.contact.part_a).name == "cube" && a.part(cr.contact.part_b).name == "rod") {
@@ -291,7 +295,7 @@ TEST(VertexSupport, ACubeStandsOnATiltedVertexIffItsCentroidIsInTheHull) {
       ExpectStaticEquilibrium(a, Configuration::Assembled(a), r);
     } else {
       ASSERT_FALSE(r.stable());
-      const PartMotion* m = MotionOf(a, r, "cube");
+      const PartMotion* m = FindMotion(a, r, "cube");
       ASSERT_NE(m, nullptr);
       EXPECT_EQ(m->kind, MotionKind::kTips);
       EXPECT_FALSE(*r.static_equilibrium);
@@ -325,7 +329,7 @@ TEST(HarmonicStack, FiveBoxesStandUpToTheHarmonicOverhang) {
   for (const double mu : {0.0, 0.5}) {
     SCOPED_TRACE("μ = " + std::to_string(mu));
     const Assembly stands = Assembly::Create(HarmonicStack(0.95, mu));
-    const StabilityResult r = Check(stands);
+    const StabilityResult r = Analyze3d(stands);
     EXPECT_TRUE(r.stable()) << r.diagnostics;
     EXPECT_EQ(r.contacts.size(), 20u) << "five face-face patches of four vertices";
     ExpectStaticEquilibrium(stands, Configuration::Assembled(stands), r);
@@ -342,10 +346,10 @@ TEST(HarmonicStack, FiveBoxesStandUpToTheHarmonicOverhang) {
     }
 
     const Assembly topples = Assembly::Create(HarmonicStack(1.05, mu));
-    const StabilityResult t = Check(topples);
+    const StabilityResult t = Analyze3d(topples);
     EXPECT_FALSE(t.stable());
     EXPECT_FALSE(*t.static_equilibrium);
-    const PartMotion* top = MotionOf(topples, t, "box5");
+    const PartMotion* top = FindMotion(topples, t, "box5");
     ASSERT_NE(top, nullptr);
     EXPECT_TRUE(top->moving);
     EXPECT_GT(top->angular.y(), 0.0) << "it turns over the edge: +y, the +x side drops";
@@ -365,9 +369,9 @@ TEST(Jamming3d, ACubeWedgedBetweenWallsIsWeaklyStable) {
   def.parts = {Box3("left", {-1, -1, -2}, {0, 2, 2}, true),
                Box3("right", {1, -1, -2}, {2, 2, 2}, true), Box3("cube", {0, 0, 0}, {1, 1, 1})};
   const Assembly jammed = Assembly::Create(def);
-  const StabilityResult r = Check(jammed);
+  const StabilityResult r = Analyze3d(jammed);
   EXPECT_FALSE(r.stable());
-  const PartMotion* m = MotionOf(jammed, r, "cube");
+  const PartMotion* m = FindMotion(jammed, r, "cube");
   ASSERT_NE(m, nullptr);
   EXPECT_EQ(m->kind, MotionKind::kSlides) << "it slides down between the walls";
   EXPECT_LT(m->linear.z(), 0.0);
@@ -376,7 +380,7 @@ TEST(Jamming3d, ACubeWedgedBetweenWallsIsWeaklyStable) {
   EXPECT_TRUE(r.weakly_stable);
 
   def.parts.push_back(Box3("floor", {0, -1, -1}, {1, 2, 0}, true));
-  const StabilityResult floor = Check(Assembly::Create(def));
+  const StabilityResult floor = Analyze3d(Assembly::Create(def));
   EXPECT_TRUE(floor.stable());
   EXPECT_FALSE(floor.weakly_stable);
 }

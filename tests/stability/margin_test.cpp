@@ -26,7 +26,7 @@ using testing::Box;
 using testing::ExamplePath;
 using testing::SharedDir;
 
-constexpr double kDeg = 180.0 / M_PI;
+constexpr double kDegPerRad = 180.0 / M_PI;
 
 struct Scene {
   AssemblyDef def;
@@ -94,7 +94,7 @@ double CheckCriticalTilt(const AssemblyDef& def, const Vector3& g, const Vector3
   const Vector3 a = axis.normalized();
   return Bisect(
       [&](double deg) {
-        const double t = deg / kDeg;
+        const double t = deg / kDegPerRad;
         AssemblyDef d = def;
         d.gravity = std::cos(t) * g - std::sin(t) * a.cross(g) + (1 - std::cos(t)) * a.dot(g) * a;
         return CheckStable(d, verdict);
@@ -115,7 +115,7 @@ TEST(Margin, InclineCriticalFrictionIsTanTheta) {
     const MarginResult r = s.Margin(Friction());
     ASSERT_TRUE(r.solved) << r.message;
     ASSERT_TRUE(r.sides[0].critical);
-    EXPECT_NEAR(*r.sides[0].critical, std::tan(theta / kDeg), 1e-5) << file;
+    EXPECT_NEAR(*r.sides[0].critical, std::tan(theta / kDegPerRad), 1e-5) << file;
     EXPECT_LE(r.tolerance, 1e-6);
     EXPECT_FALSE(r.factor);
     EXPECT_EQ(r.holds_at_nominal, theta < 25) << file;  // μ = 0.5 in both
@@ -140,7 +140,7 @@ TEST(Margin, InclineCriticalFrictionIsTanTheta) {
 // proves that factor fails (its deficit, 4e-7 of the weight, is too little
 // work for the mechanism's check to tell it from the LP's tolerance).
 TEST(Margin, InclineFrictionDeficitIsLinearAndNewtonLandsOnTanTheta) {
-  const double theta = 20.0 / kDeg;
+  const double theta = 20.0 / kDegPerRad;
   const Scene s = Example("incline.json", 1.0);
   const std::vector<ContactLcp> lcps = BuildComponentLcps(s.assembly, s.config());
   ASSERT_EQ(lcps.size(), 1u);
@@ -171,7 +171,7 @@ TEST(Margin, BoxOnTableTipsAtAtanHalfWidthOverCentroidHeight) {
   const Scene s(def);
   const MarginResult r = s.Margin(Tilt({0, 0, 1}));
   ASSERT_TRUE(r.solved) << r.message;
-  const double expected = std::atan(0.5 / 0.25) * kDeg;  // 63.43°
+  const double expected = std::atan(0.5 / 0.25) * kDegPerRad;  // 63.43°
   ASSERT_TRUE(r.sides[0].critical && r.sides[1].critical);
   EXPECT_NEAR(*r.sides[0].critical, -expected, 1e-5);
   EXPECT_NEAR(*r.sides[1].critical, expected, 1e-5);
@@ -200,8 +200,8 @@ TEST(Margin, Box3dTiltExactAndOblique) {
   const Scene s(def);
   const MarginResult x = s.Margin(Tilt({1, 0, 0}));
   ASSERT_TRUE(x.solved) << x.message;
-  EXPECT_NEAR(*x.sides[1].critical, std::atan(2.0) * kDeg, 1e-5);
-  EXPECT_NEAR(*x.sides[0].critical, -std::atan(2.0) * kDeg, 1e-5);
+  EXPECT_NEAR(*x.sides[1].critical, std::atan(2.0) * kDegPerRad, 1e-5);
+  EXPECT_NEAR(*x.sides[0].critical, -std::atan(2.0) * kDegPerRad, 1e-5);
   const Vector3 oblique(1, 0, 1);
   const MarginResult o = s.Margin(Tilt(oblique));
   ASSERT_TRUE(o.solved) << o.message;
@@ -294,8 +294,8 @@ TEST(Margin, OverhangTiltClosedForm) {
   const Scene s = Example("overhang.json", 3.0);
   const MarginResult r = s.Margin(Tilt({0, 0, 1}));
   ASSERT_TRUE(r.solved) << r.message;
-  EXPECT_NEAR(*r.sides[1].critical, std::atan(1.0 / 0.5) * kDeg, 1e-5);
-  EXPECT_NEAR(*r.sides[0].critical, -std::atan(0.4 / 0.5) * kDeg, 1e-5);
+  EXPECT_NEAR(*r.sides[1].critical, std::atan(1.0 / 0.5) * kDegPerRad, 1e-5);
+  EXPECT_NEAR(*r.sides[0].critical, -std::atan(0.4 / 0.5) * kDegPerRad, 1e-5);
   const Vector3 g = s.assembly.gravity();
   EXPECT_NEAR(*r.sides[0].critical, -CheckCriticalTilt(s.def, g, {0, 0, -1}, 60), 1e-3);
   // overhang_tips.json does not stand: 0 both ways, and a mechanism at 0.
@@ -403,8 +403,8 @@ TEST(Margin, CompasWedgesCriticalTiltAgainstIndependentLp) {
     ASSERT_TRUE(r.solved) << r.message;
     const std::vector<ContactLcp> lcps = BuildComponentLcps(s.assembly, s.config());
     ASSERT_EQ(lcps.size(), 1u);
-    const double hi = std::atan(IndependentLp::Solve(lcps[0], 1.0, &axis, true)) * kDeg;
-    const double lo = std::atan(IndependentLp::Solve(lcps[0], 1.0, &axis, false)) * kDeg;
+    const double hi = std::atan(IndependentLp::Solve(lcps[0], 1.0, &axis, true)) * kDegPerRad;
+    const double lo = std::atan(IndependentLp::Solve(lcps[0], 1.0, &axis, false)) * kDegPerRad;
     ASSERT_TRUE(r.sides[0].critical && r.sides[1].critical) << file;
     EXPECT_NEAR(*r.sides[1].critical, hi, 1e-5) << file;
     EXPECT_NEAR(*r.sides[0].critical, lo, 1e-5) << file;

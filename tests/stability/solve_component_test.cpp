@@ -19,7 +19,7 @@ constexpr auto Check = testing::CheckWithEquilibrium;
 using testing::Box;
 using testing::JammedBlock;
 
-constexpr double kDeg = std::numbers::pi / 180.0;
+constexpr double kOneDegree = std::numbers::pi / 180.0;
 
 TEST(StabilityProof, ABoxOnATableIsStronglyStable) {
   AssemblyDef def;
@@ -38,7 +38,7 @@ TEST(StabilityProof, ABoxOnATableIsStronglyStable) {
 }
 
 TEST(StabilityProof, ABlockHeldByFrictionIsNotCertified) {
-  const StabilityResult r = Check(BlockOnIncline(20 * kDeg, 0.5));
+  const StabilityResult r = Check(BlockOnIncline(20 * kOneDegree, 0.5));
   EXPECT_EQ(r.verdict, Verdict::kStable) << r.diagnostics;
   EXPECT_EQ(r.stability, StabilityProof::kNotCertified);
   ASSERT_EQ(r.components.size(), 1u);
