@@ -11,6 +11,7 @@ Tolerances Tolerances::Scaled(double scene_size, double gravity, double dt, doub
   const double W = weight > 0 ? weight : 1.0;
   Tolerances t;
   t.length = length_override > 0 ? length_override : f.length * L;
+  t.penetration = t.length;
   t.angle = f.angle;
   t.acceleration = f.acceleration * g;
   t.velocity = f.velocity * g * (dt > 0 ? dt : 1.0);

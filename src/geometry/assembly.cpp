@@ -616,6 +616,8 @@ Assembly Assembly::Create(const AssemblyDef& def, const std::string& source_file
   out.gravity_ = numbers.gravity;
   out.default_friction_ = numbers.friction;
   out.tolerance_override_ = numbers.tolerance_override;
+  out.overlap_allowance_ =
+      std::isfinite(def.overlap_allowance) ? std::max(def.overlap_allowance, 0.0) : 0.0;
   out.friction_directions_ = numbers.friction_directions;
   const std::unordered_map<std::string, int> index = CheckPartNumbers(def, is3, check);
 
@@ -639,7 +641,8 @@ Assembly Assembly::Create(const AssemblyDef& def, const std::string& source_file
   CheckMasses(def, out.parts_, check);
   // Given interfaces say how the parts touch; their shapes may interpenetrate
   // (InterfaceDef): no overlap test then.
-  if (def.interfaces.empty()) CheckOverlaps(def, out.parts_, out.dimension_, tol, check);
+  if (def.interfaces.empty())
+    CheckOverlaps(def, out.parts_, out.dimension_, tol + out.overlap_allowance_, check);
 
   const PartFinder find = [&](const std::string& name) {
     const auto it = index.find(name);
@@ -710,7 +713,10 @@ std::optional<std::string> Assembly::FixtureFault(const FixtureDef& f) const {
 }
 
 Tolerances Assembly::MakeTolerances(double dt) const {
-  return Tolerances::Scaled(scene_size_, gravity_.norm(), dt, max_weight_, tolerance_override_);
+  Tolerances t =
+      Tolerances::Scaled(scene_size_, gravity_.norm(), dt, max_weight_, tolerance_override_);
+  t.penetration = t.length + overlap_allowance_;
+  return t;
 }
 
 Pose Pose::Planar(const Vector2& translation, double angle) {

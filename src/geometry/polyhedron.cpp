@@ -749,7 +749,13 @@ std::optional<Vector3> SampleInside(const Polyhedron& a, const Eigen::Isometry3d
 }
 
 // An edge of `a` crossing a face of `b` properly (both ends more than tol off
-// the face's plane, the crossing more than tol inside the face polygon).
+// the face's plane, the crossing more than tol inside the face polygon) and
+// deeper than tol inside b somewhere between two of its crossings of b's
+// surface (tested at the middle of each stretch between them). A crossing
+// alone does not show depth: a pin's long edge, on its true cylinder, passes
+// through the slightly tilted facets of its hole's wall, which cut into the
+// hole by up to the chordal tolerance, and stays within that of them
+// (the shear mold's rod 14_001 in bush 13_001; docs/step-format.md).
 std::optional<Vector3> EdgeThroughFace(const Polyhedron& a, const Eigen::Isometry3d& X_WA,
                                        const Polyhedron& b, const Eigen::Isometry3d& X_WB,
                                        double tol) {
@@ -780,6 +786,32 @@ std::optional<Vector3> EdgeThroughFace(const Polyhedron& a, const Eigen::Isometr
                               const Vector3& hi2) {
     return (lo1.array() > hi2.array()).any() || (lo2.array() > hi1.array()).any();
   };
+  // Whether the point `hit` of face f's plane is in one of its triangles, and
+  // its distance to the face polygon's edges.
+  const auto in_face = [&](int f, const Vector3& hit) {
+    for (const auto& t : b.face_triangles()[f]) {
+      const Vector3 &ta = xb[t[0]], &tb = xb[t[1]], &tc = xb[t[2]];
+      const Vector3& n = normal[f];
+      if (n.dot((tb - ta).cross(hit - ta)) >= 0 && n.dot((tc - tb).cross(hit - tb)) >= 0 &&
+          n.dot((ta - tc).cross(hit - tc)) >= 0)
+        return true;
+    }
+    return false;
+  };
+  const auto edge_distance = [&](int f, const Vector3& hit) {
+    const auto& fb = b.faces()[f];
+    const int k = static_cast<int>(fb.size());
+    double edge_dist = std::numeric_limits<double>::infinity();
+    for (int e = 0; e < k; ++e) {
+      const Vector3 &u = xb[fb[e]], &w = xb[fb[(e + 1) % k]];
+      const double s = std::clamp((hit - u).dot(w - u) / (w - u).squaredNorm(), 0.0, 1.0);
+      edge_dist = std::min(edge_dist, (u + s * (w - u) - hit).norm());
+    }
+    return edge_dist;
+  };
+  std::optional<Triangles> tris;  // b's, in its frame: built at the first proper crossing
+  const Eigen::Isometry3d X_BW = X_WB.inverse();
+  std::vector<double> crossings;
   for (const auto& face : a.faces()) {
     const int m = static_cast<int>(face.size());
     for (int i = 0; i < m; ++i) {
@@ -788,32 +820,25 @@ std::optional<Vector3> EdgeThroughFace(const Polyhedron& a, const Eigen::Isometr
       if (face[i] > face[(i + 1) % m]) continue;  // each edge once
       const Vector3 e_lo = p.cwiseMin(q), e_hi = p.cwiseMax(q);
       if (boxes_apart(e_lo, e_hi, b_lo, b_hi)) continue;
+      bool proper = false;
+      crossings.assign({0.0, 1.0});
       for (int f = 0; f < nf; ++f) {
         if (boxes_apart(e_lo, e_hi, face_lo[f], face_hi[f])) continue;
-        const Vector3& n = normal[f];
-        const double c = offset[f];
-        const double dp = n.dot(p) - c, dq = n.dot(q) - c;
-        if (!((dp > tol && dq < -tol) || (dp < -tol && dq > tol))) continue;
-        const Vector3 hit = p + (q - p) * (dp / (dp - dq));
-        // Inside the face polygon by more than tol: in one of its triangles,
-        // and more than tol from every edge of the face.
-        bool in = false;
-        for (const auto& t : b.face_triangles()[f]) {
-          const Vector3 &ta = xb[t[0]], &tb = xb[t[1]], &tc = xb[t[2]];
-          if (n.dot((tb - ta).cross(hit - ta)) >= 0 && n.dot((tc - tb).cross(hit - tb)) >= 0 &&
-              n.dot((ta - tc).cross(hit - tc)) >= 0)
-            in = true;
-        }
-        if (!in) continue;
-        const auto& fb = b.faces()[f];
-        const int k = static_cast<int>(fb.size());
-        double edge_dist = std::numeric_limits<double>::infinity();
-        for (int e = 0; e < k; ++e) {
-          const Vector3 &u = xb[fb[e]], &w = xb[fb[(e + 1) % k]];
-          const double s = std::clamp((hit - u).dot(w - u) / (w - u).squaredNorm(), 0.0, 1.0);
-          edge_dist = std::min(edge_dist, (u + s * (w - u) - hit).norm());
-        }
-        if (edge_dist > tol) return hit;
+        const double dp = normal[f].dot(p) - offset[f], dq = normal[f].dot(q) - offset[f];
+        if ((dp > 0) == (dq > 0) || dp == dq) continue;
+        const double t = dp / (dp - dq);
+        const Vector3 hit = p + (q - p) * t;
+        if (!in_face(f, hit)) continue;
+        crossings.push_back(t);
+        proper = proper || (((dp > tol && dq < -tol) || (dp < -tol && dq > tol)) &&
+                            edge_distance(f, hit) > tol);
+      }
+      if (!proper) continue;
+      if (!tris) tris = Triangles::Of(b, tol);
+      std::sort(crossings.begin(), crossings.end());
+      for (size_t k = 0; k + 1 < crossings.size(); ++k) {
+        const Vector3 mid = p + (q - p) * (0.5 * (crossings[k] + crossings[k + 1]));
+        if (DeeperInside(*tris, X_BW * mid, tol)) return mid;
       }
     }
   }

@@ -221,7 +221,17 @@ StepModel ReadStepAssembly(const std::string& path, const StepReadOptions& optio
   switch (result.status) {
     case Status::kDone: {
       step_codec::Reader r(result.output);
-      if (r.Byte() == 'M') return step_codec::ReadModel(r);
+      if (r.Byte() == 'M') {
+        StepModel model = step_codec::ReadModel(r);
+        // Facets lie within the chordal tolerance of their surfaces, on
+        // either side of a pin's and its hole's: the parts may cross by that
+        // much where they touch in CAD (docs/step-format.md).
+        for (const StepPartReport& part : model.parts)
+          if (part.approximated)
+            model.def.overlap_allowance =
+                std::max(model.def.overlap_allowance, part.mesh_tolerance);
+        return model;
+      }
       std::string file = r.Str(), json_path = r.Str(), message = r.Str();
       throw InputError(std::move(file), std::move(json_path), std::move(message));
     }

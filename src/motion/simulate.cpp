@@ -443,7 +443,8 @@ class PlanSimulation {
     std::vector<bool> can_give_way(n_);
     for (int p = 0; p < n_; ++p)
       can_give_way[p] = !a_.part(p).fixed && !a_.part(p).tool && !held_[p];
-    const auto hit = FindCollision(a_, config_, st.gripped, st.in_group, can_give_way, tol.length);
+    const auto hit =
+        FindCollision(a_, config_, st.gripped, st.in_group, can_give_way, tol.penetration);
     if (!hit) return;
     MotionFailure& f = v.failure;
     if (!can_give_way[hit->other]) {
@@ -454,7 +455,7 @@ class PlanSimulation {
     const double L = st.length;
     const double u = tm.tick > 0 ? FirstOverlap(a_, config_, *st.step, assemble_, *hit,
                                                 std::min((tm.tick - 1) * tick_length_, L),
-                                                tm.travelled, tol.length)
+                                                tm.travelled, tol.penetration)
                                  : tm.travelled;
     f.verdict = MotionVerdict::kUnstable;
     f.parts = f.pushed = {hit->other};

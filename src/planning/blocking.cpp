@@ -363,7 +363,9 @@ Scene BuildScene(const Assembly& assembly, const Configuration& config,
   Scene sc;
   sc.checkpoint = checkpoint;
   sc.dim = assembly.dimension();
-  sc.tol_length = tol.length;
+  // The relation to infinity: an overlap deeper than the penetration
+  // tolerance (the length tolerance, plus a tessellation's chordal error).
+  sc.tol_length = tol.penetration;
   sc.tol_angle = tol.angle;
   sc.axes = PreferredAxes(assembly);
   sc.shapes.resize(n);

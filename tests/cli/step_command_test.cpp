@@ -326,6 +326,50 @@ TEST(StepCommand, BourjaultPenBlockingEqualsTheGroundTruth) {
   }
 }
 
+// FreeCAD-APLAN's shear mold (17 parts: plates, guide pins in holes, bushes,
+// a stepped rod through two bushes whose cone OpenCASCADE cannot mesh) loads
+// at the defaults: its pins and holes, tessellated within the chordal
+// tolerance but not node on node, cross by less than that, which the overlap
+// test allows (AssemblyDef::overlap_allowance). Its +Y blocking graph equals
+// the ground truth; along +X and +Z every ground-truth arc is found, with
+// three more each still (issue 31, open: the rod 14_001 along +X, the guide
+// pins 8_001 and 9_001 along +Z).
+void ExpectShearMoldBlocking(const std::string& axis, const std::string& direction) {
+  const std::string shared = testing::SharedDir();
+  if (shared.empty())
+    GTEST_SKIP() << "shared/datasets not found: skipping the shear mold (FreeCAD-APLAN)";
+  const std::string dir = shared + "/datasets/aplan_shear_mold";
+  const std::string mold = dir + "/asm_shear_mold.step";
+  const auto r = Cairn("blocking " + mold + " --format step --direction " + direction + " --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("part '14_001': face 6 (a cone) could not be meshed by OpenCASCADE"),
+            std::string::npos)
+      << r.err;
+  std::ifstream in(dir + "/GroundTruth/GeomConstraints_POS_" + axis + ".json");
+  const json truth = json::parse(in);
+  Arcs expected;
+  for (const json& link : truth["links"])
+    expected.insert({link["source"].get<std::string>(), link["target"].get<std::string>()});
+  const Arcs found = InfinityArcs(r.out);
+  if (axis == "Y") {
+    EXPECT_EQ(found, expected);
+    return;
+  }
+  for (const auto& arc : expected)
+    EXPECT_TRUE(found.count(arc)) << arc.first << " -> " << arc.second;
+  EXPECT_LE(found.size(), expected.size() + 3);
+}
+
+TEST(StepCommand, ShearMoldBlockingAlongXHasEveryGroundTruthArc) {
+  ExpectShearMoldBlocking("X", "1,0,0");
+}
+TEST(StepCommand, ShearMoldBlockingAlongYEqualsTheGroundTruth) {
+  ExpectShearMoldBlocking("Y", "0,1,0");
+}
+TEST(StepCommand, ShearMoldBlockingAlongZHasEveryGroundTruthArc) {
+  ExpectShearMoldBlocking("Z", "0,0,1");
+}
+
 // The pen lying along x on its fixed body: the sequences take the cap off to
 // −x and the button end to +x, and the head comes out last of all.
 TEST(StepCommand, BourjaultPenPlanFindsDisassemblySequences) {

@@ -523,6 +523,36 @@ TEST(PolyhedronOverlap, ANonConvexSolidsCentroidIsNotSampledWhenOutsideIt) {
   EXPECT_TRUE(FindPolyhedronOverlap(in_arm, I, l, I, kTol));
 }
 
+// A block whose top is a shallow valley along y (two facets tilted by h/0.5,
+// down to 1 − h at x = 0.5), and a long rod lying across it along x with its
+// bottom d below the valley's rims: the rod's bottom edges cross both tilted
+// facets with their ends far off the facets' planes (h · 4 and h · 5), but no
+// point of the rod is deeper than d inside the block. So they overlap by
+// more than tol exactly when d > tol, in both orders: what a pin and its
+// hole do when their facets are not node on node (EdgeThroughFace).
+TEST(PolyhedronOverlap, ALongEdgeUnderTiltedFacetsOverlapsByItsDepthNotItsLength) {
+  const double h = 0.05, d = 0.002;
+  PolyhedronDef valley;
+  valley.vertices = {{0, 0, 0}, {1, 0, 0},       {1, 1, 0}, {0, 1, 0},  // bottom 0-3
+                     {0, 0, 1}, {0.5, 0, 1 - h}, {1, 0, 1},             // front top 4-6
+                     {0, 1, 1}, {0.5, 1, 1 - h}, {1, 1, 1}};            // back top 7-9
+  valley.faces = {{0, 3, 2, 1}, {0, 1, 6, 5, 4}, {3, 7, 8, 9, 2}, {0, 4, 7, 3},
+                  {1, 2, 9, 6}, {4, 5, 8, 7},    {5, 6, 9, 8}};
+  const Polyhedron block = Polyhedron::Create(valley, kTol);
+  EXPECT_NEAR(block.mass().volume, 1 - 0.5 * h, 1e-12);
+  const Polyhedron rod = Polyhedron::Create(Box(5, 0.2, 0.1, {-2, 0.4, 1 - d}), kTol);
+  const Eigen::Isometry3d I = Eigen::Isometry3d::Identity();
+  for (const double tol : {0.5 * d, 1.5 * d}) {
+    SCOPED_TRACE(tol);
+    EXPECT_EQ(FindPolyhedronOverlap(rod, I, block, I, tol).has_value(), d > tol);
+    EXPECT_EQ(FindPolyhedronOverlap(block, I, rod, I, tol).has_value(), d > tol);
+  }
+  // Pushed 10 d deeper, it overlaps at either tolerance.
+  const Polyhedron deep = Polyhedron::Create(Box(5, 0.2, 0.1, {-2, 0.4, 1 - 11 * d}), kTol);
+  EXPECT_TRUE(FindPolyhedronOverlap(deep, I, block, I, 1.5 * d));
+  EXPECT_TRUE(FindPolyhedronOverlap(block, I, deep, I, 1.5 * d));
+}
+
 // Whether a sample lies inside is decided by the parity of a vertical ray's
 // crossings, and by the winding number where the ray grazes an edge or runs
 // in a vertical face: small cubes on a grid of step 0.25 over the L prism put

@@ -73,6 +73,14 @@ struct Tolerances {
   double acceleration = 1e-6;  ///< length/s²: largest point acceleration called "at rest".
   double velocity = 1e-6;      ///< length/s: largest point velocity called "at rest".
   double force = 1e-9;         ///< force units: a contact force below this is zero.
+  /// length units: how deep two parts may interpenetrate and still be read
+  /// as apart or touching: the overlap test's allowance (an assembly's
+  /// parts, a part's path, the relation to infinity of blocking graphs).
+  /// `length` plus, where the surfaces are approximations, an allowance
+  /// (AssemblyDef::overlap_allowance): a STEP model's facets cut into the
+  /// void across a hole's wall by up to the chordal tolerance, so a pin and
+  /// its hole, touching in CAD, interpenetrate by up to that much.
+  double penetration = 1e-6;
 
   /// Tolerances for a scene of size `scene_size` (length), gravity magnitude
   /// `gravity` (length/s²), time step `dt` (s), largest weight `weight`.

@@ -80,6 +80,11 @@ struct AssemblyDef {
   int friction_directions = 0;
   std::vector<FrictionPairDef> friction_pairs;
   double tolerance = 0;  ///< contact distance tolerance (length); ≤ 0: scaled to the scene
+  /// length: how much deeper than the length tolerance the parts may
+  /// interpenetrate and still touch (Tolerances::penetration = the length
+  /// tolerance + this); ≤ 0: none. Set by the STEP reader to the chordal
+  /// tolerance of its facets; not a scene file's key.
+  double overlap_allowance = 0;
   /// The command-line options that set `tolerance` and `gravity` instead of
   /// the file (e.g. "--tolerance"), if any: a fault of either is then
   /// reported against the option, not the file.
@@ -178,6 +183,9 @@ class Assembly {
   double max_weight() const { return max_weight_; }
   /// The contact distance tolerance (length): the scene's, or 1e-6 · size.
   double length_tolerance() const { return tolerances_.length; }
+  /// How much deeper than the length tolerance the parts may interpenetrate
+  /// and still touch (length, ≥ 0; AssemblyDef::overlap_allowance).
+  double overlap_allowance() const { return overlap_allowance_; }
   /// All tolerances, scaled to this scene for a time step `dt` (s).
   /// Why Create would reject the fixel `f` added to this scene's fixtures
   /// (no such part, not finite, a zero normal, not on the part's boundary, not
@@ -198,6 +206,7 @@ class Assembly {
   std::vector<std::pair<std::pair<int, int>, double>> pair_mu_;  // (min, max) index → μ
   double scene_size_ = 0;
   double tolerance_override_ = 0;
+  double overlap_allowance_ = 0;
   double max_weight_ = 0;
   Tolerances tolerances_;
 };

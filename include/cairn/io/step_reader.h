@@ -115,7 +115,8 @@ struct StepModel {
   std::vector<StepPartReport> parts;  ///< one per part of `def`, in order
   double length_unit = 1;             ///< the file's length unit in metres (0.001: mm)
   // def.tolerance: kStepLengthToleranceOfChord × the chordal tolerance when a
-  // part is approximated (def.tolerance_option "--mesh-tolerance"), else 0.
+  // part is approximated (def.tolerance_option "--mesh-tolerance"), else 0;
+  // def.overlap_allowance: the chordal tolerance when a part is approximated.
 };
 
 /// Reads `path`. @throws InputError naming the file (and the part): not a
