@@ -22,11 +22,17 @@ using io_internal::Point;
 using nlohmann::json;
 
 // The keys of each level of format version 1.
-constexpr std::initializer_list<const char*> kSceneKeys = {
-    "cairn",     "name",           "gravity",
-    "friction",  "friction_pairs", "tolerance",
-    "parts",     "fixtures",       "friction_directions",
-    "interfaces"};
+constexpr std::initializer_list<const char*> kSceneKeys = {"cairn",
+                                                           "name",
+                                                           "gravity",
+                                                           "friction",
+                                                           "friction_pairs",
+                                                           "tolerance",
+                                                           "parts",
+                                                           "fixtures",
+                                                           "friction_directions",
+                                                           "interfaces",
+                                                           "overlap_allowance"};
 constexpr std::initializer_list<const char*> kPolyhedronKeys = {"vertices", "faces"};
 constexpr std::initializer_list<const char*> kPartKeys = {
     "name", "fixed", "tool", "density", "mass", "polygon", "box", "polyhedron", "mesh"};
@@ -71,6 +77,11 @@ class SceneParser : private io_internal::JsonChecker {
       def.tolerance = Number(doc["tolerance"], "tolerance");
       if (def.tolerance <= 0)
         Fail("tolerance", "must be positive (got " + Num(def.tolerance) + ")");
+    }
+    if (doc.contains("overlap_allowance")) {
+      def.overlap_allowance = Number(doc["overlap_allowance"], "overlap_allowance");
+      if (def.overlap_allowance < 0)
+        Fail("overlap_allowance", "must not be negative (got " + Num(def.overlap_allowance) + ")");
     }
     const json& parts = Array(Require(doc, "parts", ""), "parts");
     if (parts.empty()) Fail("parts", "must list at least one part");

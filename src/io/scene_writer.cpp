@@ -75,6 +75,7 @@ std::string WriteSceneJson(const AssemblyDef& def) {
     doc["friction_pairs"] = pairs;
   }
   if (def.tolerance > 0) doc["tolerance"] = def.tolerance;
+  if (def.overlap_allowance > 0) doc["overlap_allowance"] = def.overlap_allowance;
   ordered_json parts = ordered_json::array();
   for (const PartDef& p : def.parts) {
     ordered_json part;

@@ -203,6 +203,10 @@ const BadCase kBadCases[] = {
    "fixtures[0].normal", "required key is missing"},
   // Numbers out of range.
   {"tolerance_zero", nullptr, R"({"tolerance": 0})", "tolerance", "must be positive"},
+  {"overlap_allowance_negative", nullptr, R"({"overlap_allowance": -1e-5})", "overlap_allowance",
+   "must not be negative (got -1e-05)"},
+  {"overlap_allowance_type", nullptr, R"({"overlap_allowance": "1e-5"})", "overlap_allowance",
+   "must be a number"},
   {"negative_friction", nullptr, R"({"friction": -0.1})", "friction", "must not be negative"},
   {"negative_pair_mu", nullptr, R"({"friction_pairs": [{"parts": ["A", "B"], "mu": -1}]})",
    "friction_pairs[0].mu", "must not be negative"},

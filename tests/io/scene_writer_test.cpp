@@ -7,6 +7,7 @@
 
 #include <string>
 
+#include "cairn/core/error.h"
 #include "cairn/io/scene_reader.h"
 #include "scene_builders.h"
 #include "test_paths.h"
@@ -65,6 +66,23 @@ TEST(WriteSceneJson, AwkwardNumbersPairsAndFixelsComeBackExactly) {
   ASSERT_EQ(back.friction_pairs.size(), 1u);
   EXPECT_EQ(back.friction_pairs[0].mu, 0.7);
   ExpectSameModel(Assembly::Create(def), Assembly::Create(back));
+  EXPECT_EQ(WriteSceneJson(back), WriteSceneJson(def));
+}
+
+// The overlap allowance (a STEP model's chordal tolerance) comes back, and
+// with it the scene loads where its parts cross by more than the tolerance:
+// two unit squares crossed by 0.01, refused at the tolerance 1e-3, read with
+// an allowance of 0.02.
+TEST(WriteSceneJson, TheOverlapAllowanceComesBackAndLetsPartsCross) {
+  AssemblyDef def;
+  def.tolerance = 1e-3;
+  def.parts = {testing::Box("floor", 0, -1, 1, 0, true), testing::Box("block", 0, -0.01, 1, 1)};
+  EXPECT_THROW(Assembly::Create(def), InputError);
+  def.overlap_allowance = 0.02;
+  const AssemblyDef back = Reparse(def);
+  EXPECT_EQ(back.overlap_allowance, 0.02);
+  const Assembly a = Assembly::Create(back);
+  EXPECT_EQ(a.overlap_allowance(), 0.02);
   EXPECT_EQ(WriteSceneJson(back), WriteSceneJson(def));
 }
 

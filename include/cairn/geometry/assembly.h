@@ -83,7 +83,7 @@ struct AssemblyDef {
   /// length: how much deeper than the length tolerance the parts may
   /// interpenetrate and still touch (Tolerances::penetration = the length
   /// tolerance + this); ≤ 0: none. Set by the STEP reader to the chordal
-  /// tolerance of its facets; not a scene file's key.
+  /// tolerance of its facets; a scene file's `overlap_allowance`.
   double overlap_allowance = 0;
   /// The command-line options that set `tolerance` and `gravity` instead of
   /// the file (e.g. "--tolerance"), if any: a fault of either is then
