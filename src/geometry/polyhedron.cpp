@@ -786,8 +786,7 @@ std::optional<Vector3> EdgeThroughFace(const Polyhedron& a, const Eigen::Isometr
                               const Vector3& hi2) {
     return (lo1.array() > hi2.array()).any() || (lo2.array() > hi1.array()).any();
   };
-  // Whether the point `hit` of face f's plane is in one of its triangles, and
-  // its distance to the face polygon's edges.
+  // Whether the point `hit` of face f's plane is in one of its triangles.
   const auto in_face = [&](int f, const Vector3& hit) {
     for (const auto& t : b.face_triangles()[f]) {
       const Vector3 &ta = xb[t[0]], &tb = xb[t[1]], &tc = xb[t[2]];
@@ -798,6 +797,7 @@ std::optional<Vector3> EdgeThroughFace(const Polyhedron& a, const Eigen::Isometr
     }
     return false;
   };
+  // The distance from such a point to the face polygon's edges.
   const auto edge_distance = [&](int f, const Vector3& hit) {
     const auto& fb = b.faces()[f];
     const int k = static_cast<int>(fb.size());
