@@ -143,8 +143,22 @@ def _names(value, what):
     return names
 
 
+def _pairs(pairs, what):
+    """Pairs of part names for fastened/touching: "A:B" strings or (A, B)
+    tuples, as "A:B"."""
+    out = []
+    for p in pairs or ():
+        if isinstance(p, str):
+            out.append(p)
+        elif isinstance(p, (tuple, list)) and len(p) == 2:
+            out.append(":".join(_names(p, what)))
+        else:
+            raise TypeError(f"{what}: a pair of part names is 'A:B' or (A, B), not {p!r}")
+    return out
+
+
 def _model_options(friction, supports, gravity, tolerance, interfaces, mesh_tolerance=None,
-                   sidecar=None, max_input_size=None):
+                   sidecar=None, max_input_size=None, fastened=None, touching=None):
     if interfaces not in _INTERFACES:
         raise _input_error("interfaces", f"must be one of {_INTERFACES}, not {interfaces!r}")
     return dict(
@@ -156,27 +170,33 @@ def _model_options(friction, supports, gravity, tolerance, interfaces, mesh_tole
         mesh_tolerance=None if mesh_tolerance is None else _number(mesh_tolerance,
                                                                    "mesh_tolerance"),
         sidecar="" if sidecar is None else os.fspath(sidecar),
+        fastened=_pairs(fastened, "fastened"),
+        touching=_pairs(touching, "touching"),
         max_input_size=(_cairn.DEFAULT_MAX_INPUT_SIZE if max_input_size is None
                         else _whole(max_input_size, "max_input_size", _MAX_INPUT_SIZE)),
     )
 
 
 def load(file, format="scene", friction=None, supports=None, gravity=None, tolerance=None,
-         interfaces="detect", mesh_tolerance=None, sidecar=None, max_input_size=None):
+         interfaces="detect", mesh_tolerance=None, sidecar=None, max_input_size=None,
+         fastened=None, touching=None):
     """Reads a model from a file, as the CLI does: ``format`` "scene" (scene
     format 1), "compas" (a COMPAS assembly, which needs ``friction``), "step"
     (a STEP assembly) or "asap" (an ASAP assembly folder), and the model
     options ``friction``, ``supports`` (parts fixed in addition), ``gravity``
     (2 or 3 numbers), ``tolerance``, ``interfaces`` ("detect" or "stored"),
     ``mesh_tolerance`` (STEP's chordal tolerance, metres), ``sidecar`` (STEP
-    and ASAP: a file with what the model does not carry) and
-    ``max_input_size`` (bytes) of ``--friction`` ... ``--max-input-size``.
+    and ASAP: a file with what the model does not carry),
+    ``max_input_size`` (bytes), ``fastened`` and ``touching`` (STEP: pairs of
+    parts, "A:B" or (A, B), joined into one rigid part, or made to touch
+    where they overlap) of ``--friction`` ... ``--touching``.
     Raises InputError."""
     if format not in _FORMATS:
         raise _input_error("format", f"must be one of {_FORMATS}, not {format!r}")
     return _cairn.load(os.fspath(file), format,
                        _model_options(friction, supports, gravity, tolerance, interfaces,
-                                      mesh_tolerance, sidecar, max_input_size))
+                                      mesh_tolerance, sidecar, max_input_size, fastened,
+                                      touching))
 
 
 def _write_outputs(m, files, inputs=()):

@@ -79,6 +79,8 @@ app::ModelArgs ModelArgsOf(const std::string& format, const py::dict& o) {
   args.interfaces = o["interfaces"].cast<std::string>();
   args.mesh_tolerance = o["mesh_tolerance"].cast<std::optional<double>>();
   args.sidecar = o["sidecar"].cast<std::string>();
+  if (o.contains("fastened")) args.fastened = o["fastened"].cast<std::vector<std::string>>();
+  if (o.contains("touching")) args.touching = o["touching"].cast<std::vector<std::string>>();
   args.max_input_size = o["max_input_size"].cast<std::uint64_t>();
   return args;
 }

@@ -21,6 +21,23 @@ namespace cairn::app {
 
 namespace {
 
+// "A:B" of --fastened or --touching as its two names. @throws InputError
+// naming `flag` when it is not two non-empty names around one ':'.
+std::pair<std::string, std::string> PartPair(const std::string& pair, const std::string& flag) {
+  const size_t colon = pair.find(':');
+  if (colon == std::string::npos || colon == 0 || colon + 1 == pair.size() ||
+      pair.find(':', colon + 1) != std::string::npos)
+    throw InputError("", flag, "\"" + EscapedName(pair) + "\" is not a pair of part names A:B");
+  return {pair.substr(0, colon), pair.substr(colon + 1)};
+}
+
+std::vector<std::pair<std::string, std::string>> PartPairs(const std::vector<std::string>& pairs,
+                                                           const std::string& flag) {
+  std::vector<std::pair<std::string, std::string>> out;
+  for (const std::string& pair : pairs) out.push_back(PartPair(pair, flag));
+  return out;
+}
+
 // The model options' own numbers: finite, and of their sign.
 void CheckModelFlags(const ModelArgs& args) {
   // The CLI's parser takes only these; the Python module passes strings.
@@ -53,6 +70,13 @@ void CheckModelFlags(const ModelArgs& args) {
         "must be a positive length in metres (got " + FormatNumber(*args.mesh_tolerance) + ")");
   if (args.mesh_tolerance && args.format != "step")
     throw InputError("", "--mesh-tolerance", "applies to --format step only");
+  for (const auto* pairs : {&args.fastened, &args.touching}) {
+    const std::string flag = pairs == &args.fastened ? "--fastened" : "--touching";
+    if (!pairs->empty() && args.format != "step")
+      throw InputError("", flag,
+                       "applies to --format step only (it joins the parts' exact solids)");
+    for (const std::string& pair : *pairs) PartPair(pair, flag);
+  }
   if (!args.sidecar.empty() && args.format != "step" && args.format != "asap")
     throw InputError("", "--sidecar",
                      "applies to --format step and asap (a scene file says it all itself)");
@@ -101,10 +125,17 @@ void RequireCompasFriction(const ModelArgs& args) {
 }
 
 // One line per part a STEP reading approximated: the chordal tolerance of
-// its tessellation and what it did to the volume.
+// its tessellation and what it did to the volume; and one per part the
+// reading did more to (a mesher's fallback, a closed shell read as a solid,
+// parts fastened or cut to touch).
 void NoteApproximations(const std::string& file, const StepModel& step, std::ostream& notes) {
   for (const StepPartReport& r : step.parts) {
-    if (!r.approximated) continue;
+    if (!r.approximated) {
+      if (!r.fallback.empty())
+        notes << "cairn: note: " << file << ": part '" << EscapedName(r.name) << "': " << r.fallback
+              << "\n";
+      continue;
+    }
     const double change =
         r.exact_volume > 0 ? 100.0 * (r.volume - r.exact_volume) / r.exact_volume : 0.0;
     char percent[32];
@@ -122,6 +153,15 @@ void NoteApproximations(const std::string& file, const StepModel& step, std::ost
   }
 }
 
+StepReadOptions StepOptions(const ModelArgs& args) {
+  StepReadOptions options;
+  options.mesh_tolerance = args.mesh_tolerance.value_or(0.0);
+  options.max_input_size = args.max_input_size;
+  options.fastened = PartPairs(args.fastened, "--fastened");
+  options.touching = PartPairs(args.touching, "--touching");
+  return options;
+}
+
 // The definition of a STEP assembly or an ASAP folder, with its sidecar;
 // `set_by` gets the sidecar's JSON path of each mass or density it set.
 AssemblyDef ReadCadDef(const std::string& file, const ModelArgs& args, std::ostream* notes,
@@ -130,10 +170,7 @@ AssemblyDef ReadCadDef(const std::string& file, const ModelArgs& args, std::ostr
   if (!args.sidecar.empty()) CheckInputFile(args.sidecar, args.max_input_size);
   AssemblyDef def;
   if (args.format == "step") {
-    StepReadOptions options;
-    options.mesh_tolerance = args.mesh_tolerance.value_or(0.0);
-    options.max_input_size = args.max_input_size;
-    const StepModel step = ReadStepAssembly(file, options);
+    const StepModel step = ReadStepAssembly(file, StepOptions(args));
     if (notes) NoteApproximations(file, step, *notes);
     def = step.def;
   } else {
@@ -151,14 +188,76 @@ std::string NextPowerOfTen(double tol) {
   return "1e" + std::to_string(exponent);
 }
 
+// Parts that overlap by more than the tolerance: the message says that
+// --tolerance raises it.
+[[noreturn]] void OverlapFault(const OverlapError& e, const ModelArgs& args) {
+  const std::string overlap = "by more than the tolerance ";
+  const size_t at = e.message().find(overlap);
+  const double tol =
+      at == std::string::npos ? 0 : std::strtod(e.message().c_str() + at + overlap.size(), nullptr);
+  if (!(tol > 0) || !std::isfinite(tol)) throw e;
+  const std::string example = "--tolerance " + NextPowerOfTen(tol);
+  throw InputError(e.file(), e.json_path(),
+                   e.message() + " (raise it with --tolerance" +
+                       (args.format == "scene" ? " or the scene's `tolerance`" : "") + ", e.g. " +
+                       example + ")");
+}
+
+// Parts of a STEP model that overlap: an interference, measured on the exact
+// solids (the file read again for the common volume of each pair), listed
+// with the ways on: --fastened joins them, --touching makes them touch.
+// Returns (for OverlapFault) when no pair shares a volume of the exact
+// solids: the tessellations alone cross, which --tolerance or
+// --mesh-tolerance answers.
+void StepInterference(const std::string& file, const ModelArgs& args, const AssemblyDef& def,
+                      const OverlapError& e) {
+  StepReadOptions options = StepOptions(args);
+  for (const PartOverlap& o : e.overlaps())
+    options.common_volumes_of.emplace_back(def.parts[o.earlier].name, def.parts[o.later].name);
+  const StepModel measured = ReadStepAssembly(file, options);
+  std::string pairs, fastened, touching;
+  size_t interfering = 0;
+  for (size_t k = 0; k < e.overlaps().size(); ++k) {
+    const PartOverlap& o = e.overlaps()[k];
+    const std::string &a = def.parts[o.earlier].name, &b = def.parts[o.later].name;
+    const double volume = measured.common_volumes[k];
+    // A common volume below the allowance's cube is the exact solids
+    // touching, not sharing material.
+    const double tol = std::max(def.overlap_allowance, def.tolerance);
+    pairs += std::string(pairs.empty() ? "" : "; ") + "'" + EscapedName(a) + "' and '" +
+             EscapedName(b) + "': " +
+             (volume > tol * tol * tol ? FormatNumber(volume) + " m^3 in common (exact solids)"
+                                       : "no common volume in the exact solids (the "
+                                         "tessellations cross)") +
+             ", e.g. at " + FormatPoint(o.witness, 3) + ", " + FormatNumber(o.depth) + " m deep";
+    if (volume > tol * tol * tol) {
+      ++interfering;
+      fastened += (fastened.empty() ? "" : ",") + a + ":" + b;
+      touching += (touching.empty() ? "" : ",") + a + ":" + b;
+    }
+  }
+  if (interfering == 0) return;
+  throw InputError(file, e.json_path(),
+                   std::to_string(e.overlaps().size()) + " pair" +
+                       (e.overlaps().size() == 1 ? "" : "s") + " of parts interfere: " + pairs +
+                       ". A bolt or a press fit held fast: --fastened " + fastened +
+                       " joins each pair into one rigid part; parts that only touch in the "
+                       "design: --touching " +
+                       touching + " cuts the second of each pair where they overlap");
+}
+
 // Assembly::Create (`create`) with what the model layer knows added to its
 // faults: a mass or density the sidecar set is the sidecar's fault, at its
 // JSON path; parts that overlap by more than the tolerance say that
 // --tolerance raises it.
 Assembly CreateAssembly(const std::function<Assembly()>& create, const AssemblyDef& def,
-                        const ModelArgs& args, const std::map<std::string, std::string>& set_by) {
+                        const ModelArgs& args, const std::map<std::string, std::string>& set_by,
+                        const std::string& file = "") {
   try {
     return create();
+  } catch (const OverlapError& e) {
+    if (args.format == "step") StepInterference(file, args, def, e);
+    OverlapFault(e, args);
   } catch (const InputError& e) {
     for (size_t k = 0; k < def.parts.size() && !set_by.empty(); ++k) {
       const std::string part = NamedPath("parts[" + std::to_string(k) + "]", def.parts[k].name);
@@ -167,16 +266,7 @@ Assembly CreateAssembly(const std::function<Assembly()>& create, const AssemblyD
           (e.json_path() == part + ".mass" || e.json_path() == part + ".density"))
         throw InputError(args.sidecar, it->second, e.message());
     }
-    const std::string overlap = "by more than the tolerance ";
-    const size_t at = e.message().find(overlap);
-    if (at == std::string::npos) throw;
-    const double tol = std::strtod(e.message().c_str() + at + overlap.size(), nullptr);
-    if (!(tol > 0) || !std::isfinite(tol)) throw;
-    const std::string example = "--tolerance " + NextPowerOfTen(tol);
-    throw InputError(e.file(), e.json_path(),
-                     e.message() + " (raise it with --tolerance" +
-                         (args.format == "scene" ? " or the scene's `tolerance`" : "") + ", e.g. " +
-                         example + ")");
+    throw;
   }
 }
 
@@ -208,7 +298,8 @@ Model LoadModel(const std::string& file, const ModelArgs& args, std::ostream* no
   if (args.friction) m.def.friction = *args.friction;
   if (args.tolerance) m.def.tolerance = *args.tolerance;
   ApplyModelFlags(args, file, m.def);
-  m.assembly = CreateAssembly([&] { return Assembly::Create(m.def, file); }, m.def, args, set_by);
+  m.assembly =
+      CreateAssembly([&] { return Assembly::Create(m.def, file); }, m.def, args, set_by, file);
   m.file = file;
   return m;
 }

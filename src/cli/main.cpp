@@ -137,6 +137,14 @@ void AddModelOptions(CLI::App* cmd, cairn::cli::ModelArgs& model) {
                   "STEP: chordal tolerance of curved faces, metres (default: 1/1000 of the "
                   "smallest part's bounding-box diagonal)")
       ->check(kPositive);
+  AddNameList(cmd, "--fastened", model.fastened,
+              "STEP: pairs A:B of parts joined into one rigid part (their exact solids fused: "
+              "bolts, pins, press fits), comma-separated")
+      ->type_name("A:B,...");
+  AddNameList(cmd, "--touching", model.touching,
+              "STEP: pairs A:B of overlapping parts made to touch (B loses what it shares with "
+              "A), comma-separated")
+      ->type_name("A:B,...");
   cmd->add_option("--sidecar", model.sidecar,
                   "STEP, ASAP: a JSON file with what the file does not carry (friction, "
                   "densities, masses, fixed parts)")

@@ -164,6 +164,31 @@ bool MaterialAbove(const Placed& P, int i, const Vector3& n, double c, double to
   return true;
 }
 
+// Whether P's material next to edge e lies on the +n side of a plane through
+// the edge (n ⟂ the edge), to within the angle whose sine is sin_tol. That
+// material is the wedge between the edge's two faces. Each face leaves the
+// edge along `into` = n_f × (the edge in the face's counter-clockwise
+// order), so both must point to +n. A convex wedge is spanned by those two;
+// a flat or reflex one (the faces turn by π or more) also holds the
+// half-space behind each face, so each face's outward normal must point to
+// −n as well, which for a reflex edge no plane through it satisfies.
+bool EdgeMaterialAbove(const Placed& P, int e, const Vector3& n, double sin_tol) {
+  const auto [i, j] = P.edges[e];
+  const Vector3 d = (P.v[j] - P.v[i]).normalized();
+  std::array<Vector3, 2> into;
+  for (int s = 0; s < 2; ++s) {
+    const int f = P.edge_faces[e][s];
+    const auto& face = P.shape->faces()[f];
+    const size_t k = std::find(face.begin(), face.end(), i) - face.begin();
+    const bool i_to_j = face[(k + 1) % face.size()] == j;
+    into[s] = P.n[f].cross(i_to_j ? d : Vector3(-d));
+    if (n.dot(into[s]) < -sin_tol) return false;
+  }
+  const auto [f1, f2] = P.edge_faces[e];
+  const bool convex = into[0].dot(P.n[f2]) < -kCornerFlat;
+  return convex || (n.dot(P.n[f1]) <= sin_tol && n.dot(P.n[f2]) <= sin_tol);
+}
+
 // The face–face patches found so far on each face of b (in b-face 2-D
 // coordinates), to skip vertex and edge points inside them.
 struct Patch {
@@ -372,10 +397,21 @@ class PairContacts {
         if (s <= margin1 || s >= 1 - margin1 || t <= margin2 || t >= 1 - margin2) continue;
         const Vector3 pa = p0 + s * d1, pb = q0 + t * d2;
         if ((pa - pb).norm() > length_tol) continue;
-        // Into a's material: against the outward normals of a's faces at ea.
+        // The normal, into a's material: the plane of the two edges must
+        // separate the wedges of material along them, a's on the side n
+        // points to and b's on the other. Where neither side does, the
+        // crossing constrains nothing the faces there do not: an edge of a
+        // face flush with a face beside it (a rod's end in the plane of the
+        // plate it passes through), or edges along the same smooth surface.
+        const double sin_tol = std::sin(angle_tol);
         Vector3 n = cr.normalized();
-        const Vector3 out_a = A.n[A.edge_faces[ea][0]] + A.n[A.edge_faces[ea][1]];
-        if (n.dot(out_a) > 0) n = -n;
+        const auto separates = [&](const Vector3& m) {
+          return EdgeMaterialAbove(A, ea, m, sin_tol) && EdgeMaterialAbove(B, eb, -m, sin_tol);
+        };
+        if (!separates(n)) {
+          if (!separates(-n)) continue;
+          n = -n;
+        }
         PolyhedronContactPoint c;
         c.p_W = 0.5 * (pa + pb);
         c.n_W = n;

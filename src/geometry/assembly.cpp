@@ -4,9 +4,11 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <map>
 #include <numeric>
 #include <optional>
 #include <unordered_map>
+#include <utility>
 #include <variant>
 
 #include "cairn/core/check.h"
@@ -38,6 +40,10 @@ class Validator {
 
   [[noreturn]] void Fail(const std::string& path, const std::string& message) const {
     throw InputError(file_, path, message);
+  }
+  [[noreturn]] void FailOverlaps(const std::string& path, const std::string& message,
+                                 std::vector<PartOverlap> overlaps) const {
+    throw OverlapError(file_, path, message, std::move(overlaps));
   }
   void FiniteNumber(double x, const std::string& path) const {
     if (!std::isfinite(x)) Fail(path, "must be a finite number (got " + FormatNumber(x) + ")");
@@ -422,8 +428,10 @@ void CheckMasses(const AssemblyDef& def, const std::vector<Part>& parts, const V
 }
 
 // Overlap between every pair of parts, skipping pairs whose bounding boxes
-// are apart (a sweep over boxes sorted by their low x). Of all the
-// overlapping pairs the one with the lowest indices is reported.
+// are apart (a sweep over boxes sorted by their low x). Every overlapping
+// pair is reported, the one with the lowest indices first (its later part's
+// path is the error's), each with a point of both parts (a witness) and, in
+// 3-D, how deep that point lies inside the part it is not on the surface of.
 void CheckOverlaps(const AssemblyDef& def, const std::vector<Part>& parts, int dimension,
                    double tol, const Validator& check) {
   const int num_parts = static_cast<int>(parts.size());
@@ -438,8 +446,7 @@ void CheckOverlaps(const AssemblyDef& def, const std::vector<Part>& parts, int d
   std::iota(order.begin(), order.end(), 0);
   std::sort(order.begin(), order.end(),
             [&](int a, int b) { return boxes[a].first.x() < boxes[b].first.x(); });
-  std::optional<std::pair<int, int>> worst;  // (later, earlier) index
-  Vector3 witness(0, 0, 0);
+  std::map<std::pair<int, int>, Vector3> overlaps;  // (later, earlier) index → witness
   for (int oi = 0; oi < num_parts; ++oi) {
     const int i = order[oi];
     for (int oj = oi + 1; oj < num_parts; ++oj) {
@@ -451,28 +458,53 @@ void CheckOverlaps(const AssemblyDef& def, const std::vector<Part>& parts, int d
                 boxes[i].first(d) >= boxes[j].second(d) - tol;
       if (apart) continue;
       const std::pair<int, int> key{std::max(i, j), std::min(i, j)};
-      if (worst && *worst <= key) continue;
       if (is3) {
         const Eigen::Isometry3d I = Eigen::Isometry3d::Identity();
         if (const auto w =
-                FindPolyhedronOverlap(*parts[i].polyhedron, I, *parts[j].polyhedron, I, tol)) {
-          worst = key;
-          witness = *w;
-        }
+                FindPolyhedronOverlap(*parts[i].polyhedron, I, *parts[j].polyhedron, I, tol))
+          overlaps[key] = *w;
       } else if (const auto w = FindOverlap(parts[i].polygon, parts[j].polygon, tol)) {
-        worst = key;
-        witness = Embed(*w);
+        overlaps[key] = Embed(*w);
       }
     }
   }
-  if (worst) {
-    const auto [later, earlier] = *worst;
-    check.Fail(PartPath(def.parts[later], later),
-               "part '" + EscapedName(parts[later].name) + "' overlaps part '" +
-                   EscapedName(parts[earlier].name) + "' (" + Indexed("parts", earlier) +
-                   ") by more than the tolerance " + FormatNumber(tol) + ", e.g. at " +
-                   (is3 ? Point(witness) : Point(Vector2(witness.head<2>()))));
+  if (overlaps.empty()) return;
+  std::vector<PartOverlap> found;
+  for (const auto& [key, witness] : overlaps) {
+    PartOverlap o;
+    o.later = key.first;
+    o.earlier = key.second;
+    o.witness = witness;
+    if (is3) {
+      // The witness lies on or inside each part: its depth is in the other.
+      const Eigen::Isometry3d I = Eigen::Isometry3d::Identity();
+      o.depth = std::max(-SignedDistance(*parts[o.later].polyhedron, I, witness),
+                         -SignedDistance(*parts[o.earlier].polyhedron, I, witness));
+    }
+    found.push_back(o);
   }
+  // "at (x, y, z), d deep"
+  const auto where = [&](const PartOverlap& o) {
+    return is3 ? Point(o.witness) + ", " + FormatNumber(o.depth) + " deep"
+               : Point(Vector2(o.witness.head<2>()));
+  };
+  const PartOverlap& first = found.front();
+  std::string message = "part '" + EscapedName(parts[first.later].name) + "' overlaps part '" +
+                        EscapedName(parts[first.earlier].name) + "' (" +
+                        Indexed("parts", first.earlier) + ") by more than the tolerance " +
+                        FormatNumber(tol) + ", e.g. at " + where(first);
+  if (found.size() > 1) {
+    message += "; " + std::to_string(found.size() - 1) + " more overlapping pair" +
+               (found.size() == 2 ? "" : "s") + ":";
+    for (size_t k = 1; k < found.size(); ++k) {
+      const PartOverlap& o = found[k];
+      message += " '" + EscapedName(parts[o.later].name) + "' and '" +
+                 EscapedName(parts[o.earlier].name) + "' (" + Indexed("parts", o.later) + ", " +
+                 Indexed("parts", o.earlier) + ") at " + where(o) +
+                 (k + 1 == found.size() ? "" : ";");
+    }
+  }
+  check.FailOverlaps(PartPath(def.parts[first.later], first.later), message, std::move(found));
 }
 
 using PartFinder = std::function<int(const std::string&)>;
@@ -639,6 +671,13 @@ Assembly Assembly::Create(const AssemblyDef& def, const std::string& source_file
     out.parts_.push_back(std::move(part));
   }
   CheckMasses(def, out.parts_, check);
+  for (const Part& p : out.parts_) {
+    Vector3 lo = p.vertices[0], hi = lo;
+    for (const Vector3& v : p.vertices) lo = lo.cwiseMin(v), hi = hi.cwiseMax(v);
+    const double size = (hi - lo).norm();
+    if (out.smallest_part_size_ == 0 || size < out.smallest_part_size_)
+      out.smallest_part_size_ = size;
+  }
   // Given interfaces say how the parts touch; their shapes may interpenetrate
   // (InterfaceDef): no overlap test then.
   if (def.interfaces.empty())
@@ -716,6 +755,12 @@ Tolerances Assembly::MakeTolerances(double dt) const {
   Tolerances t =
       Tolerances::Scaled(scene_size_, gravity_.norm(), dt, max_weight_, tolerance_override_);
   t.penetration = t.length + overlap_allowance_;
+  // Facets within the allowance of a curved surface have normals within
+  // about allowance / size of it on a part of that size: the angle
+  // tolerance of a tessellated model (kMaxApproximatedAngle at most).
+  if (overlap_allowance_ > 0 && smallest_part_size_ > 0)
+    t.angle = std::max(
+        t.angle, std::min(overlap_allowance_ / smallest_part_size_, limits::kMaxApproximatedAngle));
   return t;
 }
 

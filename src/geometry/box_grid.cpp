@@ -36,6 +36,12 @@ BoxGrid::BoxGrid(const std::vector<Vector3>& lo, const std::vector<Vector3>& hi,
 }
 
 const std::vector<int>& BoxGrid::Query(const Vector3& lo, const Vector3& hi) const {
+  QueryUnordered(lo, hi);
+  std::sort(found_.begin(), found_.end());
+  return found_;
+}
+
+const std::vector<int>& BoxGrid::QueryUnordered(const Vector3& lo, const Vector3& hi) const {
   found_.clear();
   if (cells_.empty() || (lo.array() > hi_.array()).any() || (hi.array() < lo_.array()).any())
     return found_;
@@ -50,7 +56,6 @@ const std::vector<int>& BoxGrid::Query(const Vector3& lo, const Vector3& hi) con
         found_.push_back(k);
       }
   });
-  std::sort(found_.begin(), found_.end());
   return found_;
 }
 

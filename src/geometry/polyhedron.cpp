@@ -680,7 +680,7 @@ std::optional<bool> RayParityInside(const Triangles& tris, const Vector3& p) {
   constexpr double kGraze = 1e-10;
   const Vector3 top(p.x(), p.y(), std::max(p.z(), tris.hi.z()));
   bool inside = false;
-  for (const int k : tris.grid.Query(p, top)) {
+  for (const int k : tris.grid.QueryUnordered(p, top)) {
     const auto& c = tris.corners[k];
     const auto orient = [](const Vector3& u, const Vector3& v, const Vector3& q) {
       return (v.x() - u.x()) * (q.y() - u.y()) - (v.y() - u.y()) * (q.x() - u.x());
@@ -713,7 +713,7 @@ std::optional<bool> RayParityInside(const Triangles& tris, const Vector3& p) {
 bool DeeperInside(const Triangles& tris, const Vector3& p, double tol) {
   if ((p.array() < tris.lo.array() - tol).any() || (p.array() > tris.hi.array() + tol).any())
     return false;
-  for (const int k : tris.grid.Query(p, p)) {
+  for (const int k : tris.grid.QueryUnordered(p, p)) {
     const auto& c = tris.corners[k];
     if ((ClosestPointOnTriangle(p, c[0], c[1], c[2]) - p).norm() <= tol) return false;
   }
@@ -809,6 +809,7 @@ std::optional<Vector3> EdgeThroughFace(const Polyhedron& a, const Eigen::Isometr
     }
     return edge_dist;
   };
+  const BoxGrid faces(face_lo, face_hi, 0);  // the boxes are grown by tol already
   std::optional<Triangles> tris;  // b's, in its frame: built at the first proper crossing
   const Eigen::Isometry3d X_BW = X_WB.inverse();
   std::vector<double> crossings;
@@ -822,7 +823,7 @@ std::optional<Vector3> EdgeThroughFace(const Polyhedron& a, const Eigen::Isometr
       if (boxes_apart(e_lo, e_hi, b_lo, b_hi)) continue;
       bool proper = false;
       crossings.assign({0.0, 1.0});
-      for (int f = 0; f < nf; ++f) {
+      for (const int f : faces.Query(e_lo, e_hi)) {
         if (boxes_apart(e_lo, e_hi, face_lo[f], face_hi[f])) continue;
         const double dp = normal[f].dot(p) - offset[f], dq = normal[f].dot(q) - offset[f];
         if ((dp > 0) == (dq > 0) || dp == dq) continue;

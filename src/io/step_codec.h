@@ -98,6 +98,8 @@ inline void WriteModel(const StepModel& model, Writer& w) {
     w.F64(r.volume);
     w.Str(r.fallback);
   }
+  w.U64(model.common_volumes.size());
+  for (const double v : model.common_volumes) w.F64(v);
 }
 
 inline StepModel ReadModel(Reader& r) {
@@ -135,7 +137,44 @@ inline StepModel ReadModel(Reader& r) {
     report.fallback = r.Str();
     model.parts.push_back(report);
   }
+  model.common_volumes.resize(r.Count(8));
+  for (double& v : model.common_volumes) v = r.F64();
   return model;
+}
+
+// The pairs of parts the reading process joins (StepReadOptions::fastened,
+// touching, common_volumes_of), as an argument of cairn-step-reader: the
+// bytes of Writer in hexadecimal (names may hold any byte).
+inline std::string EncodePairs(const StepReadOptions& options) {
+  Writer w;
+  for (const auto* list : {&options.fastened, &options.touching, &options.common_volumes_of}) {
+    w.U64(list->size());
+    for (const auto& [a, b] : *list) w.Str(a), w.Str(b);
+  }
+  static const char* const kHex = "0123456789abcdef";
+  std::string hex;
+  for (const unsigned char c : w.str()) hex += kHex[c >> 4], hex += kHex[c & 15];
+  return hex;
+}
+
+// EncodePairs's inverse into `options`. @throws std::runtime_error on text
+// that EncodePairs did not write.
+inline void DecodePairs(const std::string& hex, StepReadOptions& options) {
+  if (hex.size() % 2 != 0) throw std::runtime_error("STEP reader: bad pairs argument");
+  std::string bytes;
+  for (size_t k = 0; k < hex.size(); k += 2) {
+    const auto digit = [&](char c) {
+      if (c >= '0' && c <= '9') return c - '0';
+      if (c >= 'a' && c <= 'f') return c - 'a' + 10;
+      throw std::runtime_error("STEP reader: bad pairs argument");
+    };
+    bytes += static_cast<char>(digit(hex[k]) * 16 + digit(hex[k + 1]));
+  }
+  Reader r(bytes);
+  for (auto* list : {&options.fastened, &options.touching, &options.common_volumes_of}) {
+    list->resize(r.Count(16));
+    for (auto& [a, b] : *list) a = r.Str(), b = r.Str();
+  }
 }
 
 // An InputError as the answer.

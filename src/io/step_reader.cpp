@@ -215,7 +215,8 @@ StepModel ReadStepAssembly(const std::string& path, const StepReadOptions& optio
   limits.time_limit = options.time_limit;
   limits.memory_limit = options.memory_limit;
   const io_internal::IsolatedResult result = io_internal::RunIsolatedProgram(
-      {FindStepReader(), path, Exact(options.mesh_tolerance), std::to_string(options.memory_limit)},
+      {FindStepReader(), path, Exact(options.mesh_tolerance), std::to_string(options.memory_limit),
+       step_codec::EncodePairs(options)},
       text, limits);
   using Status = io_internal::IsolatedResult::Status;
   switch (result.status) {

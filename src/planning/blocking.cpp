@@ -95,6 +95,7 @@
 #include "cairn/core/check.h"
 #include "cairn/core/tolerances.h"
 #include "cairn/core/unit_vector.h"
+#include "cairn/geometry/box_grid.h"
 
 namespace cairn {
 
@@ -106,6 +107,18 @@ const char* to_string(BlockingKind kind) {
       return "infinity";
   }
   return "unknown";
+}
+
+BlockingGraph Reversed(const BlockingGraph& graph) {
+  BlockingGraph out;
+  out.direction = -graph.direction;
+  out.kind = graph.kind;
+  out.fixed = graph.fixed;
+  out.blockers.resize(graph.blockers.size());
+  // i in ascending order: every list stays ascending.
+  for (size_t i = 0; i < graph.blockers.size(); ++i)
+    for (const int j : graph.blockers[i]) out.blockers[j].push_back(static_cast<int>(i));
+  return out;
 }
 
 bool BlockingGraph::Blocks(int i, int j) const {
@@ -719,20 +732,65 @@ void VertexTriangleEvent(const Vector3& p, const Vector3& d, const Vector3& q0, 
   if (t > tol) out.push_back(t);
 }
 
+// A shape's features seen along d: each point's coordinates (x·u, x·w, 0)
+// in the plane ⟂ d. A point moving along d can only cross a triangle, and
+// an edge can only cross an edge, whose projections meet.
+struct AlongD {
+  Vector3 u, w;
+  Vector3 operator()(const Vector3& x) const { return {x.dot(u), x.dot(w), 0}; }
+};
+
+// The grid of a shape's triangles (or edges) projected along d, each box
+// grown by tol.
+template <size_t N>
+BoxGrid ProjectedGrid(const Shape& s, const std::vector<std::array<int, N>>& features,
+                      const AlongD& along, double tol) {
+  std::vector<Vector3> lo, hi;
+  lo.reserve(features.size());
+  hi.reserve(features.size());
+  for (const auto& f : features) {
+    Vector3 l = along(s.verts[f[0]]), h = l;
+    for (size_t k = 1; k < N; ++k) {
+      const Vector3 x = along(s.verts[f[k]]);
+      l = l.cwiseMin(x);
+      h = h.cwiseMax(x);
+    }
+    lo.push_back(l);
+    hi.push_back(h);
+  }
+  return BoxGrid(lo, hi, tol);
+}
+
+// The times t > tol at which a vertex of `p` moving along d crosses a
+// triangle of `q` (q's triangles looked up by their projection along d).
+void VertexTriangleEvents(const Shape& p, const Shape& q, const Vector3& d, const AlongD& along,
+                          double tol, std::vector<double>& events) {
+  const BoxGrid triangles = ProjectedGrid(q, q.triangles, along, tol);
+  for (const Vector3& x : p.verts) {
+    const Vector3 at = along(x);
+    for (const int k : triangles.Query(at, at)) {
+      const auto& tr = q.triangles[k];
+      VertexTriangleEvent(x, d, q.verts[tr[0]], q.verts[tr[1]], q.verts[tr[2]], tol, events);
+    }
+  }
+}
+
 // Step 3c, 3-D: a moving along d, b still, either non-convex.
 bool EventSweptOverlap3(const Shape& a, const Shape& b, const Vector3& d, double tol) {
   std::vector<double> events;
-  for (const Vector3& p : a.verts)
-    for (const auto& tr : b.triangles)
-      VertexTriangleEvent(p, d, b.verts[tr[0]], b.verts[tr[1]], b.verts[tr[2]], tol, events);
-  for (const Vector3& p : b.verts)
-    for (const auto& tr : a.triangles)
-      VertexTriangleEvent(p, -d, a.verts[tr[0]], a.verts[tr[1]], a.verts[tr[2]], tol, events);
+  AlongD along;
+  along.u = d.unitOrthogonal();
+  along.w = d.cross(along.u);
+  VertexTriangleEvents(a, b, d, along, tol, events);
+  VertexTriangleEvents(b, a, -d, along, tol, events);
   // Edge p0 + u e of a moving along d meets edge q0 + v f of b:
   // t d + u e − v f = q0 − p0.
+  const BoxGrid edges_b = ProjectedGrid(b, b.edges, along, tol);
   for (const auto& ea : a.edges) {
     const Vector3 &p0 = a.verts[ea[0]], e = a.verts[ea[1]] - p0;
-    for (const auto& eb : b.edges) {
+    const Vector3 x0 = along(p0), x1 = along(a.verts[ea[1]]);
+    for (const int k : edges_b.Query(x0.cwiseMin(x1), x0.cwiseMax(x1))) {
+      const auto& eb = b.edges[k];
       const Vector3 &q0 = b.verts[eb[0]], f = b.verts[eb[1]] - q0;
       Matrix3 M;
       M << d, e, -f;

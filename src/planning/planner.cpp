@@ -8,6 +8,7 @@
 #include <limits>
 #include <map>
 #include <mutex>
+#include <numbers>
 #include <numeric>
 #include <set>
 #include <sstream>
@@ -280,9 +281,27 @@ void Planner::ComputeDirections() {
   if (opt_.directions.empty()) {
     ndbg = ComputeNdbg(assembly_, config);
   } else {
-    // The given directions alone, one cell each.
-    for (const Vector3& d : opt_.directions)
-      ndbg.cells.push_back(ComputeBlockingAt(assembly_, config, d).cells[0]);
+    // The given directions alone, one cell each; a direction opposite one
+    // already done has its graphs reversed (Reversed), not computed again.
+    for (const Vector3& d : opt_.directions) {
+      const auto opposite = std::find_if(
+          ndbg.cells.begin(), ndbg.cells.end(),
+          [&](const NdbgCell& c) { return (c.direction + d).norm() < numeric::kRoundoff; });
+      if (opposite == ndbg.cells.end()) {
+        ndbg.cells.push_back(ComputeBlockingAt(assembly_, config, d).cells[0]);
+        continue;
+      }
+      NdbgCell cell = *opposite;
+      cell.direction = d;
+      for (int& sign : cell.signs) sign = -sign;
+      if (!assembly_.is_3d()) {
+        cell.angle_from = std::fmod(cell.angle_from + std::numbers::pi, 2 * std::numbers::pi);
+        cell.angle_to = std::fmod(cell.angle_to + std::numbers::pi, 2 * std::numbers::pi);
+      }
+      cell.infinitesimal = Reversed(opposite->infinitesimal);
+      cell.infinity = Reversed(opposite->infinity);
+      ndbg.cells.push_back(std::move(cell));
+    }
   }
   std::vector<const NdbgCell*> cells;
   for (const NdbgCell& c : ndbg.cells) cells.push_back(&c);

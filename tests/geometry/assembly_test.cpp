@@ -176,6 +176,37 @@ TEST(Assembly, NonFiniteNumbersAreRejected) {
   ExpectError(def, "fixtures[0].normal", "finite");
 }
 
+// In 3-D each overlapping pair comes with how deep its witness lies in the
+// part it is not on the surface of: a cube pushed 0.25 into another, a
+// third 0.1 into the second, at most that deep.
+TEST(Assembly, OverlapsIn3DSayHowDeep) {
+  AssemblyDef def;
+  def.parts = {testing::Box3("A", {0, 0, 0}, {1, 1, 1}, true),
+               testing::Box3("B", {0.75, 0, 0}, {1.75, 1, 1}),
+               testing::Box3("C", {1.65, 0, 0}, {2.65, 1, 1})};
+  try {
+    Assembly::Create(def, "scene.json");
+    ADD_FAILURE() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.json_path(), "parts[1] (\"B\")") << e.what();
+    const std::string m = e.message();
+    EXPECT_THAT(m, HasSubstr("part 'B' overlaps part 'A' (parts[0])")) << m;
+    EXPECT_THAT(m, HasSubstr("; 1 more overlapping pair: 'C' and 'B' (parts[2], parts[1]) at ("))
+        << m;
+    const auto depth_after = [&](size_t from) {
+      const size_t end = m.find(" deep", from);
+      EXPECT_NE(end, std::string::npos) << m;
+      const size_t start = m.rfind(", ", end) + 2;
+      return std::stod(m.substr(start, end - start));
+    };
+    const double ab = depth_after(0), bc = depth_after(m.find("more overlapping"));
+    EXPECT_GT(ab, 0);
+    EXPECT_LE(ab, 0.25 + 1e-9);
+    EXPECT_GT(bc, 0);
+    EXPECT_LE(bc, 0.1 + 1e-9);
+  }
+}
+
 TEST(Assembly, Overlaps) {
   // A vertex deep inside another part.
   AssemblyDef def = TwoBlocks();
@@ -194,6 +225,16 @@ TEST(Assembly, Overlaps) {
   def = TwoBlocks();
   def.parts.push_back(Box("wall", 4, -0.5, 5, 3, true));
   ExpectError(def, "parts[3] (\"wall\")", "part 'wall' overlaps part 'table' (parts[0])");
+  // Every overlapping pair is listed, the lowest indices first (its later
+  // part names the path), each with a point in both.
+  def = TwoBlocks();
+  def.parts[2] = Box("B", 1, 0.5, 3, 2);
+  def.parts.push_back(Box("C", 10, 0, 11, 1));
+  def.parts.push_back(Box("D", 10.5, 0.5, 11.5, 1.5));
+  ExpectError(def, "parts[2] (\"B\")",
+              "part 'B' overlaps part 'A' (parts[1]) by more than the tolerance");
+  ExpectError(def, "parts[2] (\"B\")",
+              "; 1 more overlapping pair: 'D' and 'C' (parts[4], parts[3]) at (");
   // Within the tolerance is touching, not overlap.
   def = TwoBlocks();
   def.parts[2] = Box("B", 0, 1 - 1e-7, 1, 2);

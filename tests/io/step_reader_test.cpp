@@ -115,6 +115,50 @@ TEST(ReadStepAssembly, RefusesWhatIsNotASolidModel) {
   std::filesystem::remove(open);
 }
 
+// A part modelled as a closed surface (its faces one shell, no solid), as
+// some CAD systems export sheet-metal or scanned parts: read as the solid it
+// bounds, with its volume and a note, whichever way its faces face; a
+// curved one (a cylinder's shell) too, tessellated.
+TEST(ReadStepAssembly, ReadsAClosedShellAsTheSolidItBounds) {
+  const auto shell_of = [](const TopoDS_Shape& solid, bool reversed) {
+    TopoDS_Shell shell;
+    BRep_Builder builder;
+    builder.MakeShell(shell);
+    for (TopExp_Explorer e(solid, TopAbs_FACE); e.More(); e.Next())
+      builder.Add(shell, reversed ? e.Current().Reversed() : e.Current());
+    shell.Closed(true);
+    return shell;
+  };
+  for (const bool reversed : {false, true}) {
+    SCOPED_TRACE(reversed ? "faces facing in" : "faces facing out");
+    const std::string path = TempPath("closed_shell") + ".step";
+    ASSERT_TRUE(testing::WriteStepAssembly(
+        path, "shells",
+        {{"table", testing::Box(0, 0, -10, 100, 100, 0), gp_Trsf()},
+         {"box", shell_of(testing::Box(10, 10, 0, 30, 40, 50), reversed), gp_Trsf()},
+         {"can", shell_of(testing::Cylinder(70, 70, 0, 10, 20), reversed), gp_Trsf()}}));
+    const StepModel step = ReadStepAssembly(path);
+    std::filesystem::remove(path);
+    ASSERT_EQ(step.parts.size(), 3u);
+    EXPECT_EQ(step.parts[0].fallback, "");
+    for (const int k : {1, 2}) {
+      const StepPartReport& r = step.parts[static_cast<size_t>(k)];
+      EXPECT_NE(r.fallback.find("closed shell, not a solid: read as the solid it bounds"),
+                std::string::npos)
+          << r.name << ": " << r.fallback;
+    }
+    EXPECT_NEAR(step.parts[1].exact_volume, 20e-3 * 30e-3 * 50e-3, 1e-12);
+    EXPECT_NEAR(step.parts[1].volume, step.parts[1].exact_volume, 1e-12);
+    EXPECT_NEAR(step.parts[2].exact_volume, M_PI * 1e-4 * 20e-3, 1e-12);
+    // Within the chordal tolerance of the surface all round.
+    EXPECT_NEAR(step.parts[2].volume, step.parts[2].exact_volume,
+                step.parts[2].exact_area * step.parts[2].mesh_tolerance);
+    // Standing on the table: a model Cairn loads.
+    const Assembly a = Assembly::Create(step.def, path);
+    EXPECT_EQ(a.num_parts(), 3);
+  }
+}
+
 TEST(ReadStepAssembly, NamesEveryInstanceOfAProduct) {
   const std::string path = TempPath("bolts") + ".step";
   const TopoDS_Shape bolt = testing::Box(0, 0, 0, 5, 5, 20);

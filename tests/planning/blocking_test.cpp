@@ -436,6 +436,30 @@ TEST(ComputeBlockingAt, AgreesWithTheNdbgCellThatHoldsTheDirection) {
   }
 }
 
+// i along −d runs into j exactly when j along +d runs into i: at every
+// NDBG cell's direction of the bundled examples, both graphs computed along
+// −d equal those along +d reversed (the planner reverses instead of
+// computing ±x, ±y, ±z twice).
+TEST(Reversed, EqualsTheGraphsComputedAlongTheOppositeDirection) {
+  for (const char* name :
+       {"jenga.json", "paper_fig1.json", "l_shapes.json", "peg_in_slot.json", "paper_fig9.json"}) {
+    SCOPED_TRACE(name);
+    const Assembly assembly = Example(name);
+    const Configuration config = Configuration::Assembled(assembly);
+    for (const NdbgCell& cell : ComputeNdbg(assembly, config).cells) {
+      const NdbgCell back = ComputeBlockingAt(assembly, config, -cell.direction).cells[0];
+      const NdbgCell forth = ComputeBlockingAt(assembly, config, cell.direction).cells[0];
+      for (const auto& [computed, along] : {std::pair(&back.infinity, &forth.infinity),
+                                            std::pair(&back.infinitesimal, &forth.infinitesimal)}) {
+        const BlockingGraph reversed = Reversed(*along);
+        EXPECT_LT((reversed.direction + along->direction).norm(), 1e-15);
+        EXPECT_EQ(reversed.blockers, computed->blockers) << cell.direction.transpose();
+        EXPECT_EQ(reversed.fixed, computed->fixed);
+      }
+    }
+  }
+}
+
 // Nothing to run into: one cell, the whole circle (2-D) or sphere (3-D),
 // represented by "up".
 TEST(Ndbg, LonePartIsOneCell) {

@@ -167,6 +167,19 @@ def test_step_pen(cli):
     assert strip(cairn.check(m)) == cli_json(cli, "check", path, "--format", "step")
 
 
+def test_step_pen_fastened(cli):
+    # --fastened through Python as a tuple and through the CLI as A:B: the
+    # same model, body and head fused into one part named in the model's
+    # order, where the head comes first: "head_001+body_001".
+    path = shared_file("aplan_bourjault_pen_simple/asm_bourjault_ballpoint.stp")
+    m = cairn.load(path, format="step", fastened=[("body_001", "head_001")])
+    assert m.parts[0] == "head_001+body_001" and len(m.parts) == 5
+    assert strip(cairn.check(m)) == cli_json(cli, "check", path, "--format", "step",
+                                             "--fastened", "body_001:head_001")
+    with pytest.raises(cairn.InputError, match="is not a pair of part names A:B"):
+        cairn.load(path, format="step", fastened=["body_001"])
+
+
 def test_asap_folder(cli, tmp_path):
     # Two of the beams (0 and 2, which touch), as ASAP's own folder holds
     # them: the whole assembly's 40 000 facets take minutes under the

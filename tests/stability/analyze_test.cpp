@@ -102,6 +102,42 @@ TEST(Incline, BundledExamples) {
 
 // --- A block overhanging a table edge: stable iff its centroid is over it. --
 
+// The 2-D cube beside a wall: a free unit square beside a fixed wall
+// (x from 1 to 2), touching only its side x = 1, nothing below it, falls at
+// any μ; with every edge of both cut at its midpoint (the same shapes:
+// vertices inside straight edges, two of them on the wall's corners' edges)
+// the verdict, the motion and the contact normals are the same (issue 31).
+TEST(SquareBesideAWall, FallsWithItsEdgesSplitOrNot) {
+  const auto split = [](Polygon p) {
+    Polygon out;
+    for (size_t k = 0; k < p.size(); ++k) {
+      out.push_back(p[k]);
+      out.push_back(0.5 * (p[k] + p[(k + 1) % p.size()]));
+    }
+    return out;
+  };
+  for (const double mu : {0.0, 0.5, 2.0})
+    for (const bool cut : {false, true}) {
+      SCOPED_TRACE(std::string(cut ? "split edges" : "plain") + ", μ = " + std::to_string(mu));
+      AssemblyDef def;
+      def.friction = mu;
+      def.parts = {Box("wall", 1, 0, 2, 1, true), Box("square", 0, 0, 1, 1)};
+      if (cut)
+        for (PartDef& p : def.parts) p.polygon = split(p.polygon);
+      const Assembly a = Assembly::Create(def);
+      const StabilityResult r = Analyze(a);
+      EXPECT_FALSE(r.stable());
+      ASSERT_TRUE(r.static_equilibrium.has_value());
+      EXPECT_FALSE(*r.static_equilibrium);
+      ASSERT_FALSE(r.contacts.empty());
+      for (const ContactReport& c : r.contacts)
+        EXPECT_NEAR(std::abs(c.contact.n_W.x()), 1.0, 1e-12) << c.contact.p_WC.transpose();
+      ASSERT_EQ(r.parts.size(), 1u);
+      EXPECT_TRUE(r.parts[0].moving);
+      EXPECT_LT(r.parts[0].linear.y(), 0.0);
+    }
+}
+
 TEST(Overhang, StableIffCentroidOverTheTable) {
   // Table top y = 0 for x ≤ 0; a 2 × 1 block with its centroid at x = xc.
   for (const double xc : {-0.9, -0.3, -0.02, 0.02, 0.3, 0.9}) {

@@ -26,6 +26,13 @@ struct ModelArgs {
   /// --mesh-tolerance (step): the chordal tolerance of curved faces, metres;
   /// none: the reader's default (StepReadOptions).
   std::optional<double> mesh_tolerance;
+  /// --fastened (step): pairs "A:B" of parts joined into one rigid part,
+  /// their exact solids fused (StepReadOptions::fastened): bolts, pins and
+  /// press fits that interfere with what they hold.
+  std::vector<std::string> fastened;
+  /// --touching (step): pairs "A:B" made to touch where they overlap: B
+  /// loses what it shares with A (StepReadOptions::touching).
+  std::vector<std::string> touching;
   /// --sidecar (step, asap): what the file does not carry (friction,
   /// densities, masses, fixed parts), io/sidecar_reader.h; empty: none.
   std::string sidecar;

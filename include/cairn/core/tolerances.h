@@ -7,7 +7,9 @@
 /// bounding box of all parts) and its gravity g (length/s², the norm of the
 /// gravity vector; 1 if the scene has none). The rules:
 ///   length       = 1e-6 · L       unless the scene sets "tolerance"
-///   angle        = 1e-6 rad       (parallel/anti-parallel edges, normals)
+///   angle        = 1e-6 rad       (parallel/anti-parallel edges, normals);
+///                  a tessellated model's: its overlap allowance over its
+///                  smallest part's size, if larger (at most 1e-2)
 ///   acceleration = 1e-6 · g       (length/s²; a part whose points accelerate
 ///                                  less than this is at rest)
 ///   velocity     = 1e-6 · g · Δt  (length/s; the same for one time step)
@@ -55,6 +57,12 @@ inline constexpr double kMaxMassRatio = 1e9;
 inline constexpr double kMaxFriction = 1e3;
 /// |g| (length/s²): zero (no gravity) or within these.
 inline constexpr double kMinGravity = 1e-9, kMaxGravity = 1e9;
+/// The angle tolerance of a tessellated model (radians) at most: its
+/// allowance over its smallest part's size (Assembly::MakeTolerances),
+/// kept below the angles that tell one facet of a curved surface from the
+/// next (OpenCASCADE's angular deflection is 0.5 rad; Cairn's facets turn
+/// by far less).
+inline constexpr double kMaxApproximatedAngle = 1e-2;
 }  // namespace limits
 
 /// Relative factors from which Tolerances are scaled (dimensionless).

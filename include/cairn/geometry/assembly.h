@@ -10,8 +10,10 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
+#include "cairn/core/error.h"
 #include "cairn/core/tolerances.h"
 #include "cairn/core/types.h"
 #include "cairn/geometry/polygon.h"
@@ -128,6 +130,29 @@ struct Fixture {
   Vector3 normal{0, 0, 0};  ///< n_W, unit: the direction the fixel pushes the part
 };
 
+/// Two parts of an AssemblyDef that overlap by more than the tolerance.
+struct PartOverlap {
+  int later = -1, earlier = -1;  ///< indices into AssemblyDef::parts, later > earlier
+  Vector3 witness{0, 0, 0};      ///< a point of both (z = 0 in 2-D)
+  /// 3-D: how deep the witness lies inside the part it is not on the surface
+  /// of (length; a lower bound on the overlap's depth); 2-D: 0.
+  double depth = 0;
+};
+
+/// Assembly::Create's error when parts overlap: every overlapping pair, the
+/// one with the lowest indices first (its later part is the JSON path).
+class OverlapError : public InputError {
+ public:
+  OverlapError(std::string file, std::string json_path, std::string message,
+               std::vector<PartOverlap> overlaps)
+      : InputError(std::move(file), std::move(json_path), std::move(message)),
+        overlaps_(std::move(overlaps)) {}
+  const std::vector<PartOverlap>& overlaps() const { return overlaps_; }
+
+ private:
+  std::vector<PartOverlap> overlaps_;
+};
+
 /// The immutable, validated model.
 class Assembly {
  public:
@@ -137,7 +162,8 @@ class Assembly {
   ///         `parts[2].polygon[3]`) and what is wrong: duplicate or unknown
   ///         names, fewer than 3 vertices, zero area, self-intersecting
   ///         polygons, NaN or infinite numbers, negative mass, density or
-  ///         friction, parts that overlap by more than the tolerance, a fixture
+  ///         friction, parts that overlap by more than the tolerance
+  ///         (OverlapError, listing every pair), a fixture
   ///         point off its part or a fixture normal pointing out of it, a
   ///         part that is both fixed and a tool.
   static Assembly Create(const AssemblyDef& def, const std::string& source_file = "");
@@ -207,6 +233,7 @@ class Assembly {
   double scene_size_ = 0;
   double tolerance_override_ = 0;
   double overlap_allowance_ = 0;
+  double smallest_part_size_ = 0;  // length: the least bounding-box diagonal of a part
   double max_weight_ = 0;
   Tolerances tolerances_;
 };

@@ -29,6 +29,9 @@ class BoxGrid {
   /// The boxes that share a cell with [lo, hi], ascending, each once. The
   /// reference is valid until the next query (one thread at a time).
   const std::vector<int>& Query(const Vector3& lo, const Vector3& hi) const;
+  /// The same boxes in no particular order (cheaper: not sorted), for a
+  /// caller whose answer does not depend on the order.
+  const std::vector<int>& QueryUnordered(const Vector3& lo, const Vector3& hi) const;
 
  private:
   int Cell(double x, int d) const;

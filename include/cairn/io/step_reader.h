@@ -31,6 +31,7 @@
 
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "cairn/geometry/assembly.h"
@@ -91,6 +92,19 @@ struct StepReadOptions {
   /// not finite, references to undefined entities). false leaves only the
   /// process's limits between a broken file and OpenCASCADE (their tests).
   bool check_text = true;
+  /// Pairs of parts (names in the model) joined into one rigid part
+  /// (`--fastened A:B`): the exact solids of each group of pairs fused
+  /// (OpenCASCADE's BRepAlgoAPI_Fuse) into one part, named by the group's
+  /// names in the model's order joined with '+', where its first part was.
+  /// They must touch or overlap: fused, they are one solid.
+  std::vector<std::pair<std::string, std::string>> fastened;
+  /// Pairs (a, b) made to touch where they overlap (`--touching A:B`): b's
+  /// exact solid loses what it shares with a's (BRepAlgoAPI_Cut), so that
+  /// b then touches a along a's surface. After `fastened`.
+  std::vector<std::pair<std::string, std::string>> touching;
+  /// Pairs of parts (names after `fastened`) whose exact common volume is
+  /// wanted: StepModel::common_volumes (an interference's size).
+  std::vector<std::pair<std::string, std::string>> common_volumes_of;
 };
 
 /// What reading did to one part.
@@ -114,6 +128,9 @@ struct StepModel {
   AssemblyDef def;  ///< 3-D, parts in metres; gravity, friction, density: defaults
   std::vector<StepPartReport> parts;  ///< one per part of `def`, in order
   double length_unit = 1;             ///< the file's length unit in metres (0.001: mm)
+  /// m³: the exact volume each pair of StepReadOptions::common_volumes_of
+  /// shares (BRepAlgoAPI_Common), in order.
+  std::vector<double> common_volumes;
   // def.tolerance: kStepLengthToleranceOfChord × the chordal tolerance when a
   // part is approximated (def.tolerance_option "--mesh-tolerance"), else 0;
   // def.overlap_allowance: the chordal tolerance when a part is approximated.

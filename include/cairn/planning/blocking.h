@@ -79,6 +79,13 @@ struct BlockingGraph {
   bool Blocks(int i, int j) const;
 };
 
+/// The same relation along −d: i moving along −d runs into j exactly when j
+/// moving along +d runs into i (the Minkowski difference i ⊖ j is j ⊖ i
+/// reflected; a contact normal n from j into i blocks i at −d where it
+/// blocks j at d), so the arcs are `graph`'s reversed. Blocking along both
+/// directions of an axis costs one computation.
+BlockingGraph Reversed(const BlockingGraph& graph);
+
 /// One cell of the NDBG: a set of directions with one blocking graph each.
 struct NdbgCell {
   /// The cell's dimension: 0 for a critical direction (2-D) or a vertex of

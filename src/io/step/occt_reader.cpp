@@ -9,7 +9,10 @@
 //   2. CollectLeaves: the assembly tree walked from the free shapes; each leaf
 //      instance with its composed location (world = L_root · ... · L_leaf).
 //   3. PartNames: product names, instances of one product numbered.
-//   4. OneSolid: each leaf's single solid, closed (no free edge).
+//   4. OneSolid: each leaf's single solid, closed (no free edge); a closed
+//      shell read as the solid it bounds (SolidOfClosedShell).
+//   4b. FastenParts, MakePartsTouch: the joins the user asked for, on the
+//      exact solids; the common volumes Cairn asked for.
 //   5. The chordal tolerance: one for the assembly (step_reader.h).
 //   6. ToPolyhedron: exact planar faces and tessellated others, welded, the
 //      tessellated triangles merged where coplanar; a solid OpenCASCADE's
@@ -20,9 +23,15 @@
 
 #include <BRepAdaptor_Curve.hxx>
 #include <BRepAdaptor_Surface.hxx>
+#include <BRepAlgoAPI_Common.hxx>
+#include <BRepAlgoAPI_Cut.hxx>
+#include <BRepAlgoAPI_Fuse.hxx>
 #include <BRepBndLib.hxx>
+#include <BRepBuilderAPI_MakeSolid.hxx>
 #include <BRepBuilderAPI_NurbsConvert.hxx>
+#include <BRepBuilderAPI_Sewing.hxx>
 #include <BRepGProp.hxx>
+#include <BRepLib.hxx>
 #include <BRepMesh_IncrementalMesh.hxx>
 #include <BRepTools.hxx>
 #include <BRepTools_WireExplorer.hxx>
@@ -49,6 +58,7 @@
 #include <TopoDS_Edge.hxx>
 #include <TopoDS_Face.hxx>
 #include <TopoDS_Shape.hxx>
+#include <TopoDS_Shell.hxx>
 #include <TopoDS_Solid.hxx>
 #include <TopoDS_Wire.hxx>  // IWYU pragma: keep
 #include <XCAFApp_Application.hxx>
@@ -249,11 +259,41 @@ std::vector<std::string> PartNames(const std::vector<Leaf>& leaves) {
   return names;
 }
 
-// 4. The one solid of a leaf, closed. @throws InputError naming the part.
-TopoDS_Solid OneSolid(const TopoDS_Shape& shape, const std::string& path, const std::string& part) {
+// 4a. A leaf without a solid whose faces close into one shell (a part
+// modelled as a closed surface): the solid that shell bounds, oriented with
+// its material inside; a null solid otherwise. The faces are sewn first
+// (within OpenCASCADE's confusion tolerance), so that faces exported one by
+// one count as one shell.
+TopoDS_Solid SolidOfClosedShell(const TopoDS_Shape& shape) {
+  BRepBuilderAPI_Sewing sewing(Precision::Confusion());
+  int faces = 0;
+  for (TopExp_Explorer e(shape, TopAbs_FACE); e.More(); e.Next(), ++faces) sewing.Add(e.Current());
+  if (faces == 0) return {};
+  sewing.Perform();
+  std::vector<TopoDS_Shell> shells;
+  for (TopExp_Explorer e(sewing.SewedShape(), TopAbs_SHELL); e.More(); e.Next())
+    shells.push_back(TopoDS::Shell(e.Current()));
+  if (shells.size() != 1 || !BRep_Tool::IsClosed(shells[0])) return {};
+  BRepBuilderAPI_MakeSolid make(shells[0]);
+  if (!make.IsDone()) return {};
+  TopoDS_Solid solid = make.Solid();
+  if (!BRepLib::OrientClosedSolid(solid)) return {};
+  return solid;
+}
+
+// 4. The one solid of a leaf, closed; `note` says so when it was a closed
+// shell. @throws InputError naming the part.
+TopoDS_Solid OneSolid(const TopoDS_Shape& shape, const std::string& path, const std::string& part,
+                      std::string& note) {
   std::vector<TopoDS_Solid> solids;
   for (TopExp_Explorer e(shape, TopAbs_SOLID); e.More(); e.Next())
     solids.push_back(TopoDS::Solid(e.Current()));
+  if (solids.empty()) {
+    if (const TopoDS_Solid solid = SolidOfClosedShell(shape); !solid.IsNull()) {
+      solids.push_back(solid);
+      note = "it is a closed shell, not a solid: read as the solid it bounds";
+    }
+  }
   if (solids.empty())
     throw InputError(path, "",
                      "part '" + part +
@@ -283,6 +323,131 @@ TopoDS_Solid OneSolid(const TopoDS_Shape& shape, const std::string& path, const 
                          std::to_string(free_edges) + " edge" + (free_edges == 1 ? "" : "s") +
                          " bound only one face)");
   return solids[0];
+}
+
+// The parts' names, exact solids and notes, as reading and joining them
+// leave them (steps 3 to 4b).
+struct Solids {
+  std::vector<std::string> names;
+  std::vector<TopoDS_Solid> solids;
+  std::vector<std::string> notes;  // what was done to each, for its report
+};
+
+// The index of the part named `name`. @throws InputError naming `option`
+// ("" for a request of Cairn's own, where the file is at fault).
+size_t FindPart(const Solids& parts, const std::string& name, const std::string& option,
+                const std::string& path) {
+  const auto it = std::find(parts.names.begin(), parts.names.end(), name);
+  if (it != parts.names.end()) return static_cast<size_t>(it - parts.names.begin());
+  // A part fastened to others is named by its group ("a+b").
+  for (const std::string& group : parts.names)
+    if (("+" + group + "+").find("+" + name + "+") != std::string::npos)
+      throw InputError("", option,
+                       "part '" + EscapedName(name) + "' of " + path + " is fastened into '" +
+                           EscapedName(group) + "': give that name");
+  throw InputError(
+      option.empty() ? path : "", option,
+      "no part named '" + EscapedName(name) + "'" + (option.empty() ? "" : " in " + path));
+}
+
+// The one solid of a boolean operation's result; a null solid when it has
+// none or several.
+TopoDS_Solid SingleSolid(const TopoDS_Shape& shape) {
+  TopoDS_Solid one;
+  int count = 0;
+  for (TopExp_Explorer e(shape, TopAbs_SOLID); e.More(); e.Next(), ++count)
+    one = TopoDS::Solid(e.Current());
+  return count == 1 ? one : TopoDS_Solid();
+}
+
+// The volume of a shape (the file's unit, cubed).
+double Volume(const TopoDS_Shape& shape) {
+  GProp_GProps props;
+  BRepGProp::VolumeProperties(shape, props);
+  return std::abs(props.Mass());
+}
+
+// 4b. Each group of parts joined by StepReadOptions::fastened (pairs that
+// share a part make one group) fused into one solid, where the group's first
+// part was, named by the group's names joined with '+'. @throws InputError
+// naming --fastened: an unknown name, a part fastened to itself, a group
+// whose fusion is not one solid (parts that neither touch nor overlap).
+void FastenParts(const std::string& path, const StepReadOptions& options, Solids& parts) {
+  if (options.fastened.empty()) return;
+  const size_t n = parts.names.size();
+  std::vector<size_t> group(n);
+  for (size_t k = 0; k < n; ++k) group[k] = k;
+  const auto root = [&](size_t k) {
+    while (group[k] != k) k = group[k] = group[group[k]];
+    return k;
+  };
+  for (const auto& [a, b] : options.fastened) {
+    const size_t ra = root(FindPart(parts, a, "--fastened", path));
+    const size_t rb = root(FindPart(parts, b, "--fastened", path));
+    if (a == b)
+      throw InputError("", "--fastened", "part '" + EscapedName(a) + "' is fastened to itself");
+    group[std::max(ra, rb)] = std::min(ra, rb);
+  }
+  Solids joined;
+  for (size_t k = 0; k < n; ++k) {
+    if (root(k) != k) continue;  // in the group of an earlier part
+    std::vector<size_t> members;
+    for (size_t j = k; j < n; ++j)
+      if (root(j) == k) members.push_back(j);
+    std::string name = parts.names[k], note = parts.notes[k], listed = "'" + parts.names[k] + "'";
+    TopoDS_Shape fused = parts.solids[k];
+    for (size_t m = 1; m < members.size(); ++m) {
+      const size_t j = members[m];
+      BRepAlgoAPI_Fuse fuse(fused, parts.solids[j]);
+      if (!fuse.IsDone())
+        throw InputError("", "--fastened",
+                         "OpenCASCADE could not fuse part '" + EscapedName(parts.names[j]) +
+                             "' with " + listed + " in " + path);
+      fused = fuse.Shape();
+      name += "+" + parts.names[j];
+      listed += ", '" + EscapedName(parts.names[j]) + "'";
+      if (!parts.notes[j].empty()) note += (note.empty() ? "" : "; ") + parts.notes[j];
+    }
+    const TopoDS_Solid one = SingleSolid(fused);
+    if (one.IsNull())
+      throw InputError("", "--fastened",
+                       "parts " + listed + " of " + path +
+                           " fused are not one solid: fastened parts must touch or overlap");
+    if (members.size() > 1)
+      note = "parts " + listed +
+             " fastened (--fastened): one rigid part, their exact solids fused" +
+             (note.empty() ? "" : "; " + note);
+    joined.names.push_back(name);
+    joined.solids.push_back(one);
+    joined.notes.push_back(note);
+  }
+  parts = std::move(joined);
+}
+
+// 4b. Each pair (a, b) of StepReadOptions::touching: b's solid less what it
+// shares with a's, so that b touches a along a's surface. @throws
+// InputError naming --touching: an unknown name, a part made to touch
+// itself, a cut that leaves b in pieces or nothing.
+void MakePartsTouch(const std::string& path, const StepReadOptions& options, double unit,
+                    Solids& parts) {
+  for (const auto& [a, b] : options.touching) {
+    const size_t ia = FindPart(parts, a, "--touching", path);
+    const size_t ib = FindPart(parts, b, "--touching", path);
+    if (ia == ib)
+      throw InputError("", "--touching", "part '" + EscapedName(a) + "' is paired with itself");
+    BRepAlgoAPI_Cut cut(parts.solids[ib], parts.solids[ia]);
+    const TopoDS_Solid rest = cut.IsDone() ? SingleSolid(cut.Shape()) : TopoDS_Solid();
+    if (rest.IsNull())
+      throw InputError("", "--touching",
+                       "part '" + EscapedName(b) + "' of " + path + " less what it shares with '" +
+                           EscapedName(a) + "' is not one solid: it cannot be made to touch it");
+    const double removed = (Volume(parts.solids[ib]) - Volume(rest)) * unit * unit * unit;
+    parts.solids[ib] = rest;
+    std::string& note = parts.notes[ib];
+    note += std::string(note.empty() ? "" : "; ") + "cut by part '" + EscapedName(a) +
+            "' where they overlap (--touching): " + FormatNumber(removed) +
+            " m^3 less, it touches that part's surface there";
+  }
 }
 
 // The diagonal of a shape's bounding box (the file's unit).
@@ -564,13 +729,30 @@ StepModel ReadStepModel(const std::string& path, const std::string& text,
   if (leaves.empty()) throw InputError(path, "", "the STEP file has no solids");
 
   // 3.–4. Names and solids.
-  const std::vector<std::string> names = PartNames(leaves);
-  std::vector<TopoDS_Solid> solids;
-  std::vector<double> diagonals;
-  for (size_t k = 0; k < leaves.size(); ++k) {
-    solids.push_back(OneSolid(leaves[k].shape, path, names[k]));
-    diagonals.push_back(Diagonal(solids.back()));
+  Solids parts;
+  parts.names = PartNames(leaves);
+  parts.notes.resize(leaves.size());
+  for (size_t k = 0; k < leaves.size(); ++k)
+    parts.solids.push_back(OneSolid(leaves[k].shape, path, parts.names[k], parts.notes[k]));
+
+  // 4b. What the user joined: fastened parts fused, touching ones cut; and
+  // the common volumes asked for.
+  FastenParts(path, options, parts);
+  MakePartsTouch(path, options, unit, parts);
+  for (const auto& [a, b] : options.common_volumes_of) {
+    const TopoDS_Solid& sa = parts.solids[FindPart(parts, a, "", path)];
+    const TopoDS_Solid& sb = parts.solids[FindPart(parts, b, "", path)];
+    BRepAlgoAPI_Common common(sa, sb);
+    if (!common.IsDone())
+      throw Standard_Failure(
+          ("the common volume of parts '" + a + "' and '" + b + "' could not be computed").c_str());
+    model.common_volumes.push_back(Volume(common.Shape()) * unit * unit * unit);
   }
+  const std::vector<std::string>& names = parts.names;
+  const std::vector<TopoDS_Solid>& solids = parts.solids;
+  const std::vector<std::string>& solid_notes = parts.notes;
+  std::vector<double> diagonals;
+  for (const TopoDS_Solid& solid : solids) diagonals.push_back(Diagonal(solid));
 
   // 5. One chordal tolerance (the file's unit) for the whole assembly: the
   // user's within what OpenCASCADE tessellates (Precision::Confusion() of
@@ -613,7 +795,7 @@ StepModel ReadStepModel(const std::string& path, const std::string& text,
 
   // 6. The parts.
   model.def.name = std::filesystem::path(path).stem().string();
-  for (size_t k = 0; k < leaves.size(); ++k) {
+  for (size_t k = 0; k < solids.size(); ++k) {
     StepPartReport report;
     report.name = names[k];
     report.mesh_tolerance = deflection * unit;
@@ -638,6 +820,8 @@ StepModel ReadStepModel(const std::string& path, const std::string& text,
                                                                            : "OpenCASCADE") +
                             ")");
     }
+    if (!solid_notes[k].empty())
+      report.fallback = solid_notes[k] + (report.fallback.empty() ? "" : "; " + report.fallback);
     const auto made = Polyhedron::CheckAndCreate(*part.polyhedron, tol);
     if (const auto* polyhedron = std::get_if<Polyhedron>(&made))
       report.volume = polyhedron->mass().volume;
