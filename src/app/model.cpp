@@ -295,6 +295,9 @@ Model LoadModel(const std::string& file, const ModelArgs& args, std::ostream* no
     throw InputError(e.file(), e.json_path(),
                      e.message() + "; if this is a COMPAS assembly, give --format compas");
   }
+  if (notes)
+    for (const std::string& note : m.def.notes)
+      *notes << "cairn: note: " << file << ": " << note << "\n";
   if (args.friction) m.def.friction = *args.friction;
   if (args.tolerance) m.def.tolerance = *args.tolerance;
   ApplyModelFlags(args, file, m.def);

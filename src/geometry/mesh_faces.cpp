@@ -2,6 +2,7 @@
 
 #include <Eigen/Geometry>  // IWYU pragma: keep
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <map>
@@ -87,6 +88,43 @@ PolyhedronDef MergeCoplanarTriangles(const std::vector<Vector3>& vertices,
     }
     normal[t] = n.normalized();
     alive[t] = true;
+  }
+  // Triangles on the same three vertices: a copy with the same orientation
+  // is the same face written twice (keep the first); one with the opposite
+  // orientation is the other side of an internal wall (drop both).
+  std::map<std::array<int, 3>, std::vector<int>> by_corners;
+  for (int t = 0; t < nt; ++t) {
+    if (!alive[t]) continue;
+    std::array<int, 3> key = triangles[t];
+    std::sort(key.begin(), key.end());
+    by_corners[key].push_back(t);
+  }
+  for (const auto& [key, same] : by_corners) {
+    if (same.size() < 2) continue;
+    // The orientation of a triangle: its corners rotated to start at the
+    // least index, then whether the next is the second least.
+    const int second = key[1];
+    const auto forward = [&](int t) {
+      const auto& c = triangles[t];
+      const int k = static_cast<int>(std::min_element(c.begin(), c.end()) - c.begin());
+      return c[(k + 1) % 3] == second;
+    };
+    int ahead = 0, back = 0;
+    for (const int t : same) (forward(t) ? ahead : back)++;
+    // Pairs of opposite orientation cancel; of what is left (all of one
+    // orientation) one triangle is the face, the others its copies.
+    const int internal = 2 * std::min(ahead, back);
+    const bool keep_ahead = ahead > back;
+    int keep = ahead == back ? 0 : 1;
+    for (const int t : same) {
+      if (keep > 0 && forward(t) == keep_ahead) {
+        --keep;
+        continue;
+      }
+      alive[t] = false;
+    }
+    st.internal_dropped += internal;
+    st.duplicates_dropped += std::abs(ahead - back) - (ahead == back ? 0 : 1);
   }
   // Triangles on each undirected edge.
   std::unordered_map<std::uint64_t, std::vector<int>> on_edge;

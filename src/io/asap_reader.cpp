@@ -78,7 +78,10 @@ AssemblyDef ReadAsapAssembly(const std::string& path, std::uint64_t max_input_si
     try {
       MeshReadOptions options;
       options.max_input_size = max_input_size;
-      p.polyhedron = ReadMesh(mesh, options);
+      MeshMergeStats stats;
+      p.polyhedron = ReadMesh(mesh, options, &stats);
+      if (std::string note = MeshRepairNote(key, mesh, stats); !note.empty())
+        def.notes.push_back(std::move(note));
     } catch (const InputError& e) {
       check.Fail(part_path, "cannot read mesh '" + mesh + "': " + e.message());
     }

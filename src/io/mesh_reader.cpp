@@ -65,4 +65,17 @@ PolyhedronDef ReadMesh(const std::string& path, const MeshReadOptions& options,
   return MergeCoplanarTriangles(welded, triangles, options.angle_tol, length_tol, stats);
 }
 
+std::string MeshRepairNote(const std::string& part, const std::string& path,
+                           const MeshMergeStats& stats) {
+  if (stats.duplicates_dropped == 0 && stats.internal_dropped == 0) return "";
+  std::string what;
+  if (stats.duplicates_dropped > 0)
+    what = std::to_string(stats.duplicates_dropped) + " triangle" +
+           (stats.duplicates_dropped == 1 ? "" : "s") + " written twice";
+  if (stats.internal_dropped > 0)
+    what += (what.empty() ? "" : " and ") + std::to_string(stats.internal_dropped) +
+            " triangles of internal walls (both sides written)";
+  return "part '" + EscapedName(part) + "': mesh " + path + ": " + what + " left out";
+}
+
 }  // namespace cairn

@@ -88,6 +88,7 @@ class SceneParser : private io_internal::JsonChecker {
     for (size_t i = 0; i < parts.size(); ++i) {
       def.parts.push_back(ParsePart(parts[i], i));
     }
+    def.notes = notes_;
     if (doc.contains("friction_pairs")) {
       const json& pairs = Array(doc["friction_pairs"], "friction_pairs");
       for (size_t i = 0; i < pairs.size(); ++i) {
@@ -319,7 +320,13 @@ class SceneParser : private io_internal::JsonChecker {
     try {
       MeshReadOptions options;
       options.max_input_size = max_input_size_;
-      return ReadMesh(mesh_file, options);
+      MeshMergeStats stats;
+      PolyhedronDef mesh = ReadMesh(mesh_file, options, &stats);
+      const std::string part =
+          j.contains("name") && j["name"].is_string() ? j["name"].get<std::string>() : "";
+      if (std::string note = MeshRepairNote(part, mesh_file, stats); !note.empty())
+        notes_.push_back(std::move(note));
+      return mesh;
     } catch (const InputError& e) {
       Fail(shape_path, "cannot read mesh '" + mesh_file + "': " + e.message());
     }
@@ -327,6 +334,7 @@ class SceneParser : private io_internal::JsonChecker {
 
   const std::string& file_;
   std::uint64_t max_input_size_;
+  mutable std::vector<std::string> notes_;  // AssemblyDef::notes, as the meshes are read
   int dim_ = 2;
 };
 

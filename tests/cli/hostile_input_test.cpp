@@ -361,6 +361,50 @@ TEST(HostileInputFiles, AMeshThatIsNotARegularFileSaysWhatItIs) {
   std::filesystem::remove_all(dir);
 }
 
+// A mesh as some exporters write it: two unit cubes side by side as one OBJ
+// that kept their shared face (both of its sides: an internal wall), and one
+// outer triangle written twice. It loads, with a note saying what was left
+// out, as the 2 × 1 × 1 box it is, resting on the floor.
+TEST(HostileInputFiles, AMeshWithAnInternalWallAndATriangleWrittenTwiceLoadsWithANote) {
+  const std::string dir = Folder("hostile_mesh_repair");
+  std::ofstream obj(dir + "/boxes.obj");
+  for (int x = 0; x <= 2; ++x)
+    for (int k = 0; k < 4; ++k) obj << "v " << x << " " << (k & 1) << " " << ((k >> 1) & 1) << "\n";
+  // OBJ counts from 1; vertex (x, y, z) is 4x + y + 2z + 1.
+  const auto at = [](int x, int y, int z) { return 4 * x + y + 2 * z + 1; };
+  const auto quad = [&](int a, int b, int c, int d) {
+    obj << "f " << a << " " << b << " " << c << "\nf " << a << " " << c << " " << d << "\n";
+  };
+  quad(at(0, 0, 0), at(0, 0, 1), at(0, 1, 1), at(0, 1, 0));
+  quad(at(2, 0, 0), at(2, 1, 0), at(2, 1, 1), at(2, 0, 1));
+  for (int x = 0; x < 2; ++x) {
+    quad(at(x, 0, 0), at(x + 1, 0, 0), at(x + 1, 0, 1), at(x, 0, 1));
+    quad(at(x, 1, 0), at(x, 1, 1), at(x + 1, 1, 1), at(x + 1, 1, 0));
+    quad(at(x, 0, 0), at(x, 1, 0), at(x + 1, 1, 0), at(x + 1, 0, 0));
+    quad(at(x, 0, 1), at(x + 1, 0, 1), at(x + 1, 1, 1), at(x, 1, 1));
+  }
+  quad(at(1, 0, 0), at(1, 1, 0), at(1, 1, 1), at(1, 0, 1));  // the wall, both sides
+  quad(at(1, 0, 0), at(1, 0, 1), at(1, 1, 1), at(1, 1, 0));
+  obj << "f " << at(0, 0, 0) << " " << at(0, 0, 1) << " " << at(0, 1, 1) << "\n";  // again
+  obj.close();
+  const json doc = {
+      {"cairn", 1},
+      {"parts",
+       {{{"name", "floor"}, {"fixed", true}, {"box", {{"min", {-2, -2, -1}}, {"max", {3, 3, 0}}}}},
+        {{"name", "A"}, {"mesh", "boxes.obj"}}}}};
+  std::ofstream(dir + "/scene.json") << doc.dump();
+  const CliRun r = Cairn("check " + dir + "/scene.json --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("scene.json: part 'A': mesh " + dir +
+                       "/boxes.obj: 1 triangle written twice and 4 triangles of internal walls "
+                       "(both sides written) left out"),
+            std::string::npos)
+      << r.err;
+  const json out = json::parse(r.out);
+  EXPECT_EQ(out["stable"], true);
+  std::filesystem::remove_all(dir);
+}
+
 TEST(HostileInputFiles, ASidecarThatIsAFifoIsRefused) {
   const std::string shared = testing::SharedDir();
   if (shared.empty()) GTEST_SKIP() << "shared/datasets not found: skipping the pen";

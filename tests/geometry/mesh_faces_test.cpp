@@ -31,6 +31,47 @@ void Prism(const std::vector<Vector3>& base, std::vector<Vector3>* v, Triangles*
   }
 }
 
+// Two unit cubes side by side exported as one mesh that kept their shared
+// face x = 1 (both sides: an internal wall), with one outer triangle written
+// twice: the wall's four triangles and the copy are left out, and what is
+// left is the 2 × 1 × 1 box, a valid solid of volume 2 (with them its edges
+// on x = 1 bound four triangles each, and Polyhedron refuses it).
+TEST(MergeCoplanarTriangles, TrianglesWrittenTwiceAndInternalWallsAreLeftOut) {
+  std::vector<Vector3> v;
+  for (int x = 0; x <= 2; ++x)
+    for (int k = 0; k < 4; ++k) v.emplace_back(x, k & 1, (k >> 1) & 1);
+  // Vertex (x, y, z) is 4x + y + 2z.
+  const auto at = [](int x, int y, int z) { return 4 * x + y + 2 * z; };
+  Triangles t;
+  const auto quad = [&](int a, int b, int c, int d) {  // counter-clockwise seen from outside
+    t.push_back({a, b, c});
+    t.push_back({a, c, d});
+  };
+  quad(at(0, 0, 0), at(0, 0, 1), at(0, 1, 1), at(0, 1, 0));  // x = 0, facing −x
+  quad(at(2, 0, 0), at(2, 1, 0), at(2, 1, 1), at(2, 0, 1));  // x = 2, facing +x
+  for (int x = 0; x < 2; ++x) {
+    quad(at(x, 0, 0), at(x + 1, 0, 0), at(x + 1, 0, 1), at(x, 0, 1));  // y = 0
+    quad(at(x, 1, 0), at(x, 1, 1), at(x + 1, 1, 1), at(x + 1, 1, 0));  // y = 1
+    quad(at(x, 0, 0), at(x, 1, 0), at(x + 1, 1, 0), at(x + 1, 0, 0));  // z = 0
+    quad(at(x, 0, 1), at(x + 1, 0, 1), at(x + 1, 1, 1), at(x, 1, 1));  // z = 1
+  }
+  const Triangles outer = t;
+  quad(at(1, 0, 0), at(1, 1, 0), at(1, 1, 1), at(1, 0, 1));  // the wall, facing +x
+  quad(at(1, 0, 0), at(1, 0, 1), at(1, 1, 1), at(1, 1, 0));  // and −x
+  t.push_back(t[5]);                                         // an outer triangle again
+  MeshMergeStats stats;
+  const PolyhedronDef def = MergeCoplanarTriangles(v, t, 1e-6, 1e-9, &stats);
+  EXPECT_EQ(stats.triangles_in, static_cast<int>(outer.size()) + 5);
+  EXPECT_EQ(stats.internal_dropped, 4);
+  EXPECT_EQ(stats.duplicates_dropped, 1);
+  EXPECT_EQ(stats.faces_out, 6);
+  EXPECT_NEAR(Polyhedron::Create(def, 1e-9).mass().volume, 2.0, 1e-12);
+  // The same mesh without them gives the same faces.
+  MeshMergeStats clean;
+  EXPECT_EQ(MergeCoplanarTriangles(v, outer, 1e-6, 1e-9, &clean).faces, def.faces);
+  EXPECT_EQ(clean.internal_dropped + clean.duplicates_dropped, 0);
+}
+
 TEST(MergeCoplanarTriangles, ACubesTwelveTrianglesBecomeSixSquares) {
   std::vector<Vector3> v;
   Triangles t;

@@ -94,6 +94,10 @@ struct AssemblyDef {
   std::vector<PartDef> parts;
   std::vector<FixtureDef> fixtures;
   std::vector<InterfaceDef> interfaces;  ///< given contacts (3-D); empty: found from the shapes
+  /// What reading the file did to it that its user should know, one line
+  /// each (a mesh's repairs: triangles written twice or both sides of an
+  /// internal wall left out); the commands print them as notes.
+  std::vector<std::string> notes;
 };
 
 /// A validated interface (InterfaceDef).

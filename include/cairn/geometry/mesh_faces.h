@@ -22,8 +22,14 @@ namespace cairn {
 
 /// What MergeCoplanarTriangles did.
 struct MeshMergeStats {
-  int triangles_in = 0;               ///< triangles given (degenerate ones included)
-  int degenerate_dropped = 0;         ///< triangles of zero area (below length_tol²) left out
+  int triangles_in = 0;        ///< triangles given (degenerate ones included)
+  int degenerate_dropped = 0;  ///< triangles of zero area (below length_tol²) left out
+  /// Triangles listed more than once with the same orientation (an export
+  /// that wrote a face twice): the copies left out, one kept.
+  int duplicates_dropped = 0;
+  /// Triangles listed with both orientations (an internal wall, both of its
+  /// sides written: material on both sides, so no surface): both left out.
+  int internal_dropped = 0;
   int faces_out = 0;                  ///< faces of the result
   int regions_kept_as_triangles = 0;  ///< coplanar regions with holes or pinches, not merged
 };
