@@ -179,6 +179,24 @@ TEST(Assembly, NonFiniteNumbersAreRejected) {
 // In 3-D each overlapping pair comes with how deep its witness lies in the
 // part it is not on the surface of: a cube pushed 0.25 into another, a
 // third 0.1 into the second, at most that deep.
+// A model whose surfaces are approximations (an overlap allowance, the
+// chordal tolerance of its facets) has the angle tolerance allowance / the
+// smallest part's bounding-box diagonal, at most kMaxApproximatedAngle; an
+// exact model keeps 1e-6 rad.
+TEST(Assembly, AnApproximatedModelsAngleToleranceIsItsAllowanceOverItsSmallestPart) {
+  AssemblyDef def;
+  def.parts = {testing::Box3("table", {-2, -2, -1}, {2, 2, 0}, true),
+               testing::Box3("cube", {0, 0, 0}, {0.5, 0.5, 0.5})};
+  const double diagonal = std::sqrt(3 * 0.25);
+  EXPECT_EQ(Assembly::Create(def).MakeTolerances().angle, 1e-6);
+  def.overlap_allowance = 1e-4;
+  EXPECT_DOUBLE_EQ(Assembly::Create(def).MakeTolerances().angle, 1e-4 / diagonal);
+  def.overlap_allowance = 0.1;
+  EXPECT_EQ(Assembly::Create(def).MakeTolerances().angle, limits::kMaxApproximatedAngle);
+  def.overlap_allowance = 1e-9;  // below 1e-6 rad: the default stays
+  EXPECT_EQ(Assembly::Create(def).MakeTolerances().angle, 1e-6);
+}
+
 TEST(Assembly, OverlapsIn3DSayHowDeep) {
   AssemblyDef def;
   def.parts = {testing::Box3("A", {0, 0, 0}, {1, 1, 1}, true),
