@@ -238,9 +238,12 @@ void StepInterference(const std::string& file, const ModelArgs& args, const Asse
   }
   if (interfering == 0) return;
   throw InputError(file, e.json_path(),
-                   std::to_string(e.overlaps().size()) + " pair" +
-                       (e.overlaps().size() == 1 ? "" : "s") + " of parts interfere: " + pairs +
-                       ". A bolt or a press fit held fast: --fastened " + fastened +
+                   std::to_string(interfering) + " pair" + (interfering == 1 ? "" : "s") +
+                       " of parts interfere" +
+                       (interfering < e.overlaps().size()
+                            ? " (of " + std::to_string(e.overlaps().size()) + " that overlap)"
+                            : std::string()) +
+                       ": " + pairs + ". A bolt or a press fit held fast: --fastened " + fastened +
                        " joins each pair into one rigid part; parts that only touch in the "
                        "design: --touching " +
                        touching + " cuts the second of each pair where they overlap");
