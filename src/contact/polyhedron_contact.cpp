@@ -212,8 +212,8 @@ class PairContacts {
         A(shape_a, X_WA),
         B(shape_b, X_WB),
         length_tol(length),
-        angle_tol(angle),
         cos_tol(std::cos(angle)),
+        sin_tol(std::sin(angle)),
         area_tol(length * length),
         faces_a(A.lo, A.hi, length),
         faces_b(B.lo, B.hi, length),
@@ -387,7 +387,7 @@ class PairContacts {
           continue;
         const Vector3 d1 = p1 - p0, d2 = q1 - q0, r = p0 - q0;
         const Vector3 cr = d1.cross(d2);
-        if (cr.norm() <= std::sin(angle_tol) * d1.norm() * d2.norm()) continue;  // parallel
+        if (cr.norm() <= sin_tol * d1.norm() * d2.norm()) continue;  // parallel
         // Closest points p0 + s d1, q0 + t d2.
         const double a11 = d1.dot(d1), a12 = d1.dot(d2), a22 = d2.dot(d2);
         const double det = a11 * a22 - a12 * a12;
@@ -403,7 +403,6 @@ class PairContacts {
         // crossing constrains nothing the faces there do not: an edge of a
         // face flush with a face beside it (a rod's end in the plane of the
         // plate it passes through), or edges along the same smooth surface.
-        const double sin_tol = std::sin(angle_tol);
         Vector3 n = cr.normalized();
         const auto separates = [&](const Vector3& m) {
           return EdgeMaterialAbove(A, ea, m, sin_tol) && EdgeMaterialAbove(B, eb, -m, sin_tol);
@@ -442,7 +441,7 @@ class PairContacts {
   const Polyhedron& a;
   const Polyhedron& b;
   const Placed A, B;
-  const double length_tol, angle_tol, cos_tol, area_tol;
+  const double length_tol, cos_tol, sin_tol, area_tol;
   std::vector<PolyhedronContactPoint> out;
   std::vector<Patch> patches;  // by face of b (face–face, a's faces pressed onto b's)
   std::vector<std::pair<int, int>> face_pairs;  // (face a, face b) of each patch

@@ -37,6 +37,18 @@ Arcs InfinityArcs(const std::string& out) {
   return arcs;
 }
 
+// `cairn blocking STEP --format step --direction d` for each (d, arcs): exit
+// 0, and exactly those arcs to infinity.
+void ExpectArcsAlong(const std::string& step,
+                     const std::vector<std::pair<std::string, Arcs>>& cases) {
+  for (const auto& [d, expected] : cases) {
+    SCOPED_TRACE(d);
+    const auto r = Cairn("blocking " + step + " --format step --direction " + d + " --json");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(InfinityArcs(r.out), expected);
+  }
+}
+
 std::string PegFiles(std::string& scene) {
   const std::string dir = testing::TempDir("step_cli");
   std::filesystem::create_directories(dir);
@@ -479,13 +491,7 @@ TEST(StepCommand, PinsInHolesLoadAndBlockAcrossTheirAxisOnly) {
   Arcs plus_x = pins_and_plate, minus_x = pins_and_plate;
   plus_x.insert({"tight", "line"});
   minus_x.insert({"line", "tight"});
-  for (const auto& [d, expected] : std::vector<std::pair<std::string, Arcs>>{
-           {"1,0,0", plus_x}, {"-1,0,0", minus_x}, {"0,1,0", pins_and_plate}}) {
-    SCOPED_TRACE(d);
-    const auto across = Cairn("blocking " + step + " --format step --direction " + d + " --json");
-    ASSERT_EQ(across.exit_code, 0) << across.err;
-    EXPECT_EQ(InfinityArcs(across.out), expected);
-  }
+  ExpectArcsAlong(step, {{"1,0,0", plus_x}, {"-1,0,0", minus_x}, {"0,1,0", pins_and_plate}});
   std::filesystem::remove_all(dir);
 }
 
@@ -494,9 +500,10 @@ TEST(StepCommand, PinsInHolesLoadAndBlockAcrossTheirAxisOnly) {
 // touching the floor and the wall, its edge along the plate's inside corner.
 // Along the plate's faces (+x, +z and ±y) and away from them the block
 // leaves free, blocked only into the floor (−z) and into the wall (−x); the
-// plate is blocked by it only where its floor or wall would push it. The corner edge, where the
-// block's edge lies in the plate's, adds no constraint of its own (issue 31: zero-area contacts
-// there forbade sliding along the faces).
+// plate is blocked by it only where its floor or wall would push it. The
+// corner edge, where the block's edge lies in the plate's, adds no
+// constraint of its own (issue 31: zero-area contacts there forbade sliding
+// along the faces).
 TEST(StepCommand, ABlockInTheInsideCornerOfAnLPlateBlocksNothingAlongItsFaces) {
   const std::string dir = testing::TempDir("step_l_plate");
   std::filesystem::create_directories(dir);
@@ -508,19 +515,13 @@ TEST(StepCommand, ABlockInTheInsideCornerOfAnLPlateBlocksNothingAlongItsFaces) {
       step, "l_plate",
       {{"plate", plate, gp_Trsf()}, {"block", testing::Box(10, 20, 10, 40, 50, 30), gp_Trsf()}}));
   const Arcs block_held = {{"block", "plate"}}, plate_held = {{"plate", "block"}};
-  for (const auto& [d, expected] :
-       std::vector<std::pair<std::string, Arcs>>{{"0,1,0", {}},
-                                                 {"0,-1,0", {}},
-                                                 {"1,0,0", plate_held},
-                                                 {"0,0,1", plate_held},
-                                                 {"1,0,1", plate_held},
-                                                 {"-1,0,0", block_held},
-                                                 {"0,0,-1", block_held}}) {
-    SCOPED_TRACE(d);
-    const auto r = Cairn("blocking " + step + " --format step --direction " + d + " --json");
-    ASSERT_EQ(r.exit_code, 0) << r.err;
-    EXPECT_EQ(InfinityArcs(r.out), expected);
-  }
+  ExpectArcsAlong(step, {{"0,1,0", {}},
+                         {"0,-1,0", {}},
+                         {"1,0,0", plate_held},
+                         {"0,0,1", plate_held},
+                         {"1,0,1", plate_held},
+                         {"-1,0,0", block_held},
+                         {"0,0,-1", block_held}});
   std::filesystem::remove_all(dir);
 }
 
