@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <functional>
 #include <map>
 #include <optional>
@@ -191,12 +190,8 @@ std::string NextPowerOfTen(double tol) {
 // Parts that overlap by more than the tolerance: the message says that
 // --tolerance raises it.
 [[noreturn]] void OverlapFault(const OverlapError& e, const ModelArgs& args) {
-  const std::string overlap = "by more than the tolerance ";
-  const size_t at = e.message().find(overlap);
-  const double tol =
-      at == std::string::npos ? 0 : std::strtod(e.message().c_str() + at + overlap.size(), nullptr);
-  if (!(tol > 0) || !std::isfinite(tol)) throw e;
-  const std::string example = "--tolerance " + NextPowerOfTen(tol);
+  if (!(e.tolerance() > 0) || !std::isfinite(e.tolerance())) throw e;
+  const std::string example = "--tolerance " + NextPowerOfTen(e.tolerance());
   throw InputError(e.file(), e.json_path(),
                    e.message() + " (raise it with --tolerance" +
                        (args.format == "scene" ? " or the scene's `tolerance`" : "") + ", e.g. " +

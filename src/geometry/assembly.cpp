@@ -42,8 +42,8 @@ class Validator {
     throw InputError(file_, path, message);
   }
   [[noreturn]] void FailOverlaps(const std::string& path, const std::string& message,
-                                 std::vector<PartOverlap> overlaps) const {
-    throw OverlapError(file_, path, message, std::move(overlaps));
+                                 std::vector<PartOverlap> overlaps, double tol) const {
+    throw OverlapError(file_, path, message, std::move(overlaps), tol);
   }
   void FiniteNumber(double x, const std::string& path) const {
     if (!std::isfinite(x)) Fail(path, "must be a finite number (got " + FormatNumber(x) + ")");
@@ -504,7 +504,7 @@ void CheckOverlaps(const AssemblyDef& def, const std::vector<Part>& parts, int d
                  (k + 1 == found.size() ? "" : ";");
     }
   }
-  check.FailOverlaps(PartPath(def.parts[first.later], first.later), message, std::move(found));
+  check.FailOverlaps(PartPath(def.parts[first.later], first.later), message, std::move(found), tol);
 }
 
 using PartFinder = std::function<int(const std::string&)>;

@@ -695,7 +695,11 @@ Assembly CreateCompasAssembly(const CompasModel& model, const std::string& file)
                                                ? ".data.points" + path.substr(close + 8)
                                                : std::string());
     }
-    throw InputError(e.file(), path, RenameParts(e.message(), model.block_paths));
+    std::string message = RenameParts(e.message(), model.block_paths);
+    if (const auto* overlap = dynamic_cast<const OverlapError*>(&e))
+      throw OverlapError(e.file(), path, std::move(message), overlap->overlaps(),
+                         overlap->tolerance());
+    throw InputError(e.file(), path, std::move(message));
   }
 }
 

@@ -541,6 +541,9 @@ TEST(CompasConvert, BadInputWritesNothing) {
   EXPECT_THAT(r2.err,
               HasSubstr(in2 + ": data.graph.data.node.1 (\"1\"): part '1' overlaps part '0' "
                               "(data.graph.data.node.0)"));
+  // ... and says that --tolerance raises the tolerance (the COMPAS reader's
+  // renamed error keeps the overlaps and their tolerance).
+  EXPECT_THAT(r2.err, HasSubstr("(raise it with --tolerance, e.g. --tolerance 1e-"));
   EXPECT_FALSE(std::filesystem::exists(out2));
 
   // An output that cannot be written.

@@ -148,13 +148,18 @@ struct PartOverlap {
 class OverlapError : public InputError {
  public:
   OverlapError(std::string file, std::string json_path, std::string message,
-               std::vector<PartOverlap> overlaps)
+               std::vector<PartOverlap> overlaps, double tolerance)
       : InputError(std::move(file), std::move(json_path), std::move(message)),
-        overlaps_(std::move(overlaps)) {}
+        overlaps_(std::move(overlaps)),
+        tolerance_(tolerance) {}
   const std::vector<PartOverlap>& overlaps() const { return overlaps_; }
+  /// length: the depth beyond which parts overlap (the length tolerance plus
+  /// the overlap allowance).
+  double tolerance() const { return tolerance_; }
 
  private:
   std::vector<PartOverlap> overlaps_;
+  double tolerance_ = 0;
 };
 
 /// The immutable, validated model.
