@@ -158,7 +158,8 @@ def _pairs(pairs, what):
 
 
 def _model_options(friction, supports, gravity, tolerance, interfaces, mesh_tolerance=None,
-                   sidecar=None, max_input_size=None, fastened=None, touching=None):
+                   sidecar=None, max_input_size=None, fastened=None, touching=None,
+                   overlap_depth=None):
     if interfaces not in _INTERFACES:
         raise _input_error("interfaces", f"must be one of {_INTERFACES}, not {interfaces!r}")
     return dict(
@@ -166,6 +167,7 @@ def _model_options(friction, supports, gravity, tolerance, interfaces, mesh_tole
         supports=_names(supports, "supports"),
         gravity=_numbers(gravity, "gravity"),
         tolerance=None if tolerance is None else _number(tolerance, "tolerance"),
+        overlap_depth=None if overlap_depth is None else _number(overlap_depth, "overlap_depth"),
         interfaces=interfaces,
         mesh_tolerance=None if mesh_tolerance is None else _number(mesh_tolerance,
                                                                    "mesh_tolerance"),
@@ -179,7 +181,7 @@ def _model_options(friction, supports, gravity, tolerance, interfaces, mesh_tole
 
 def load(file, format="scene", friction=None, supports=None, gravity=None, tolerance=None,
          interfaces="detect", mesh_tolerance=None, sidecar=None, max_input_size=None,
-         fastened=None, touching=None):
+         fastened=None, touching=None, overlap_depth=None):
     """Reads a model from a file, as the CLI does: ``format`` "scene" (scene
     format 1), "compas" (a COMPAS assembly, which needs ``friction``), "step"
     (a STEP assembly) or "asap" (an ASAP assembly folder), and the model
@@ -189,14 +191,17 @@ def load(file, format="scene", friction=None, supports=None, gravity=None, toler
     and ASAP: a file with what the model does not carry),
     ``max_input_size`` (bytes), ``fastened`` and ``touching`` (STEP: pairs of
     parts, "A:B" or (A, B), joined into one rigid part, or made to touch
-    where they overlap) of ``--friction`` ... ``--touching``.
+    where they overlap) and ``overlap_depth`` (3-D: how deep parts meant to
+    touch may overlap, read as contact on the overlap's mid-surface; the
+    pairs so read are ``Model.overlaps``) of ``--friction`` ...
+    ``--overlap-depth``.
     Raises InputError."""
     if format not in _FORMATS:
         raise _input_error("format", f"must be one of {_FORMATS}, not {format!r}")
     return _cairn.load(os.fspath(file), format,
                        _model_options(friction, supports, gravity, tolerance, interfaces,
                                       mesh_tolerance, sidecar, max_input_size, fastened,
-                                      touching))
+                                      touching, overlap_depth))
 
 
 def _write_outputs(m, files, inputs=()):

@@ -76,6 +76,8 @@ app::ModelArgs ModelArgsOf(const std::string& format, const py::dict& o) {
   args.supports = o["supports"].cast<std::vector<std::string>>();
   args.gravity = o["gravity"].cast<std::vector<double>>();
   args.tolerance = o["tolerance"].cast<std::optional<double>>();
+  if (o.contains("overlap_depth"))
+    args.overlap_depth = o["overlap_depth"].cast<std::optional<double>>();
   args.interfaces = o["interfaces"].cast<std::string>();
   args.mesh_tolerance = o["mesh_tolerance"].cast<std::optional<double>>();
   args.sidecar = o["sidecar"].cast<std::string>();
@@ -249,6 +251,22 @@ PYBIND11_MODULE(_cairn, m) {
                                  if (a.part(i).fixed) names.push_back(a.part(i).name);
                                return names;
                              })
+      // The pairs read as touching where they overlap (within the overlap
+      // depth): {"parts": [a, b], "depth": d, "point": deepest}.
+      .def_property_readonly(
+          "overlaps",
+          [](const py::object& self) {
+            const cairn::Assembly& a = ModelOf(self).assembly;
+            py::list out;
+            for (const cairn::PartOverlap& o : a.touching_overlaps()) {
+              py::dict d;
+              d["parts"] = py::make_tuple(a.part(o.earlier).name, a.part(o.later).name);
+              d["depth"] = o.depth;
+              d["point"] = py::make_tuple(o.witness.x(), o.witness.y(), o.witness.z());
+              out.append(d);
+            }
+            return out;
+          })
       .def_property_readonly(
           "has_interfaces",
           [](const py::object& self) { return ModelOf(self).assembly.has_interfaces(); })

@@ -63,6 +63,9 @@ void CheckModelFlags(const ModelArgs& args) {
   if (args.tolerance && !(std::isfinite(*args.tolerance) && *args.tolerance > 0))
     throw InputError("", "--tolerance",
                      "must be a positive length (got " + FormatNumber(*args.tolerance) + ")");
+  if (args.overlap_depth && !(std::isfinite(*args.overlap_depth) && *args.overlap_depth >= 0))
+    throw InputError("", "--overlap-depth",
+                     "must be a length ≥ 0 (got " + FormatNumber(*args.overlap_depth) + ")");
   if (args.mesh_tolerance && !(std::isfinite(*args.mesh_tolerance) && *args.mesh_tolerance > 0))
     throw InputError(
         "", "--mesh-tolerance",
@@ -111,6 +114,10 @@ void ApplyModelFlags(const ModelArgs& args, const std::string& file, AssemblyDef
     def.gravity_option = "--gravity";
   }
   if (args.tolerance) def.tolerance_option = "--tolerance";
+  if (args.overlap_depth) {
+    def.overlap_depth = *args.overlap_depth;
+    def.overlap_depth_option = "--overlap-depth";
+  }
 }
 
 // COMPAS files store no friction coefficient, and guessing one (0 is
@@ -188,14 +195,33 @@ std::string NextPowerOfTen(double tol) {
 }
 
 // Parts that overlap by more than the tolerance: the message says that
-// --tolerance raises it.
-[[noreturn]] void OverlapFault(const OverlapError& e, const ModelArgs& args) {
+// --tolerance raises it and, in 3-D, that --overlap-depth reads parts meant
+// to touch as touching where they overlap (with an overlap depth already,
+// that it raises it), each with an example: the power of ten above the
+// tolerance, or above the deepest pair's depth.
+[[noreturn]] void OverlapFault(const OverlapError& e, const ModelArgs& args,
+                               const AssemblyDef& def) {
   if (!(e.tolerance() > 0) || !std::isfinite(e.tolerance())) throw e;
+  double deepest = 0;
+  for (const PartOverlap& o : e.overlaps()) deepest = std::max(deepest, o.depth);
+  const std::string depth_example =
+      deepest > 0 ? "--overlap-depth " + NextPowerOfTen(std::max(deepest, e.tolerance()))
+                  : std::string();
+  if (def.overlap_depth > 0 && deepest > 0)
+    throw InputError(e.file(), e.json_path(),
+                     e.message() + " (raise it with --overlap-depth" +
+                         (args.format == "scene" ? " or the scene's `overlap_depth`" : "") +
+                         ", e.g. " + depth_example + ")");
   const std::string example = "--tolerance " + NextPowerOfTen(e.tolerance());
-  throw InputError(e.file(), e.json_path(),
-                   e.message() + " (raise it with --tolerance" +
-                       (args.format == "scene" ? " or the scene's `tolerance`" : "") + ", e.g. " +
-                       example + ")");
+  throw InputError(
+      e.file(), e.json_path(),
+      e.message() + " (raise it with --tolerance" +
+          (args.format == "scene" ? " or the scene's `tolerance`" : "") + ", e.g. " + example +
+          (depth_example.empty()
+               ? std::string()
+               : "; or, for parts meant to touch, read their overlap as contact with " +
+                     depth_example) +
+          ")");
 }
 
 // Parts of a STEP model that overlap: an interference, measured on the exact
@@ -244,6 +270,18 @@ void StepInterference(const std::string& file, const ModelArgs& args, const Asse
                        touching + " cuts the second of each pair where they overlap");
 }
 
+// One note per pair of parts read as touching where they overlap (within
+// the overlap depth), with its depth.
+void NoteTouchingOverlaps(const Model& m, std::ostream& notes) {
+  const Assembly& a = m.assembly;
+  for (const PartOverlap& o : a.touching_overlaps())
+    notes << "cairn: note: " << m.file << ": parts '" << EscapedName(a.part(o.earlier).name)
+          << "' and '" << EscapedName(a.part(o.later).name) << "' overlap " << FormatNumber(o.depth)
+          << " deep (deepest at " << FormatPoint(o.witness, 3)
+          << "): read as touching on the overlap's mid-surface (overlap depth "
+          << FormatNumber(a.overlap_depth()) << ")\n";
+}
+
 // Assembly::Create (`create`) with what the model layer knows added to its
 // faults: a mass or density the sidecar set is the sidecar's fault, at its
 // JSON path; parts that overlap by more than the tolerance say that
@@ -255,7 +293,7 @@ Assembly CreateAssembly(const std::function<Assembly()>& create, const AssemblyD
     return create();
   } catch (const OverlapError& e) {
     if (args.format == "step") StepInterference(file, args, def, e);
-    OverlapFault(e, args);
+    OverlapFault(e, args, def);
   } catch (const InputError& e) {
     for (size_t k = 0; k < def.parts.size() && !set_by.empty(); ++k) {
       const std::string part = NamedPath("parts[" + std::to_string(k) + "]", def.parts[k].name);
@@ -302,6 +340,7 @@ Model LoadModel(const std::string& file, const ModelArgs& args, std::ostream* no
   m.assembly =
       CreateAssembly([&] { return Assembly::Create(m.def, file); }, m.def, args, set_by, file);
   m.file = file;
+  if (notes) NoteTouchingOverlaps(m, *notes);
   return m;
 }
 

@@ -152,6 +152,10 @@ void AddModelOptions(CLI::App* cmd, cairn::cli::ModelArgs& model) {
   cmd->add_option("--tolerance", model.tolerance,
                   "Length tolerance: contact distance, allowed overlap, planarity (default: the "
                   "scene's, or a fraction of the size of the assembly)");
+  cmd->add_option("--overlap-depth", model.overlap_depth,
+                  "3-D: how deep parts meant to touch may overlap (meshes as exported): such "
+                  "overlaps are contacts on their mid-surface, each listed with its depth; "
+                  "deeper ones are refused (default: the scene's overlap_depth, or 0)");
   AddNumberList(cmd, "--gravity", model.gravity,
                 "Gravity vector, comma-separated (e.g. 0,0,9.81: the assembly upside down)",
                 "X,Y[,Z]");

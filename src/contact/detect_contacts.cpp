@@ -406,7 +406,8 @@ const std::vector<PolyhedronContactPoint>& PolyhedronPair(const Assembly& assemb
   e.X_a = placed.X[a];
   e.X_b = placed.X[b];
   e.points = FindPolyhedronContacts(*assembly.part(a).polyhedron, placed.X[a],
-                                    *assembly.part(b).polyhedron, placed.X[b], tol, angle_tol);
+                                    *assembly.part(b).polyhedron, placed.X[b], tol, angle_tol,
+                                    tol + assembly.overlap_depth());
   return e.points;
 }
 
@@ -424,7 +425,8 @@ void PairContacts(const Assembly& assembly, const PlacedParts& placed, int i, in
   std::vector<PolyhedronContactPoint> computed;
   if (!cache)
     computed = FindPolyhedronContacts(*assembly.part(a).polyhedron, placed.X[a],
-                                      *assembly.part(b).polyhedron, placed.X[b], tol, angle_tol);
+                                      *assembly.part(b).polyhedron, placed.X[b], tol, angle_tol,
+                                      tol + assembly.overlap_depth());
   for (const PolyhedronContactPoint& p :
        cache ? PolyhedronPair(assembly, placed, a, b, tol, angle_tol, *cache) : computed) {
     Contact c;

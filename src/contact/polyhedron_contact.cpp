@@ -206,18 +206,19 @@ namespace {
 class PairContacts {
  public:
   PairContacts(const Polyhedron& shape_a, const Eigen::Isometry3d& X_WA, const Polyhedron& shape_b,
-               const Eigen::Isometry3d& X_WB, double length, double angle)
+               const Eigen::Isometry3d& X_WB, double length, double angle, double depth)
       : a(shape_a),
         b(shape_b),
         A(shape_a, X_WA),
         B(shape_b, X_WB),
         length_tol(length),
+        depth_tol(std::max(length, depth)),
         cos_tol(std::cos(angle)),
         sin_tol(std::sin(angle)),
         area_tol(length * length),
-        faces_a(A.lo, A.hi, length),
-        faces_b(B.lo, B.hi, length),
-        edges_b(EdgeGrid(B, length)) {}
+        faces_a(A.lo, A.hi, depth_tol),
+        faces_b(B.lo, B.hi, depth_tol),
+        edges_b(EdgeGrid(B, depth_tol)) {}
 
   // Vertex–face and edge–face contacts, both ways (a's features on b's faces,
   // then b's on a's).
@@ -231,7 +232,10 @@ class PairContacts {
   }
 
   // Face–face: a face of a pressed onto a face of b (opposite normals, every
-  // vertex on b's plane): their intersection, one patch per piece.
+  // vertex on b's plane, or behind it by up to the depth): their
+  // intersection, one patch per piece, on a's face, or where a's face lies
+  // deeper than the length tolerance behind b's, midway between the two
+  // (Height).
   void FaceFace() {
     for (int fb = 0; fb < static_cast<int>(B.n.size()); ++fb) {
       Vector3 u, w;
@@ -241,12 +245,12 @@ class PairContacts {
       bool have_b = false;
       for (const int fa : faces_a.Query(B.lo[fb], B.hi[fb])) {
         if (A.n[fa].dot(B.n[fb]) > -cos_tol) continue;
-        if (BoxesApart(A.lo[fa], A.hi[fa], B.lo[fb], B.hi[fb], length_tol)) continue;
+        if (BoxesApart(A.lo[fa], A.hi[fa], B.lo[fb], B.hi[fb], depth_tol)) continue;
         bool on_plane = true;
         double gap = 0;
         for (int i : a.faces()[fa]) {
           const double d = B.n[fb].dot(A.v[i]) - B.offset[fb];
-          on_plane = on_plane && std::abs(d) <= length_tol;
+          on_plane = on_plane && Touches(d);
           gap += d;
         }
         if (!on_plane) continue;
@@ -261,7 +265,7 @@ class PairContacts {
           const auto& ring = piece.outer();
           for (size_t k = 0; k + 1 < ring.size(); ++k) {  // the ring repeats its first point
             PolyhedronContactPoint c;
-            c.p_W = o + ring[k].x() * u + ring[k].y() * w + gap * B.n[fb];
+            c.p_W = o + ring[k].x() * u + ring[k].y() * w + Height(gap) * B.n[fb];
             c.n_W = B.n[fb];
             c.gap = gap;
             c.kind = ContactKind3::kFaceFace;
@@ -294,14 +298,16 @@ class PairContacts {
     return false;
   }
 
-  // Vertex–face, both ways: a vertex of P on a face of Q.
+  // Vertex–face, both ways: a vertex of P on a face of Q (or behind it by up
+  // to the depth: the point is then midway between the vertex and the face,
+  // Height).
   void VertexFace(const Placed& P, const Placed& Q, bool p_is_a) {
     for (int i = 0; i < static_cast<int>(P.v.size()); ++i) {
       for (const int f : FacesOf(Q).Query(P.v[i], P.v[i])) {
         const double d = Q.n[f].dot(P.v[i]) - Q.offset[f];
-        if (std::abs(d) > length_tol) continue;
-        if (BoxesApart(P.v[i], P.v[i], Q.lo[f], Q.hi[f], length_tol)) continue;
-        if (!MaterialAbove(P, i, Q.n[f], Q.offset[f], length_tol)) continue;
+        if (!Touches(d)) continue;
+        if (BoxesApart(P.v[i], P.v[i], Q.lo[f], Q.hi[f], depth_tol)) continue;
+        if (!MaterialAbove(P, i, Q.n[f], Level(Q, f, d), length_tol)) continue;
         Vector3 u, w;
         PlaneBasis(Q.n[f], &u, &w);
         const Vector3 o = Q.v[Q.shape->faces()[f][0]];
@@ -311,7 +317,7 @@ class PairContacts {
         // Inside a face–face patch of this face: already a contact.
         if (p_is_a ? InPatch(P.v[i], f, true) : InPatch(P.v[i], f, false)) continue;
         PolyhedronContactPoint c;
-        c.p_W = P.v[i];
+        c.p_W = P.v[i] + (Height(d) - d) * Q.n[f];
         c.n_W = p_is_a ? Q.n[f] : Vector3(-Q.n[f]);
         c.gap = d;
         c.kind = p_is_a ? ContactKind3::kVertexFace : ContactKind3::kFaceVertex;
@@ -332,9 +338,9 @@ class PairContacts {
       for (const int f : FacesOf(Q).Query(P.v[i].cwiseMin(P.v[j]), P.v[i].cwiseMax(P.v[j]))) {
         const double di = Q.n[f].dot(P.v[i]) - Q.offset[f];
         const double dj = Q.n[f].dot(P.v[j]) - Q.offset[f];
-        if (std::abs(di) > length_tol || std::abs(dj) > length_tol) continue;
+        if (!Touches(di) || !Touches(dj)) continue;
         if (BoxesApart(P.v[i].cwiseMin(P.v[j]), P.v[i].cwiseMax(P.v[j]), Q.lo[f], Q.hi[f],
-                       length_tol))
+                       depth_tol))
           continue;
         // An edge of a face already pressed onto this face: inside that patch.
         bool in_face_pair = false;
@@ -344,8 +350,8 @@ class PairContacts {
             in_face_pair = in_face_pair || (p_is_a ? (pf == fa && f == fb) : (pf == fb && f == fa));
           }
         if (in_face_pair) continue;
-        if (!MaterialAbove(P, i, Q.n[f], Q.offset[f], length_tol) ||
-            !MaterialAbove(P, j, Q.n[f], Q.offset[f], length_tol))
+        if (!MaterialAbove(P, i, Q.n[f], Level(Q, f, di), length_tol) ||
+            !MaterialAbove(P, j, Q.n[f], Level(Q, f, dj), length_tol))
           continue;
         Vector3 u, w;
         PlaneBasis(Q.n[f], &u, &w);
@@ -361,7 +367,7 @@ class PairContacts {
           if (piece.size() < 2) continue;
           for (const Point2& q : {piece.front(), piece.back()}) {
             PolyhedronContactPoint c;
-            c.p_W = o + q.x() * u + q.y() * w + 0.5 * (di + dj) * Q.n[f];
+            c.p_W = o + q.x() * u + q.y() * w + Height(0.5 * (di + dj)) * Q.n[f];
             c.n_W = p_is_a ? Q.n[f] : Vector3(-Q.n[f]);
             c.gap = 0.5 * (di + dj);
             c.kind = p_is_a ? ContactKind3::kEdgeFace : ContactKind3::kFaceEdge;
@@ -383,7 +389,7 @@ class PairContacts {
       for (const int eb : edges_b.Query(p0.cwiseMin(p1), p0.cwiseMax(p1))) {
         const Vector3 q0 = B.v[B.edges[eb][0]], q1 = B.v[B.edges[eb][1]];
         if (BoxesApart(p0.cwiseMin(p1), p0.cwiseMax(p1), q0.cwiseMin(q1), q0.cwiseMax(q1),
-                       length_tol))
+                       depth_tol))
           continue;
         const Vector3 d1 = p1 - p0, d2 = q1 - q0, r = p0 - q0;
         const Vector3 cr = d1.cross(d2);
@@ -396,7 +402,7 @@ class PairContacts {
         const double margin1 = length_tol / std::sqrt(a11), margin2 = length_tol / std::sqrt(a22);
         if (s <= margin1 || s >= 1 - margin1 || t <= margin2 || t >= 1 - margin2) continue;
         const Vector3 pa = p0 + s * d1, pb = q0 + t * d2;
-        if ((pa - pb).norm() > length_tol) continue;
+        if ((pa - pb).norm() > depth_tol) continue;
         // The normal, into a's material: the plane of the two edges must
         // separate the wedges of material along them, a's on the side n
         // points to and b's on the other. Where neither side does, the
@@ -411,6 +417,9 @@ class PairContacts {
           if (!separates(-n)) continue;
           n = -n;
         }
+        // Apart by more than the length tolerance, or a's edge deeper than
+        // the depth behind b's.
+        if (!Touches(n.dot(pa - pb))) continue;
         PolyhedronContactPoint c;
         c.p_W = 0.5 * (pa + pb);
         c.n_W = n;
@@ -441,7 +450,10 @@ class PairContacts {
   const Polyhedron& a;
   const Polyhedron& b;
   const Placed A, B;
-  const double length_tol, cos_tol, sin_tol, area_tol;
+  // length_tol: how far apart features still touch; depth_tol (≥ it): how
+  // deep one may lie behind the other's face and still touch (an overlap
+  // depth, AssemblyDef::overlap_depth, read as contact).
+  const double length_tol, depth_tol, cos_tol, sin_tol, area_tol;
   std::vector<PolyhedronContactPoint> out;
   std::vector<Patch> patches;  // by face of b (face–face, a's faces pressed onto b's)
   std::vector<std::pair<int, int>> face_pairs;  // (face a, face b) of each patch
@@ -449,16 +461,31 @@ class PairContacts {
   // Which faces and edges are near which (BoxGrid).
   const BoxGrid faces_a, faces_b, edges_b;
   const BoxGrid& FacesOf(const Placed& Q) const { return &Q == &A ? faces_a : faces_b; }
+
+  // Whether a feature at signed distance d (length; < 0: behind, inside the
+  // other part) from a face touches it.
+  bool Touches(double d) const { return d >= -depth_tol && d <= length_tol; }
+  // The level of face f's plane that MaterialAbove tests a feature at
+  // signed distance d against: the plane itself, or for a feature deeper
+  // than the length tolerance behind it, that plane moved down to the
+  // feature's depth (less the tolerance), so that a corner pressed into the
+  // face is tested as one resting on it.
+  double Level(const Placed& Q, int f, double d) const {
+    return Q.offset[f] + std::min(0.0, d + length_tol);
+  }
+  // Where a contact point lies along a face's normal, above its plane, for a
+  // feature at signed distance d from it: on the feature (d) where they
+  // touch within the length tolerance, as always; midway (d / 2, the
+  // overlap's mid-surface) where the feature lies deeper behind the face.
+  double Height(double d) const { return d < -length_tol ? 0.5 * d : d; }
 };
 
 }  // namespace
 
-std::vector<PolyhedronContactPoint> FindPolyhedronContacts(const Polyhedron& a,
-                                                           const Eigen::Isometry3d& X_WA,
-                                                           const Polyhedron& b,
-                                                           const Eigen::Isometry3d& X_WB,
-                                                           double length_tol, double angle_tol) {
-  PairContacts pair(a, X_WA, b, X_WB, length_tol, angle_tol);
+std::vector<PolyhedronContactPoint> FindPolyhedronContacts(
+    const Polyhedron& a, const Eigen::Isometry3d& X_WA, const Polyhedron& b,
+    const Eigen::Isometry3d& X_WB, double length_tol, double angle_tol, double depth_tol) {
+  PairContacts pair(a, X_WA, b, X_WB, length_tol, angle_tol, depth_tol);
   pair.FaceFace();
   pair.VertexFaces();
   pair.EdgeFaces();

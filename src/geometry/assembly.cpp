@@ -427,13 +427,13 @@ void CheckMasses(const AssemblyDef& def, const std::vector<Part>& parts, const V
                                   FormatNumber(parts[heaviest].mass) + ")");
 }
 
-// Overlap between every pair of parts, skipping pairs whose bounding boxes
-// are apart (a sweep over boxes sorted by their low x). Every overlapping
-// pair is reported, the one with the lowest indices first (its later part's
-// path is the error's), each with a point of both parts (a witness) and, in
-// 3-D, how deep that point lies inside the part it is not on the surface of.
-void CheckOverlaps(const AssemblyDef& def, const std::vector<Part>& parts, int dimension,
-                   double tol, const Validator& check) {
+// Every pair of parts that overlap by more than `tol`, skipping pairs whose
+// bounding boxes are apart (a sweep over boxes sorted by their low x), in
+// order of (later, earlier) index, each with a point of both parts (a
+// witness) and, in 3-D, how deep that point lies inside the part it is not
+// on the surface of.
+std::vector<PartOverlap> FindPartOverlaps(const std::vector<Part>& parts, int dimension,
+                                          double tol) {
   const int num_parts = static_cast<int>(parts.size());
   const bool is3 = dimension == 3;
   std::vector<std::pair<Vector3, Vector3>> boxes(num_parts);
@@ -468,7 +468,6 @@ void CheckOverlaps(const AssemblyDef& def, const std::vector<Part>& parts, int d
       }
     }
   }
-  if (overlaps.empty()) return;
   std::vector<PartOverlap> found;
   for (const auto& [key, witness] : overlaps) {
     PartOverlap o;
@@ -483,6 +482,14 @@ void CheckOverlaps(const AssemblyDef& def, const std::vector<Part>& parts, int d
     }
     found.push_back(o);
   }
+  return found;
+}
+
+// Refuses the overlapping pairs `found` (FindPartOverlaps; not empty): every
+// one is reported, the one with the lowest indices first (its later part's
+// path is the error's).
+[[noreturn]] void FailOverlaps(const AssemblyDef& def, const std::vector<Part>& parts, bool is3,
+                               std::vector<PartOverlap> found, double tol, const Validator& check) {
   // "at (x, y, z), d deep"
   const auto where = [&](const PartOverlap& o) {
     return is3 ? Point(o.witness) + ", " + FormatNumber(o.depth) + " deep"
@@ -504,7 +511,61 @@ void CheckOverlaps(const AssemblyDef& def, const std::vector<Part>& parts, int d
                  (k + 1 == found.size() ? "" : ";");
     }
   }
-  check.FailOverlaps(PartPath(def.parts[first.later], first.later), message, std::move(found), tol);
+  const std::string path = PartPath(def.parts[first.later], first.later);
+  check.FailOverlaps(path, message, std::move(found), tol);
+}
+
+// The overlap test: no two parts interpenetrate by more than `tol`.
+void CheckOverlaps(const AssemblyDef& def, const std::vector<Part>& parts, int dimension,
+                   double tol, const Validator& check) {
+  std::vector<PartOverlap> found = FindPartOverlaps(parts, dimension, tol);
+  if (!found.empty()) FailOverlaps(def, parts, dimension == 3, std::move(found), tol, check);
+}
+
+// The overlap test with an overlap depth (AssemblyDef::overlap_depth, 3-D):
+// the pairs that overlap by more than `tol` but no deeper than tol + depth,
+// each with its deepest point and depth (PolyhedronOverlapDepth), are read
+// as touching and returned; deeper ones are refused, every one with its
+// depth.
+std::vector<PartOverlap> TouchingOverlaps(const AssemblyDef& def, const std::vector<Part>& parts,
+                                          double tol, double depth, const Validator& check) {
+  std::vector<PartOverlap> touching, too_deep;
+  for (PartOverlap& o : FindPartOverlaps(parts, 3, tol)) {
+    const Eigen::Isometry3d I = Eigen::Isometry3d::Identity();
+    Vector3 deepest{0, 0, 0};
+    const double d = PolyhedronOverlapDepth(*parts[o.later].polyhedron, I,
+                                            *parts[o.earlier].polyhedron, I, tol, &deepest);
+    // The samples may all miss an overlap that an edge crossing found: the
+    // witness's depth stands then.
+    if (d > o.depth) o.depth = d, o.witness = deepest;
+    (o.depth > tol + depth ? too_deep : touching).push_back(o);
+  }
+  if (!too_deep.empty()) FailOverlaps(def, parts, true, std::move(too_deep), tol + depth, check);
+  return touching;
+}
+
+// The overlap depth: finite, ≥ 0, 3-D only, and at most
+// kMaxOverlapDepthFactor of the smallest part's size.
+double CheckOverlapDepth(const AssemblyDef& def, bool is3, double smallest_part_size,
+                         const Validator& check) {
+  const double depth = def.overlap_depth;
+  if (!std::isfinite(depth) || depth < 0)
+    check.FailValue(def.overlap_depth_option, "overlap_depth",
+                    "must be a finite number ≥ 0 (got " + FormatNumber(depth) + ")");
+  if (depth == 0) return 0;
+  if (!is3)
+    check.FailValue(def.overlap_depth_option, "overlap_depth",
+                    "applies to 3-D models only (2-D parts that overlap are refused)");
+  const double largest = limits::kMaxOverlapDepthFactor * smallest_part_size;
+  if (depth > largest)
+    check.FailValue(def.overlap_depth_option, "overlap_depth",
+                    "too large: " + FormatNumber(depth) + " is more than " +
+                        FormatNumber(limits::kMaxOverlapDepthFactor) +
+                        " of the smallest part's size (" + FormatNumber(smallest_part_size) +
+                        "): give at most " + FormatNumber(largest) +
+                        "; parts that overlap deeper share material (--fastened joins a "
+                        "STEP model's pairs)");
+  return depth;
 }
 
 using PartFinder = std::function<int(const std::string&)>;
@@ -680,7 +741,11 @@ Assembly Assembly::Create(const AssemblyDef& def, const std::string& source_file
   }
   // Given interfaces say how the parts touch; their shapes may interpenetrate
   // (InterfaceDef): no overlap test then.
-  if (def.interfaces.empty())
+  out.overlap_depth_ = CheckOverlapDepth(def, is3, out.smallest_part_size_, check);
+  if (def.interfaces.empty() && out.overlap_depth_ > 0)
+    out.touching_overlaps_ =
+        TouchingOverlaps(def, out.parts_, tol + out.overlap_allowance_, out.overlap_depth_, check);
+  else if (def.interfaces.empty())
     CheckOverlaps(def, out.parts_, out.dimension_, tol + out.overlap_allowance_, check);
 
   const PartFinder find = [&](const std::string& name) {
@@ -754,7 +819,7 @@ std::optional<std::string> Assembly::FixtureFault(const FixtureDef& f) const {
 Tolerances Assembly::MakeTolerances(double dt) const {
   Tolerances t =
       Tolerances::Scaled(scene_size_, gravity_.norm(), dt, max_weight_, tolerance_override_);
-  t.penetration = t.length + overlap_allowance_;
+  t.penetration = t.length + overlap_allowance_ + overlap_depth_;
   // Facets within the allowance of a curved surface have normals within
   // about allowance / size of it on a part of that size: the angle
   // tolerance of a tessellated model (kMaxApproximatedAngle at most).

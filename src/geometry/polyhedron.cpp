@@ -724,14 +724,14 @@ bool DeeperInside(const Triangles& tris, const Vector3& p, double tol) {
 }
 
 // A point of `a` deeper than tol inside `b`, among a's sample points.
-std::optional<Vector3> SampleInside(const Polyhedron& a, const Eigen::Isometry3d& X_WA,
-                                    const Polyhedron& b, const Eigen::Isometry3d& X_WB,
-                                    double tol) {
+// The points of `a` (own frame) tested against another solid: its vertices,
+// the centroid and edge midpoints of its face triangles, and its centroid,
+// which catches a solid wholly inside the other, but only if it is inside its
+// own solid: a non-convex one's (a U, an arch) may lie in the gap, where
+// another part may rightly be.
+std::vector<Vector3> OverlapSamples(const Polyhedron& a, double tol) {
   const auto& x = a.vertices();
   std::vector<Vector3> samples;
-  // The centroid catches a solid wholly inside the other, but only if it is
-  // inside its own solid: a non-convex one's (a U, an arch) may lie in the
-  // gap, where another part may rightly be.
   if (SignedDistance(a, Eigen::Isometry3d::Identity(), a.mass().centroid) < -tol)
     samples.push_back(a.mass().centroid);
   for (const Vector3& v : x) samples.push_back(v);
@@ -740,12 +740,50 @@ std::optional<Vector3> SampleInside(const Polyhedron& a, const Eigen::Isometry3d
       samples.push_back((x[t[0]] + x[t[1]] + x[t[2]]) / 3);
       for (int k = 0; k < 3; ++k) samples.push_back((x[t[k]] + x[t[(k + 1) % 3]]) / 2);
     }
+  return samples;
+}
+
+std::optional<Vector3> SampleInside(const Polyhedron& a, const Eigen::Isometry3d& X_WA,
+                                    const Polyhedron& b, const Eigen::Isometry3d& X_WB,
+                                    double tol) {
   // b's triangles in its own frame, where the samples are tested.
   const Triangles tris = Triangles::Of(b, tol);
   const Eigen::Isometry3d X_BA = X_WB.inverse() * X_WA;
-  for (const Vector3& s : samples)
+  for (const Vector3& s : OverlapSamples(a, tol))
     if (DeeperInside(tris, X_BA * s, tol)) return X_WA * s;
   return std::nullopt;
+}
+
+// The distance from p to the nearest of `tris` (own frame): the triangles in
+// a box about p that doubles until one lies within its half-width (any
+// triangle nearer than that meets the box).
+double NearestTriangleDistance(const Triangles& tris, const Vector3& p, double start) {
+  const double reach = (tris.hi - tris.lo).norm() + (p - tris.lo).norm();
+  for (double r = start;; r *= 2) {
+    double best = std::numeric_limits<double>::infinity();
+    for (const int k :
+         tris.grid.QueryUnordered(p - Vector3::Constant(r), p + Vector3::Constant(r))) {
+      const auto& c = tris.corners[k];
+      best = std::min(best, (ClosestPointOnTriangle(p, c[0], c[1], c[2]) - p).norm());
+    }
+    if (best <= r || r > reach) return best;
+  }
+}
+
+// The deepest of a's samples inside b (deeper than tol): its depth, and the
+// point (world) in *deepest.
+double DeepestSampleInside(const Polyhedron& a, const Eigen::Isometry3d& X_WA, const Polyhedron& b,
+                           const Eigen::Isometry3d& X_WB, double tol, Vector3* deepest) {
+  const Triangles tris = Triangles::Of(b, tol);
+  const Eigen::Isometry3d X_BA = X_WB.inverse() * X_WA;
+  double depth = 0;
+  for (const Vector3& s : OverlapSamples(a, tol)) {
+    const Vector3 p = X_BA * s;
+    if (!DeeperInside(tris, p, tol)) continue;
+    const double d = NearestTriangleDistance(tris, p, std::max(tol, depth));
+    if (d > depth) depth = d, *deepest = X_WA * s;
+  }
+  return depth;
 }
 
 // An edge of `a` crossing a face of `b` properly (both ends more than tol off
@@ -847,6 +885,16 @@ std::optional<Vector3> EdgeThroughFace(const Polyhedron& a, const Eigen::Isometr
 }
 
 }  // namespace
+
+double PolyhedronOverlapDepth(const Polyhedron& a, const Eigen::Isometry3d& X_WA,
+                              const Polyhedron& b, const Eigen::Isometry3d& X_WB, double tol,
+                              Vector3* deepest) {
+  Vector3 in_b{0, 0, 0}, in_a{0, 0, 0};
+  const double depth_in_b = DeepestSampleInside(a, X_WA, b, X_WB, tol, &in_b);
+  const double depth_in_a = DeepestSampleInside(b, X_WB, a, X_WA, tol, &in_a);
+  if (deepest) *deepest = depth_in_b >= depth_in_a ? in_b : in_a;
+  return std::max(depth_in_b, depth_in_a);
+}
 
 std::optional<Vector3> FindPolyhedronOverlap(const Polyhedron& a, const Eigen::Isometry3d& X_WA,
                                              const Polyhedron& b, const Eigen::Isometry3d& X_WB,

@@ -32,7 +32,8 @@ constexpr std::initializer_list<const char*> kSceneKeys = {"cairn",
                                                            "fixtures",
                                                            "friction_directions",
                                                            "interfaces",
-                                                           "overlap_allowance"};
+                                                           "overlap_allowance",
+                                                           "overlap_depth"};
 constexpr std::initializer_list<const char*> kPolyhedronKeys = {"vertices", "faces"};
 constexpr std::initializer_list<const char*> kPartKeys = {
     "name", "fixed", "tool", "density", "mass", "polygon", "box", "polyhedron", "mesh"};
@@ -82,6 +83,11 @@ class SceneParser : private io_internal::JsonChecker {
       def.overlap_allowance = Number(doc["overlap_allowance"], "overlap_allowance");
       if (def.overlap_allowance < 0)
         Fail("overlap_allowance", "must not be negative (got " + Num(def.overlap_allowance) + ")");
+    }
+    if (doc.contains("overlap_depth")) {
+      def.overlap_depth = Number(doc["overlap_depth"], "overlap_depth");
+      if (def.overlap_depth < 0)
+        Fail("overlap_depth", "must not be negative (got " + Num(def.overlap_depth) + ")");
     }
     const json& parts = Array(Require(doc, "parts", ""), "parts");
     if (parts.empty()) Fail("parts", "must list at least one part");

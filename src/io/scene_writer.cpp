@@ -76,6 +76,7 @@ std::string WriteSceneJson(const AssemblyDef& def) {
   }
   if (def.tolerance > 0) doc["tolerance"] = def.tolerance;
   if (def.overlap_allowance > 0) doc["overlap_allowance"] = def.overlap_allowance;
+  if (def.overlap_depth > 0) doc["overlap_depth"] = def.overlap_depth;
   ordered_json parts = ordered_json::array();
   for (const PartDef& p : def.parts) {
     ordered_json part;

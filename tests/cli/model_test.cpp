@@ -754,7 +754,8 @@ TEST(ModelTolerance, AnOverlapSaysThatToleranceRaisesIt) {
   EXPECT_THAT(r.err, HasSubstr("part 'B' overlaps part 'A' (parts[0]) by more than the tolerance "
                                "2.44949e-06"));
   EXPECT_THAT(r.err, HasSubstr("(raise it with --tolerance or the scene's `tolerance`, e.g. "
-                               "--tolerance 1e-5)\n"));
+                               "--tolerance 1e-5; or, for parts meant to touch, read their "
+                               "overlap as contact with --overlap-depth 1e-4)\n"));
   EXPECT_EQ(Cairn("check " + file + " --tolerance 1e-4").exit_code, 0);
   // ASAP's beams, whose meshes interpenetrate by up to ~1e-4 (inches).
   const std::string shared = testing::SharedDir();
@@ -763,7 +764,115 @@ TEST(ModelTolerance, AnOverlapSaysThatToleranceRaisesIt) {
   EXPECT_EQ(beams.exit_code, 2);
   EXPECT_THAT(beams.err, HasSubstr("part '2' overlaps part '0' (parts[0]) by more than the "
                                    "tolerance 1.87702e-05"));
-  EXPECT_THAT(beams.err, HasSubstr("(raise it with --tolerance, e.g. --tolerance 1e-4)\n"));
+  EXPECT_THAT(beams.err, HasSubstr("(raise it with --tolerance, e.g. --tolerance 1e-4; or, for "
+                                   "parts meant to touch, read their overlap as contact with "
+                                   "--overlap-depth 1e-4)\n"));
+  EXPECT_EQ(Cairn("check " + shared +
+                  "/datasets/asap_beam_assembly --format asap --overlap-depth "
+                  "1e-4 --fixed 6")
+                .exit_code,
+            0);
+}
+
+// Parts meant to touch whose meshes overlap (as exported): two posts on a
+// base under a beam, each pressed 0.04 (4 % of a post's width) into what it
+// stands on. Refused without an overlap depth, every pair listed with its
+// depth and --overlap-depth advised; with one, every pair is noted with its
+// depth and touches on the overlap's mid-surface: only vertical contacts, in
+// the middle of each overlap, carrying the beam's weight; deeper than the
+// depth, refused with the depth.
+TEST(OverlapDepth, PostsPressedIntoTheirBaseAndBeamStandOnTheOverlapsMidSurfaces) {
+  const json scene = {
+      {"cairn", 1},
+      {"parts",
+       {{{"name", "base"}, {"fixed", true}, {"box", {{"min", {0, 0, 0}}, {"max", {4, 1, 1}}}}},
+        {{"name", "left"}, {"box", {{"min", {0, 0, 0.96}}, {"max", {1, 1, 3}}}}},
+        {{"name", "right"}, {"box", {{"min", {3, 0, 0.96}}, {"max", {4, 1, 3}}}}},
+        {{"name", "beam"}, {"box", {{"min", {0, 0, 2.96}}, {"max", {4, 1, 3.5}}}}}}}};
+  const std::string file = testing::TempFile("overlap_depth_posts.json", scene.dump());
+  const CliRun refused = Cairn("check " + file);
+  EXPECT_EQ(refused.exit_code, 2);
+  EXPECT_THAT(refused.err, HasSubstr("part 'left' overlaps part 'base' (parts[0])"));
+  EXPECT_THAT(refused.err, HasSubstr("3 more overlapping pairs"));
+  EXPECT_THAT(refused.err, HasSubstr("0.04 deep; "));
+  EXPECT_THAT(refused.err, HasSubstr("; or, for parts meant to touch, read their overlap as "
+                                     "contact with --overlap-depth 1e-1)\n"));
+
+  const CliRun r = Cairn("check " + file + " --overlap-depth 0.05 --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (const char* pair :
+       {"'base' and 'left'", "'base' and 'right'", "'left' and 'beam'", "'right' and 'beam'"})
+    EXPECT_THAT(r.err, HasSubstr(std::string("parts ") + pair + " overlap 0.04 deep (deepest at "));
+  const json out = json::parse(r.out);
+  EXPECT_EQ(out["verdict"], "stable");
+  ASSERT_EQ(out["contacts"].size(), 16u);  // a square patch per pair
+  double on_beam = 0;
+  for (const json& c : out["contacts"]) {
+    EXPECT_NEAR(std::abs(c["normal"][2].get<double>()), 1.0, 1e-12) << c.dump();
+    const double z = c["point"][2];
+    EXPECT_TRUE(std::abs(z - 0.98) < 1e-9 || std::abs(z - 2.98) < 1e-9) << c.dump();
+    if (c["parts"][1] == "beam") on_beam += c["normal_force"].get<double>();
+  }
+  EXPECT_NEAR(on_beam, 4 * 0.54 * 9.81, 1e-6);  // the beam's weight (density 1)
+
+  const CliRun shallow = Cairn("check " + file + " --overlap-depth 0.03");
+  EXPECT_EQ(shallow.exit_code, 2);
+  EXPECT_THAT(shallow.err, HasSubstr("by more than the tolerance 0.03"));
+  EXPECT_THAT(shallow.err, HasSubstr("(raise it with --overlap-depth or the scene's "
+                                     "`overlap_depth`, e.g. --overlap-depth 1e-1)\n"));
+  const CliRun huge = Cairn("check " + file + " --overlap-depth 1");
+  EXPECT_EQ(huge.exit_code, 2);
+  EXPECT_THAT(huge.err, HasSubstr("--overlap-depth: too large: 1 is more than 0.05 of the "
+                                  "smallest part's size"));
+  const CliRun negative = Cairn("check " + file + " --overlap-depth -1");
+  EXPECT_EQ(negative.exit_code, 2);
+  EXPECT_THAT(negative.err, HasSubstr("--overlap-depth"));
+
+  // The scene's own key, and convert keeps it; the beam leaves upward, the
+  // posts are held by it.
+  json keyed = scene;
+  keyed["overlap_depth"] = 0.05;
+  const std::string keyed_file = testing::TempFile("overlap_depth_key.json", keyed.dump());
+  EXPECT_EQ(Cairn("check " + keyed_file).exit_code, 0);
+  const std::string converted = testing::TempDir("overlap_depth_convert") + ".json";
+  ASSERT_EQ(Cairn("convert " + file + " " + converted + " --overlap-depth 0.05").exit_code, 0);
+  std::ifstream in(converted);
+  EXPECT_EQ(json::parse(in)["overlap_depth"], 0.05);
+  const CliRun up = Cairn("blocking " + keyed_file + " --direction 0,0,1");
+  ASSERT_EQ(up.exit_code, 0) << up.err;
+  EXPECT_THAT(up.out, HasSubstr("leave: beam   blocked: base by left*, right*, beam; left by "
+                                "beam*; right by beam*"));
+}
+
+// An overlap read as contact holds nothing up that the contact would not: a
+// cube pressed 0.03 sideways into a wall, nothing under it, falls, with or
+// without friction (no squeeze: every contact is on the wall's face). In
+// 2-D, an overlap depth is refused.
+TEST(OverlapDepth, ACubePressedIntoAWallStillFalls) {
+  const json scene = {
+      {"cairn", 1},
+      {"parts",
+       {{{"name", "wall"}, {"fixed", true}, {"box", {{"min", {0, 0, 0}}, {"max", {1, 1, 2}}}}},
+        {{"name", "cube"}, {"box", {{"min", {0.97, 0, 0.5}}, {"max", {1.97, 1, 1.5}}}}}}}};
+  const std::string file = testing::TempFile("overlap_depth_wall.json", scene.dump());
+  for (const char* mu : {"0", "0.5", "2"}) {
+    const CliRun r =
+        Cairn("check " + file + " --overlap-depth 0.05 --json --friction " + std::string(mu));
+    ASSERT_EQ(r.exit_code, 1) << r.err;  // unstable
+    const json out = json::parse(r.out);
+    EXPECT_EQ(out["verdict"], "unstable") << mu;
+    ASSERT_EQ(out["contacts"].size(), 4u);
+    for (const json& c : out["contacts"]) {
+      EXPECT_NEAR(c["normal"][0].get<double>(), 1.0, 1e-12) << c.dump();
+      EXPECT_NEAR(c["point"][0].get<double>(), 0.985, 1e-12) << c.dump();
+    }
+  }
+  const std::string flat = testing::TempFile(
+      "overlap_depth_2d.json",
+      R"({"cairn": 1, "parts": [{"name": "a", "fixed": true, "box": {"min": [0, 0], "max": [1, 1]}}]})");
+  const CliRun r2 = Cairn("check " + flat + " --overlap-depth 0.01");
+  EXPECT_EQ(r2.exit_code, 2);
+  EXPECT_THAT(r2.err, HasSubstr("--overlap-depth: applies to 3-D models only"));
 }
 
 TEST(SceneInterfaces, GivenInterfacesAreTheContacts) {

@@ -224,5 +224,67 @@ TEST(PolyhedronContact, APartAGapAboveTouchesNothing) {
   EXPECT_TRUE(Contacts(cube, Iso::Identity(), table, Iso::Identity()).empty());
 }
 
+// Parts meant to touch that overlap (meshes as exported), read with an
+// overlap depth: each pose of a resting on b (a face, an overhanging face,
+// an edge, a vertex, an edge across a ridge) pressed into b by δ along the
+// normal gives the contacts of the touching pose, each moved to the
+// overlap's mid-surface (δ/2 into b) with gap −δ; pressed deeper than the
+// depth, or lifted clear of the length tolerance, none.
+TEST(PolyhedronContact, AnOverlapWithinTheDepthTouchesOnItsMidSurface) {
+  const Polyhedron table = Box({-2, -2, -1}, {2, 2, 0});
+  const Polyhedron cube = Box({-0.5, -0.5, -0.5}, {0.5, 0.5, 0.5});
+  Iso flat = Iso::Identity(), overhang = Iso::Identity(), on_edge = Iso::Identity(),
+      on_vertex = Iso::Identity(), ridge = Iso::Identity();
+  flat.translation() = Vector3(0, 0, 0.5);
+  overhang.translation() = Vector3(2, 0.5, 0.5);
+  on_edge.linear() = Eigen::AngleAxisd(std::numbers::pi / 4, Vector3::UnitX()).toRotationMatrix();
+  on_edge.translation() = Vector3(0, 0, std::sqrt(0.5));
+  on_vertex.linear() =
+      Eigen::Quaterniond::FromTwoVectors(Vector3(1, 1, 1).normalized(), -Vector3::UnitZ())
+          .toRotationMatrix();
+  on_vertex.translation() = Vector3(0, 0, std::sqrt(3.0) / 2);
+  ridge.translation() = Vector3(0, 0, 1);
+  const Polyhedron lower = Prism('x', true, 4, 1), upper = Prism('y', false, 4, 1);
+  struct Case {
+    const char* what;
+    const Polyhedron& a;
+    Iso X_a;
+    const Polyhedron& b;
+    size_t points;
+  };
+  const Case cases[] = {{"face", cube, flat, table, 4},
+                        {"overhang", cube, overhang, table, 4},
+                        {"edge", cube, on_edge, table, 2},
+                        {"vertex", cube, on_vertex, table, 1},
+                        {"ridge", upper, ridge, lower, 1}};
+  constexpr double kDepth = 0.04, kPressed = 0.03;
+  const auto find = [](const Case& c, double down, double depth) {
+    Iso X = c.X_a;
+    X.translation().z() -= down;
+    return FindPolyhedronContacts(c.a, X, c.b, Iso::Identity(), kPatchTol, kPatchAngle, depth);
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.what);
+    const auto touching = find(c, 0, kDepth);
+    const auto pressed = find(c, kPressed, kDepth);
+    ASSERT_EQ(touching.size(), c.points);
+    ASSERT_EQ(pressed.size(), c.points);
+    for (const PolyhedronContactPoint& t : touching) {
+      EXPECT_NEAR((t.n_W - Vector3::UnitZ()).norm(), 0.0, 1e-12);
+      EXPECT_TRUE(HasPoint(pressed, t.p_W - 0.5 * kPressed * Vector3::UnitZ()))
+          << "no point at the mid-surface below " << t.p_W.transpose();
+    }
+    for (const PolyhedronContactPoint& p : pressed) {
+      EXPECT_NEAR(p.gap, -kPressed, 1e-12);
+      EXPECT_NEAR((p.n_W - Vector3::UnitZ()).norm(), 0.0, 1e-12);
+    }
+    // Without the depth the same overlap is no contact (the overlap test
+    // refuses it); deeper than the depth, none; apart, none.
+    EXPECT_TRUE(find(c, kPressed, 0).empty());
+    EXPECT_TRUE(find(c, kDepth + 1e-3, kDepth).empty());
+    EXPECT_TRUE(find(c, -10 * kPatchTol, kDepth).empty());
+  }
+}
+
 }  // namespace
 }  // namespace cairn

@@ -197,3 +197,26 @@ def test_asap_folder(cli, tmp_path):
     assert cairn.blocking(m, direction=[0, 0, 1]) == cli_json(
         cli, "blocking", str(folder), "--format", "asap", "--tolerance", "1e-4", "--direction",
         "0,0,1")
+
+
+def test_asap_beams_overlap_depth(cli, tmp_path):
+    # ASAP's beams 0 and 2 interpenetrate by ~2.6e-5 (inches), more than the
+    # default tolerance: overlap_depth reads that as contact, as
+    # --overlap-depth does, and Model.overlaps lists the pair with its depth.
+    source = shared_file("asap_beam_assembly")
+    with open(os.path.join(source, "config.json"), encoding="utf-8") as f:
+        config = json.load(f)
+    folder = tmp_path / "asap"
+    folder.mkdir()
+    (folder / "config.json").write_text(json.dumps({k: config[k] for k in ("0", "2")}))
+    for k in ("0", "2"):
+        (folder / f"{k}.obj").write_bytes(open(os.path.join(source, f"{k}.obj"), "rb").read())
+    with pytest.raises(cairn.InputError, match="--overlap-depth 1e-4"):
+        cairn.load(folder, format="asap")
+    m = cairn.load(folder, format="asap", overlap_depth=1e-4)
+    assert [o["parts"] for o in m.overlaps] == [("0", "2")]
+    assert 2e-5 < m.overlaps[0]["depth"] < 1e-4
+    assert strip(cairn.check(m)) == cli_json(cli, "check", str(folder), "--format", "asap",
+                                             "--overlap-depth", "1e-4")
+    with pytest.raises(cairn.InputError, match="overlap-depth: must be a length"):
+        cairn.load(folder, format="asap", overlap_depth=-1)

@@ -46,6 +46,10 @@ struct ModelArgs {
   /// --tolerance: the length tolerance (contact distance, allowed overlap,
   /// planarity); replaces the scene's `tolerance` or the COMPAS default.
   std::optional<double> tolerance;
+  /// --overlap-depth: how deep parts meant to touch may interpenetrate and be
+  /// read as touching, on the overlap's mid-surface (length, 3-D;
+  /// AssemblyDef::overlap_depth); replaces the scene's `overlap_depth`.
+  std::optional<double> overlap_depth;
   /// --gravity: replaces the gravity (2 numbers in 2-D, 3 in 3-D); empty: the
   /// file's, or the default.
   std::vector<double> gravity;

@@ -86,8 +86,10 @@ class PairContactCache {
 /// All contacts of `config`, after the corner rule, in a deterministic order
 /// (part pairs in (i, j) order, then fixtures).
 /// `tol` is the contact distance tolerance (length), `angle_tol` the angle
-/// tolerance (rad). `cache` (optional): see PairContactCache; the answer is
-/// the same with or without it.
+/// tolerance (rad). Parts that overlap by up to the assembly's overlap depth
+/// more (Assembly::overlap_depth) touch on the overlap's mid-surface
+/// (FindPolyhedronContacts). `cache` (optional): see PairContactCache; the
+/// answer is the same with or without it.
 std::vector<Contact> DetectContacts(const Assembly& assembly, const Configuration& config,
                                     double tol, double angle_tol, ContactStats* stats = nullptr,
                                     PairContactCache* cache = nullptr);

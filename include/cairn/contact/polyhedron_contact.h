@@ -7,8 +7,8 @@
 /// a. Touches are found within `length_tol` (length) and `angle_tol` (rad):
 ///
 ///  - face–face: a face of a and a face of b coplanar within the tolerances
-///    with opposing normals. Their polygons (convex or not) are intersected in
-///    the plane with Boost.Geometry; every piece of the intersection is one
+///    (or a's behind b's by up to `depth_tol`) with opposing normals. Their polygons (convex or
+///    not) are intersected in the plane with Boost.Geometry; every piece of the intersection is one
 ///    contact *patch*, and its vertices are the contact points. n_W = b's face
 ///    normal.
 ///  - vertex–face: a vertex of one part on a face of the other (inside its
@@ -57,11 +57,14 @@ struct PolyhedronContactPoint {
 /// deterministic order: the index space of PolyhedronContactPoint's edges.
 std::vector<std::array<int, 2>> PolyhedronEdges(const Polyhedron& p);
 
-/// The contact points between a (placed by X_WA) and b (by X_WB).
-std::vector<PolyhedronContactPoint> FindPolyhedronContacts(const Polyhedron& a,
-                                                           const Eigen::Isometry3d& X_WA,
-                                                           const Polyhedron& b,
-                                                           const Eigen::Isometry3d& X_WB,
-                                                           double length_tol, double angle_tol);
+/// The contact points between a (placed by X_WA) and b (by X_WB). A
+/// feature touches a face within `length_tol` in front of it, or up to
+/// `depth_tol` (length; ≤ length_tol: length_tol) behind it, where parts
+/// meant to touch overlap (AssemblyDef::overlap_depth); each point of an
+/// overlap deeper than `length_tol` lies midway between the two (the
+/// overlap's mid-surface), the others on a's feature.
+std::vector<PolyhedronContactPoint> FindPolyhedronContacts(
+    const Polyhedron& a, const Eigen::Isometry3d& X_WA, const Polyhedron& b,
+    const Eigen::Isometry3d& X_WB, double length_tol, double angle_tol, double depth_tol = 0);
 
 }  // namespace cairn

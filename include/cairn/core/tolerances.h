@@ -63,6 +63,11 @@ inline constexpr double kMinGravity = 1e-9, kMaxGravity = 1e9;
 /// next (OpenCASCADE's angular deflection is 0.5 rad; Cairn's facets turn
 /// by far less).
 inline constexpr double kMaxApproximatedAngle = 1e-2;
+/// The largest overlap depth (AssemblyDef::overlap_depth), as a fraction of
+/// the smallest part's bounding-box diagonal (dimensionless): deeper than
+/// that, parts do not touch, they share material (a bolt in its hole, a
+/// part placed twice), which `--fastened` or a corrected model answers.
+inline constexpr double kMaxOverlapDepthFactor = 0.05;
 }  // namespace limits
 
 /// Relative factors from which Tolerances are scaled (dimensionless).
@@ -87,7 +92,8 @@ struct Tolerances {
   /// `length` plus, where the surfaces are approximations, an allowance
   /// (AssemblyDef::overlap_allowance): a STEP model's facets cut into the
   /// void across a hole's wall by up to the chordal tolerance, so a pin and
-  /// its hole, touching in CAD, interpenetrate by up to that much.
+  /// its hole, touching in CAD, interpenetrate by up to that much; plus the
+  /// overlap depth of parts meant to touch (AssemblyDef::overlap_depth).
   double penetration = 1e-6;
 
   /// Tolerances for a scene of size `scene_size` (length), gravity magnitude

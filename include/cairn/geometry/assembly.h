@@ -87,10 +87,19 @@ struct AssemblyDef {
   /// tolerance + this); ≤ 0: none. Set by the STEP reader to the chordal
   /// tolerance of its facets; a scene file's `overlap_allowance`.
   double overlap_allowance = 0;
-  /// The command-line options that set `tolerance` and `gravity` instead of
-  /// the file (e.g. "--tolerance"), if any: a fault of either is then
-  /// reported against the option, not the file.
-  std::string tolerance_option, gravity_option;
+  /// length: how deep parts meant to touch may interpenetrate (beyond the
+  /// length tolerance and the overlap allowance) and still be read as
+  /// touching: each such overlap becomes contacts on its mid-surface
+  /// (docs/contacts.md, "Overlapping meshes") and its depth is listed
+  /// (Assembly::touching_overlaps); a deeper one is refused with the pair and
+  /// its depth. 3-D only; at most limits::kMaxOverlapDepthFactor of the
+  /// smallest part's bounding-box diagonal; ≤ 0: none. `--overlap-depth`, a
+  /// scene file's `overlap_depth`.
+  double overlap_depth = 0;
+  /// The command-line options that set `tolerance`, `gravity` and
+  /// `overlap_depth` instead of the file (e.g. "--tolerance"), if any: a
+  /// fault of one is then reported against the option, not the file.
+  std::string tolerance_option, gravity_option, overlap_depth_option;
   std::vector<PartDef> parts;
   std::vector<FixtureDef> fixtures;
   std::vector<InterfaceDef> interfaces;  ///< given contacts (3-D); empty: found from the shapes
@@ -139,7 +148,8 @@ struct PartOverlap {
   int later = -1, earlier = -1;  ///< indices into AssemblyDef::parts, later > earlier
   Vector3 witness{0, 0, 0};      ///< a point of both (z = 0 in 2-D)
   /// 3-D: how deep the witness lies inside the part it is not on the surface
-  /// of (length; a lower bound on the overlap's depth); 2-D: 0.
+  /// of (length; a lower bound on the overlap's depth; with an overlap depth,
+  /// the deepest sample point's: PolyhedronOverlapDepth); 2-D: 0.
   double depth = 0;
 };
 
@@ -221,6 +231,15 @@ class Assembly {
   /// How much deeper than the length tolerance the parts may interpenetrate
   /// and still touch (length, ≥ 0; AssemblyDef::overlap_allowance).
   double overlap_allowance() const { return overlap_allowance_; }
+  /// How deep parts may interpenetrate beyond the length tolerance and the
+  /// overlap allowance and be read as touching, on the overlap's mid-surface
+  /// (length, ≥ 0; AssemblyDef::overlap_depth).
+  double overlap_depth() const { return overlap_depth_; }
+  /// The pairs of parts that overlap by more than the length tolerance and
+  /// the overlap allowance but within the overlap depth, as placed: each
+  /// with its deepest point and depth (PolyhedronOverlapDepth), read as
+  /// touching. Empty without an overlap depth.
+  const std::vector<PartOverlap>& touching_overlaps() const { return touching_overlaps_; }
   /// All tolerances, scaled to this scene for a time step `dt` (s).
   /// Why Create would reject the fixel `f` added to this scene's fixtures
   /// (no such part, not finite, a zero normal, not on the part's boundary, not
@@ -242,6 +261,8 @@ class Assembly {
   double scene_size_ = 0;
   double tolerance_override_ = 0;
   double overlap_allowance_ = 0;
+  double overlap_depth_ = 0;
+  std::vector<PartOverlap> touching_overlaps_;
   double smallest_part_size_ = 0;  // length: the least bounding-box diagonal of a part
   double max_weight_ = 0;
   Tolerances tolerances_;

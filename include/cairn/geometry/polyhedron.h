@@ -84,6 +84,17 @@ class Polyhedron {
 /// number of the surface about the point (robust for non-convex solids).
 double SignedDistance(const Polyhedron& poly, const Eigen::Isometry3d& X_WB, const Vector3& p_W);
 
+/// How deep the interiors of `a` (placed by X_WA) and `b` (by X_WB)
+/// overlap (length): the greatest distance from one's sample points (those
+/// of FindPolyhedronOverlap) lying deeper than `tol` inside the other to the
+/// other's surface; 0 when none does. `deepest`, when given, gets that point
+/// (world). Exact where the overlap's deepest point is a vertex of either
+/// (two blocks pressed into each other face to face); a lower bound
+/// otherwise.
+double PolyhedronOverlapDepth(const Polyhedron& a, const Eigen::Isometry3d& X_WA,
+                              const Polyhedron& b, const Eigen::Isometry3d& X_WB, double tol,
+                              Vector3* deepest = nullptr);
+
 /// A point where the interiors of `a` (placed by X_WA) and `b` (by X_WB)
 /// overlap by more than `tol` (length), or nothing when they only touch or
 /// are apart. Tested: every vertex, edge midpoint, face-triangle centroid and
