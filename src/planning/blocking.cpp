@@ -36,6 +36,8 @@
 //         edge of the other. Those times are collected and sorted; the
 //         overlap is constant between two of them, so it is tested once per
 //         interval, at its middle, with FindOverlap / FindPolyhedronOverlap.
+//         In 3-D a "yes" leaves a cone of directions proved blocked too
+//         (ConeOfOverlap), which the pair's next directions try first.
 //    The result is united with the infinitesimal relation (an overlap that
 //    grows from a contact at a grazing angle is shallower than tol_length for
 //    a long way).
@@ -485,9 +487,17 @@ std::array<double, 2> Extent(const std::vector<Vector3>& verts, const Vector3& u
   return {lo, hi};
 }
 
+// A cone of directions along which a part certainly runs into another: every
+// unit d' with d' · axis ≥ cos_angle (Step 3c's certificates).
+struct BlockedCone {
+  Vector3 axis;
+  double cos_angle;
+};
+
 // What the swept tests of one computation keep, found on first use: each
 // convex shape's extents on its own axes, and each ordered convex pair's
-// slabs. The same numbers a direct computation gives, computed once.
+// slabs (the same numbers a direct computation gives, computed once); and
+// each ordered non-convex pair's cones of directions proved blocked.
 class SweptCache {
  public:
   explicit SweptCache(const Scene& sc) : sc_(sc), own_(sc.shapes.size()) {}
@@ -520,6 +530,11 @@ class SweptCache {
     return slabs_.emplace(std::make_pair(ia, ib), std::move(slabs)).first->second;
   }
 
+  // The cones of directions along which part ia is known to run into part
+  // ib (3-D, either non-convex: ConeOfOverlap), gathered as the directions
+  // are tested.
+  std::vector<BlockedCone>& Cones(int ia, int ib) { return cones_[{ia, ib}]; }
+
  private:
   const std::vector<std::array<double, 2>>& Own(int i) {
     std::vector<std::array<double, 2>>& own = own_[i];
@@ -537,6 +552,7 @@ class SweptCache {
   const Scene& sc_;
   std::vector<std::vector<std::array<double, 2>>> own_;  // (num_parts) per axis
   std::map<std::pair<int, int>, std::vector<Slab>> slabs_;
+  std::map<std::pair<int, int>, std::vector<BlockedCone>> cones_;
 };
 
 // Sorts event times, merges those within tol, and tests the middle of each
@@ -775,8 +791,43 @@ void VertexTriangleEvents(const Shape& p, const Shape& q, const Vector3& d, cons
   }
 }
 
-// Step 3c, 3-D: a moving along d, b still, either non-convex.
-bool EventSweptOverlap3(const Shape& a, const Shape& b, const Vector3& d, double tol) {
+// Step 3c's certificate of a "yes": a moving along the unit d overlaps b at
+// time t > 0, at `witness`, a sample point of one lying deeper than tol
+// inside the other (FindPolyhedronOverlap). That sample point is at c(τ) at
+// time τ (seen from b's frame, or from a's at rest when it is b's); where
+// c(τ) lies D deep, every point of the ball of radius ρ = (D − tol) / 2
+// about it lies deeper than tol, so the sample point, moving along any d'
+// whose ray passes through the ball, is as deep there too, and the overlap
+// test finds it: a runs into b along every d' within asin(ρ / τ) of d. The
+// widest of the cones at τ = t · 2^k, k = −6 … 2, is kept (the witness
+// itself lies barely deeper than tol; a little later its point is deep
+// inside). Pin and plate of the shear mold: a few such cones cover the
+// hundreds of cells of the NDBG where the pin is blocked, each of which
+// otherwise costs a full event sweep.
+std::optional<BlockedCone> ConeOfOverlap(const Shape& a, const Shape& b, const Vector3& d, double t,
+                                         const Vector3& witness, double tol) {
+  Eigen::Isometry3d X = a.X_WB;
+  X.pretranslate(t * d);
+  // Which part the witness is deep in: b (a's sample moving) or a.
+  const bool in_b =
+      -SignedDistance(*b.solid, b.X_WB, witness) >= -SignedDistance(*a.solid, X, witness);
+  std::optional<BlockedCone> best;
+  for (int k = -6; k <= 2; ++k) {
+    const double tau = t * std::ldexp(1.0, k);
+    const double depth = in_b ? -SignedDistance(*b.solid, b.X_WB, witness + (tau - t) * d)
+                              : -SignedDistance(*a.solid, a.X_WB, witness - tau * d);
+    const double rho = 0.5 * (depth - tol);
+    if (!(rho > 0)) continue;
+    const double cos_angle = std::cos(std::asin(std::min(1.0, rho / tau)));
+    if (!best || cos_angle < best->cos_angle) best = BlockedCone{d, cos_angle};
+  }
+  return best;
+}
+
+// Step 3c, 3-D: a moving along d, b still, either non-convex. A "yes" adds
+// its certificate to `cones` (ConeOfOverlap).
+bool EventSweptOverlap3(const Shape& a, const Shape& b, const Vector3& d, double tol,
+                        std::vector<BlockedCone>* cones = nullptr) {
   std::vector<double> events;
   AlongD along;
   along.u = d.unitOrthogonal();
@@ -808,7 +859,10 @@ bool EventSweptOverlap3(const Shape& a, const Shape& b, const Vector3& d, double
       [&](double t) {
         Eigen::Isometry3d X = a.X_WB;
         X.pretranslate(t * d);
-        return FindPolyhedronOverlap(*a.solid, X, *b.solid, b.X_WB, tol).has_value();
+        const std::optional<Vector3> w = FindPolyhedronOverlap(*a.solid, X, *b.solid, b.X_WB, tol);
+        if (w && cones)
+          if (const auto cone = ConeOfOverlap(a, b, d, t, *w, tol)) cones->push_back(*cone);
+        return w.has_value();
       },
       t_lo, t_hi);
 }
@@ -818,8 +872,11 @@ bool SweptOverlap(const Scene& sc, SweptCache& cache, int ia, int ib, const Vect
   const Shape &a = sc.shapes[ia], &b = sc.shapes[ib];
   if (!RayMeetsBox(b.lo - a.hi, b.hi - a.lo, d, sc.tol_length, sc.dim)) return false;
   if (a.convex && b.convex) return SlabsOverlap(cache.Slabs(ia, ib), d);
-  return sc.dim == 2 ? EventSweptOverlap2(a, b, d, sc.tol_length)
-                     : EventSweptOverlap3(a, b, d, sc.tol_length);
+  if (sc.dim == 2) return EventSweptOverlap2(a, b, d, sc.tol_length);
+  std::vector<BlockedCone>& cones = cache.Cones(ia, ib);
+  for (const BlockedCone& c : cones)
+    if (d.dot(c.axis) >= c.cos_angle) return true;
+  return EventSweptOverlap3(a, b, d, sc.tol_length, &cones);
 }
 
 // Both relations of a pair at d, given its infinitesimal bits there.

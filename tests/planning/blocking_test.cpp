@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
@@ -248,6 +249,70 @@ TEST(Ndbg3d, BoxInACornerInfinitesimalArrangement) {
   EXPECT_EQ(ndbg.cells[0].cell_dimension, 0);
   EXPECT_EQ(ndbg.cells.back().cell_dimension, 2);
   ExpectConsistent(assembly, config, ndbg);
+}
+
+// A prism: the polygon `profile` in the (x, z) plane (counter-clockwise,
+// x right, z up) extruded along y from 0 to `depth`.
+PartDef Extruded(const std::string& name, const std::vector<std::array<double, 2>>& profile,
+                 double depth, bool fixed = false) {
+  PartDef p;
+  p.name = name;
+  p.fixed = fixed;
+  PolyhedronDef d;
+  const int n = static_cast<int>(profile.size());
+  for (const double y : {0.0, depth})
+    for (const auto& [x, z] : profile) d.vertices.emplace_back(x, y, z);
+  std::vector<int> front, back;
+  for (int k = 0; k < n; ++k) front.push_back(k), back.push_back(2 * n - 1 - k);
+  d.faces = {front, back};
+  for (int k = 0; k < n; ++k) d.faces.push_back({k, n + k, n + (k + 1) % n, (k + 1) % n});
+  p.polyhedron = d;
+  return p;
+}
+
+// The 3-D NDBG against DBG(d) computed afresh at every cell's direction
+// (ExpectConsistent), where the swept tests are of non-convex pairs: a block
+// in a U-channel's slot against its left wall, clear of the right one, under
+// a lid on the channel's arms, against a wall behind it; a block on an
+// inclined wedge adds a fourth normal.
+// Within one NDBG a pair's "yes" leaves a cone of directions proved blocked
+// (docs/blocking.md, step 3) that later cells of the pair take without a
+// sweep; computed afresh, every direction is swept: the graphs must agree.
+TEST(Ndbg3d, NonConvexPairsAgreeWithDirectGraphsInEveryCell) {
+  AssemblyDef def;
+  def.gravity = Vector3(0, 0, -9.81);
+  const double s30 = 0.5, c30 = std::sqrt(3.0) / 2;
+  def.parts = {
+      Extruded("channel", {{0, 0}, {3, 0}, {3, 2}, {2, 2}, {2, 0.5}, {1, 0.5}, {1, 2}, {0, 2}}, 1,
+               true),
+      Box3("inner", {1, 0.2, 0.5}, {1.6, 0.8, 1.1}), Box3("lid", {0, 0, 2}, {3, 1, 2.3}),
+      Box3("back", {0, 1, 2}, {3, 1.5, 3}, true),  // against the lid: a normal along y
+      Extruded("wedge", {{5, 0}, {5 + 2 * c30, 0}, {5, 2 * s30}}, 1, true),
+      // A 1 × 0.5 block on the wedge's slope, 0.8 up it from its foot.
+      Extruded("slider",
+               {{5 + 1.2 * c30, 0.8 * s30},
+                {5 + 1.2 * c30 + 0.5 * s30, 0.8 * s30 + 0.5 * c30},
+                {5 + 0.2 * c30 + 0.5 * s30, 1.8 * s30 + 0.5 * c30},
+                {5 + 0.2 * c30, 1.8 * s30}},
+               1)};
+  const Assembly assembly = Assembly::Create(def);
+  const Configuration config = Configuration::Assembled(assembly);
+  const Ndbg ndbg = ComputeNdbg(assembly, config);
+  EXPECT_GE(ndbg.normals.size(), 3u);
+  EXPECT_GT(ndbg.cells.size(), 20u);
+  ExpectConsistent(assembly, config, ndbg);
+  // Physics: the inner block leaves the slot straight up only with the lid
+  // gone; along +y it slides out of the open end.
+  const int inner = 1, lid = 2;
+  for (const NdbgCell& cell : ndbg.cells) {
+    if (cell.direction.isApprox(Vector3::UnitZ(), 1e-12)) {
+      EXPECT_TRUE(cell.infinity.Blocks(inner, lid));
+      EXPECT_FALSE(cell.infinity.Blocks(inner, 0));
+    }
+    if (cell.direction.isApprox(Vector3::UnitY(), 1e-12)) {
+      EXPECT_TRUE(cell.infinity.blockers[inner].empty());
+    }
+  }
 }
 
 // Two walls and no floor: the normals x and y lie in one plane, so both

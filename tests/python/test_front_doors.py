@@ -180,10 +180,10 @@ def test_step_pen_fastened(cli):
         cairn.load(path, format="step", fastened=["body_001"])
 
 
-def test_asap_folder(cli, tmp_path):
-    # Two of the beams (0 and 2, which touch), as ASAP's own folder holds
-    # them: the whole assembly's 40 000 facets take minutes under the
-    # sanitizers (tests/cli/step_command_test.cpp reads it whole).
+def asap_beams_0_and_2(tmp_path):
+    """Two of ASAP's beams (0 and 2, which touch) in a folder as ASAP's own
+    holds them: the whole assembly's 40 000 facets take minutes under the
+    sanitizers (tests/cli/step_command_test.cpp reads it whole)."""
     source = shared_file("asap_beam_assembly")
     with open(os.path.join(source, "config.json"), encoding="utf-8") as f:
         config = json.load(f)
@@ -192,6 +192,11 @@ def test_asap_folder(cli, tmp_path):
     (folder / "config.json").write_text(json.dumps({k: config[k] for k in ("0", "2")}))
     for k in ("0", "2"):
         (folder / f"{k}.obj").write_bytes(open(os.path.join(source, f"{k}.obj"), "rb").read())
+    return folder
+
+
+def test_asap_folder(cli, tmp_path):
+    folder = asap_beams_0_and_2(tmp_path)
     m = cairn.load(folder, format="asap", tolerance=1e-4)
     assert m.parts == ["0", "2"]
     assert cairn.blocking(m, direction=[0, 0, 1]) == cli_json(
@@ -203,14 +208,7 @@ def test_asap_beams_overlap_depth(cli, tmp_path):
     # ASAP's beams 0 and 2 interpenetrate by ~2.6e-5 (inches), more than the
     # default tolerance: overlap_depth reads that as contact, as
     # --overlap-depth does, and Model.overlaps lists the pair with its depth.
-    source = shared_file("asap_beam_assembly")
-    with open(os.path.join(source, "config.json"), encoding="utf-8") as f:
-        config = json.load(f)
-    folder = tmp_path / "asap"
-    folder.mkdir()
-    (folder / "config.json").write_text(json.dumps({k: config[k] for k in ("0", "2")}))
-    for k in ("0", "2"):
-        (folder / f"{k}.obj").write_bytes(open(os.path.join(source, f"{k}.obj"), "rb").read())
+    folder = asap_beams_0_and_2(tmp_path)
     with pytest.raises(cairn.InputError, match="--overlap-depth 1e-4"):
         cairn.load(folder, format="asap")
     m = cairn.load(folder, format="asap", overlap_depth=1e-4)
