@@ -194,18 +194,26 @@ std::string NextPowerOfTen(double tol) {
   return "1e" + std::to_string(exponent);
 }
 
+// `x` (> 0) rounded up to one significant digit (0.045 → 0.05), as the
+// command line writes it.
+std::string RoundedUp(double x) {
+  const double unit = std::pow(10.0, std::floor(std::log10(x)));
+  return FormatNumber(std::ceil(x / unit * (1 - 1e-12)) * unit);
+}
+
 // Parts that overlap by more than the tolerance: the message says that
 // --tolerance raises it and, in 3-D, that --overlap-depth reads parts meant
 // to touch as touching where they overlap (with an overlap depth already,
 // that it raises it), each with an example: the power of ten above the
-// tolerance, or above the deepest pair's depth.
+// tolerance, or half as much again as the deepest pair's depth (a witness's
+// depth is a lower bound on its pair's), rounded up.
 [[noreturn]] void OverlapFault(const OverlapError& e, const ModelArgs& args,
                                const AssemblyDef& def) {
   if (!(e.tolerance() > 0) || !std::isfinite(e.tolerance())) throw e;
   double deepest = 0;
   for (const PartOverlap& o : e.overlaps()) deepest = std::max(deepest, o.depth);
   const std::string depth_example =
-      deepest > 0 ? "--overlap-depth " + NextPowerOfTen(std::max(deepest, e.tolerance()))
+      deepest > 0 ? "--overlap-depth " + RoundedUp(1.5 * std::max(deepest, e.tolerance()))
                   : std::string();
   if (def.overlap_depth > 0 && deepest > 0)
     throw InputError(e.file(), e.json_path(),

@@ -755,7 +755,7 @@ TEST(ModelTolerance, AnOverlapSaysThatToleranceRaisesIt) {
                                "2.44949e-06"));
   EXPECT_THAT(r.err, HasSubstr("(raise it with --tolerance or the scene's `tolerance`, e.g. "
                                "--tolerance 1e-5; or, for parts meant to touch, read their "
-                               "overlap as contact with --overlap-depth 1e-4)\n"));
+                               "overlap as contact with --overlap-depth 3e-05)\n"));
   EXPECT_EQ(Cairn("check " + file + " --tolerance 1e-4").exit_code, 0);
   // ASAP's beams, whose meshes interpenetrate by up to ~1e-4 (inches).
   const std::string shared = testing::SharedDir();
@@ -766,7 +766,7 @@ TEST(ModelTolerance, AnOverlapSaysThatToleranceRaisesIt) {
                                    "tolerance 1.87702e-05"));
   EXPECT_THAT(beams.err, HasSubstr("(raise it with --tolerance, e.g. --tolerance 1e-4; or, for "
                                    "parts meant to touch, read their overlap as contact with "
-                                   "--overlap-depth 1e-4)\n"));
+                                   "--overlap-depth 5e-05)\n"));
   EXPECT_EQ(Cairn("check " + shared +
                   "/datasets/asap_beam_assembly --format asap --overlap-depth "
                   "1e-4 --fixed 6")
@@ -796,7 +796,7 @@ TEST(OverlapDepth, PostsPressedIntoTheirBaseAndBeamStandOnTheOverlapsMidSurfaces
   EXPECT_THAT(refused.err, HasSubstr("3 more overlapping pairs"));
   EXPECT_THAT(refused.err, HasSubstr("0.04 deep; "));
   EXPECT_THAT(refused.err, HasSubstr("; or, for parts meant to touch, read their overlap as "
-                                     "contact with --overlap-depth 1e-1)\n"));
+                                     "contact with --overlap-depth 0.06)\n"));
 
   const CliRun r = Cairn("check " + file + " --overlap-depth 0.05 --json");
   ASSERT_EQ(r.exit_code, 0) << r.err;
@@ -819,7 +819,7 @@ TEST(OverlapDepth, PostsPressedIntoTheirBaseAndBeamStandOnTheOverlapsMidSurfaces
   EXPECT_EQ(shallow.exit_code, 2);
   EXPECT_THAT(shallow.err, HasSubstr("by more than the tolerance 0.03"));
   EXPECT_THAT(shallow.err, HasSubstr("(raise it with --overlap-depth or the scene's "
-                                     "`overlap_depth`, e.g. --overlap-depth 1e-1)\n"));
+                                     "`overlap_depth`, e.g. --overlap-depth 0.06)\n"));
   const CliRun huge = Cairn("check " + file + " --overlap-depth 1");
   EXPECT_EQ(huge.exit_code, 2);
   EXPECT_THAT(huge.err, HasSubstr("--overlap-depth: too large: 1 is more than 0.05 of the "

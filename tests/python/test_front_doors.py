@@ -209,7 +209,7 @@ def test_asap_beams_overlap_depth(cli, tmp_path):
     # default tolerance: overlap_depth reads that as contact, as
     # --overlap-depth does, and Model.overlaps lists the pair with its depth.
     folder = asap_beams_0_and_2(tmp_path)
-    with pytest.raises(cairn.InputError, match="--overlap-depth 1e-4"):
+    with pytest.raises(cairn.InputError, match="--overlap-depth 4e-05"):
         cairn.load(folder, format="asap")
     m = cairn.load(folder, format="asap", overlap_depth=1e-4)
     assert [o["parts"] for o in m.overlaps] == [("0", "2")]
