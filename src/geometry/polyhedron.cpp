@@ -603,6 +603,7 @@ std::variant<Polyhedron, PolyhedronFault> Polyhedron::CheckAndCreate(const Polyh
   p.normals_ = std::move(checked.normals);
   p.triangles_ = std::move(checked.triangles);
   p.mass_ = checked.mass;
+  p.centroid_depth_ = -SignedDistance(p, Eigen::Isometry3d::Identity(), p.mass_.centroid);
   return p;
 }
 
@@ -665,25 +666,28 @@ struct Triangles {
   }
 };
 
-// The parity of the crossings of the ray from p straight up (+z) with the
-// closed surface `tris`: odd inside, even outside. Only the triangles the grid
-// puts in the ray's column can cross it. A crossing is counted where (p.x,
-// p.y) lies strictly inside the triangle's projection on the xy plane (the
-// signed areas w0, w1, w2 of its sub-triangles all of the sign of the whole,
-// d) and the hit, z = (w0 a.z + w1 b.z + w2 c.z) / d, is above p. Where the
-// ray grazes an edge or a vertex, or a vertical triangle (|w| within
-// kGraze of the triangle's area scale), parity is not defined: nullopt, and
-// the caller takes the winding number instead.
-std::optional<bool> RayParityInside(const Triangles& tris, const Vector3& p) {
+// The parity of the crossings of the ray from p along +axis (z = 2, x = 0,
+// y = 1) with the closed surface `tris`: odd inside, even outside. Only the
+// triangles the grid puts in the ray's column can cross it. With (a, b) the
+// two other coordinates (cyclic after the axis), a crossing is counted where
+// (p.a, p.b) lies strictly inside the triangle's projection on their plane
+// (the signed areas w0, w1, w2 of its sub-triangles all of the sign of the
+// whole, d) and the hit, (w0 a.k + w1 b.k + w2 c.k) / d along the axis, is
+// beyond p. Where the ray grazes an edge or a vertex, or a triangle parallel
+// to it (|w| within kGraze of the triangle's area scale), parity is not
+// defined: nullopt, and the caller tries another axis.
+std::optional<bool> RayParityInside(const Triangles& tris, const Vector3& p, int axis) {
   // Relative to the triangle's squared size: a signed area this small is a
   // graze (dimensionless).
   constexpr double kGraze = 1e-10;
-  const Vector3 top(p.x(), p.y(), std::max(p.z(), tris.hi.z()));
+  const int ia = (axis + 1) % 3, ib = (axis + 2) % 3;
+  Vector3 end = p;
+  end[axis] = std::max(p[axis], tris.hi[axis]);
   bool inside = false;
-  for (const int k : tris.grid.QueryUnordered(p, top)) {
+  for (const int k : tris.grid.QueryUnordered(p.cwiseMin(end), p.cwiseMax(end))) {
     const auto& c = tris.corners[k];
-    const auto orient = [](const Vector3& u, const Vector3& v, const Vector3& q) {
-      return (v.x() - u.x()) * (q.y() - u.y()) - (v.y() - u.y()) * (q.x() - u.x());
+    const auto orient = [&](const Vector3& u, const Vector3& v, const Vector3& q) {
+      return (v[ia] - u[ia]) * (q[ib] - u[ib]) - (v[ib] - u[ib]) * (q[ia] - u[ia]);
     };
     const double w0 = orient(c[1], c[2], p), w1 = orient(c[2], c[0], p), w2 = orient(c[0], c[1], p);
     const double scale = std::max(
@@ -698,8 +702,8 @@ std::optional<bool> RayParityInside(const Triangles& tris, const Vector3& p) {
       return std::nullopt;  // on an edge or a vertex of the projection
     }
     const double d = w0 + w1 + w2;
-    const double z = (w0 * c[0].z() + w1 * c[1].z() + w2 * c[2].z()) / d;
-    if (z > p.z()) inside = !inside;
+    const double hit = (w0 * c[0][axis] + w1 * c[1][axis] + w2 * c[2][axis]) / d;
+    if (hit > p[axis]) inside = !inside;
   }
   return inside;
 }
@@ -707,9 +711,9 @@ std::optional<bool> RayParityInside(const Triangles& tris, const Vector3& p) {
 // SignedDistance(poly, p) < −tol for a point p in poly's own frame, cheapest
 // test first: outside the bounding box grown by tol it cannot be; within tol
 // of a triangle (only those the grid puts near p can be) it is not; only
-// then inside at all?, by the ray's parity (RayParityInside: the triangles of
-// one column), or where the ray grazes an edge, by the winding number, which
-// needs every triangle.
+// then inside at all?, by a ray's parity (RayParityInside: the triangles of
+// one column), or where the rays along all three axes graze an edge, by the
+// winding number, which needs every triangle.
 bool DeeperInside(const Triangles& tris, const Vector3& p, double tol) {
   if ((p.array() < tris.lo.array() - tol).any() || (p.array() > tris.hi.array() + tol).any())
     return false;
@@ -717,7 +721,10 @@ bool DeeperInside(const Triangles& tris, const Vector3& p, double tol) {
     const auto& c = tris.corners[k];
     if ((ClosestPointOnTriangle(p, c[0], c[1], c[2]) - p).norm() <= tol) return false;
   }
-  if (const std::optional<bool> parity = RayParityInside(tris, p)) return *parity;
+  // Rays along +z, then +x, then +y: an axis-aligned model's vertical ray
+  // through p often grazes an edge, a horizontal one rarely at the same time.
+  for (const int axis : {2, 0, 1})
+    if (const std::optional<bool> parity = RayParityInside(tris, p, axis)) return *parity;
   double winding = 0;
   for (const auto& c : tris.corners) winding += SolidAngle(c[0] - p, c[1] - p, c[2] - p);
   return winding > 2 * M_PI;
@@ -732,8 +739,7 @@ bool DeeperInside(const Triangles& tris, const Vector3& p, double tol) {
 std::vector<Vector3> OverlapSamples(const Polyhedron& a, double tol) {
   const auto& x = a.vertices();
   std::vector<Vector3> samples;
-  if (SignedDistance(a, Eigen::Isometry3d::Identity(), a.mass().centroid) < -tol)
-    samples.push_back(a.mass().centroid);
+  if (a.centroid_depth() > tol) samples.push_back(a.mass().centroid);
   for (const Vector3& v : x) samples.push_back(v);
   for (const auto& face : a.face_triangles())
     for (const auto& t : face) {

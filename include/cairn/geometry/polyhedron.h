@@ -70,6 +70,10 @@ class Polyhedron {
   const std::vector<std::vector<std::array<int, 3>>>& face_triangles() const { return triangles_; }
   /// Volume, centroid and inertia at unit density.
   const PolyhedronMass& mass() const { return mass_; }
+  /// How deep the centroid lies inside the solid (length; −SignedDistance:
+  /// negative when it lies outside, as a U's or an arch's may), found once
+  /// for the overlap tests, which sample it.
+  double centroid_depth() const { return centroid_depth_; }
 
  private:
   std::vector<Vector3> vertices_;
@@ -77,6 +81,7 @@ class Polyhedron {
   std::vector<Vector3> normals_;
   std::vector<std::vector<std::array<int, 3>>> triangles_;
   PolyhedronMass mass_;
+  double centroid_depth_ = 0;
 };
 
 /// The signed distance (length) from the world point `p_W` to the surface of
