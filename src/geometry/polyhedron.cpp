@@ -708,12 +708,22 @@ std::optional<bool> RayParityInside(const Triangles& tris, const Vector3& p, int
   return inside;
 }
 
+// Whether p (own frame) is inside the closed surface `tris`: by a ray's
+// parity, along +z, then +x, then +y (an axis-aligned model's vertical ray
+// through p often grazes an edge, a horizontal one rarely at the same time);
+// where all three graze, by the winding number, which needs every triangle.
+bool Inside(const Triangles& tris, const Vector3& p) {
+  for (const int axis : {2, 0, 1})
+    if (const std::optional<bool> parity = RayParityInside(tris, p, axis)) return *parity;
+  double winding = 0;
+  for (const auto& c : tris.corners) winding += SolidAngle(c[0] - p, c[1] - p, c[2] - p);
+  return winding > 2 * M_PI;
+}
+
 // SignedDistance(poly, p) < −tol for a point p in poly's own frame, cheapest
 // test first: outside the bounding box grown by tol it cannot be; within tol
 // of a triangle (only those the grid puts near p can be) it is not; only
-// then inside at all?, by a ray's parity (RayParityInside: the triangles of
-// one column), or where the rays along all three axes graze an edge, by the
-// winding number, which needs every triangle.
+// then inside at all? (Inside).
 bool DeeperInside(const Triangles& tris, const Vector3& p, double tol) {
   if ((p.array() < tris.lo.array() - tol).any() || (p.array() > tris.hi.array() + tol).any())
     return false;
@@ -721,13 +731,7 @@ bool DeeperInside(const Triangles& tris, const Vector3& p, double tol) {
     const auto& c = tris.corners[k];
     if ((ClosestPointOnTriangle(p, c[0], c[1], c[2]) - p).norm() <= tol) return false;
   }
-  // Rays along +z, then +x, then +y: an axis-aligned model's vertical ray
-  // through p often grazes an edge, a horizontal one rarely at the same time.
-  for (const int axis : {2, 0, 1})
-    if (const std::optional<bool> parity = RayParityInside(tris, p, axis)) return *parity;
-  double winding = 0;
-  for (const auto& c : tris.corners) winding += SolidAngle(c[0] - p, c[1] - p, c[2] - p);
-  return winding > 2 * M_PI;
+  return Inside(tris, p);
 }
 
 // A point of `a` deeper than tol inside `b`, among a's sample points.
@@ -749,16 +753,9 @@ std::vector<Vector3> OverlapSamples(const Polyhedron& a, double tol) {
   return samples;
 }
 
-std::optional<Vector3> SampleInside(const Polyhedron& a, const Eigen::Isometry3d& X_WA,
-                                    const Polyhedron& b, const Eigen::Isometry3d& X_WB,
-                                    double tol) {
-  // b's triangles in its own frame, where the samples are tested.
-  const Triangles tris = Triangles::Of(b, tol);
-  const Eigen::Isometry3d X_BA = X_WB.inverse() * X_WA;
-  for (const Vector3& s : OverlapSamples(a, tol))
-    if (DeeperInside(tris, X_BA * s, tol)) return X_WA * s;
-  return std::nullopt;
-}
+// The first half-width of NearestTriangleDistance's box for a point of no
+// known depth, as a fraction of the solid's box diagonal (dimensionless).
+constexpr double kNearestStart = 1e-3;
 
 // The distance from p to the nearest of `tris` (own frame): the triangles in
 // a box about p that doubles until one lies within its half-width (any
@@ -792,29 +789,31 @@ double DeepestSampleInside(const Polyhedron& a, const Eigen::Isometry3d& X_WA, c
   return depth;
 }
 
-// An edge of `a` crossing a face of `b` properly (both ends more than tol off
-// the face's plane, the crossing more than tol inside the face polygon) and
-// deeper than tol inside b somewhere between two of its crossings of b's
-// surface (tested at the middle of each stretch between them). A crossing
-// alone does not show depth: a pin's long edge, on its true cylinder, passes
-// through the slightly tilted facets of its hole's wall, which cut into the
-// hole by up to the chordal tolerance, and stays within that of them
-// (the shear mold's rod 14_001 in bush 13_001; docs/step-format.md).
-std::optional<Vector3> EdgeThroughFace(const Polyhedron& a, const Eigen::Isometry3d& X_WA,
-                                       const Polyhedron& b, const Eigen::Isometry3d& X_WB,
-                                       double tol) {
-  std::vector<Vector3> xa, xb;
-  for (const Vector3& v : a.vertices()) xa.push_back(X_WA * v);
-  for (const Vector3& v : b.vertices()) xb.push_back(X_WB * v);
-  // b's faces in the world: normals, plane offsets and boxes (grown by tol).
-  // The crossing point lies on the face, so an edge whose box misses a face's
-  // box does not cross it, and one that misses b's box crosses none.
+}  // namespace
+
+// A prepared solid's grids (own frame): its triangles (inside tests), its
+// sample points, and its faces for the edge crossings of EdgeThroughFace:
+// normals, plane offsets and boxes grown by tol, the solid's box and a grid
+// over the face boxes.
+struct PreparedSolid::Grids {
+  Triangles tris;
+  std::vector<Vector3> samples;
+  std::vector<Vector3> normal, face_lo, face_hi;
+  std::vector<double> offset;
+  Vector3 lo{0, 0, 0}, hi{0, 0, 0};
+  BoxGrid faces;
+};
+
+namespace {
+
+PreparedSolid::Grids MakeGrids(const Polyhedron& b, double tol) {
+  const auto& xb = b.vertices();
   const int nf = static_cast<int>(b.faces().size());
   std::vector<Vector3> normal(nf), face_lo(nf), face_hi(nf);
   std::vector<double> offset(nf);
-  Vector3 b_lo = xb[0], b_hi = xb[0];
+  Vector3 lo = xb[0], hi = xb[0];
   for (int f = 0; f < nf; ++f) {
-    normal[f] = X_WB.linear() * b.face_normals()[f];
+    normal[f] = b.face_normals()[f];
     offset[f] = normal[f].dot(xb[b.faces()[f][0]]);
     face_lo[f] = face_hi[f] = xb[b.faces()[f][0]];
     for (const int v : b.faces()[f]) {
@@ -823,9 +822,52 @@ std::optional<Vector3> EdgeThroughFace(const Polyhedron& a, const Eigen::Isometr
     }
     face_lo[f].array() -= tol;
     face_hi[f].array() += tol;
-    b_lo = b_lo.cwiseMin(face_lo[f]);
-    b_hi = b_hi.cwiseMax(face_hi[f]);
+    lo = lo.cwiseMin(face_lo[f]);
+    hi = hi.cwiseMax(face_hi[f]);
   }
+  BoxGrid faces(face_lo, face_hi, 0);  // the boxes are grown by tol already
+  return {Triangles::Of(b, tol),
+          OverlapSamples(b, tol),
+          std::move(normal),
+          std::move(face_lo),
+          std::move(face_hi),
+          std::move(offset),
+          lo,
+          hi,
+          std::move(faces)};
+}
+
+// A sample point of `a` deeper than tol inside `b` (world), if any.
+std::optional<Vector3> SampleInside(const PreparedSolid& a, const Eigen::Isometry3d& X_WA,
+                                    const PreparedSolid& b, const Eigen::Isometry3d& X_WB) {
+  const Eigen::Isometry3d X_BA = X_WB.inverse() * X_WA;
+  for (const Vector3& s : a.grids().samples)
+    if (DeeperInside(b.grids().tris, X_BA * s, b.tol())) return X_WA * s;
+  return std::nullopt;
+}
+
+// An edge of `a` crossing a face of `b` properly (both ends more than tol off
+// the face's plane, the crossing more than tol inside the face polygon) and
+// deeper than tol inside b somewhere between two of its crossings of b's
+// surface (tested at the middle of each stretch between them). A crossing
+// alone does not show depth: a pin's long edge, on its true cylinder, passes
+// through the slightly tilted facets of its hole's wall, which cut into the
+// hole by up to the chordal tolerance, and stays within that of them
+// (the shear mold's rod 14_001 in bush 13_001; docs/step-format.md).
+// Computed in b's frame, where its faces were prepared; the point returned
+// is in the world.
+std::optional<Vector3> EdgeThroughFace(const PreparedSolid& pa, const Eigen::Isometry3d& X_WA,
+                                       const PreparedSolid& pb, const Eigen::Isometry3d& X_WB) {
+  const Polyhedron &a = pa.polyhedron(), &b = pb.polyhedron();
+  const PreparedSolid::Grids& g = pb.grids();
+  const double tol = pb.tol();
+  const Eigen::Isometry3d X_BA = X_WB.inverse() * X_WA;
+  std::vector<Vector3> xa;
+  xa.reserve(a.vertices().size());
+  for (const Vector3& v : a.vertices()) xa.push_back(X_BA * v);
+  const auto& xb = b.vertices();
+  // The crossing point lies on the face, so an edge whose box misses a face's
+  // box does not cross it, and one that misses b's box crosses none.
   const auto boxes_apart = [](const Vector3& lo1, const Vector3& hi1, const Vector3& lo2,
                               const Vector3& hi2) {
     return (lo1.array() > hi2.array()).any() || (lo2.array() > hi1.array()).any();
@@ -834,7 +876,7 @@ std::optional<Vector3> EdgeThroughFace(const Polyhedron& a, const Eigen::Isometr
   const auto in_face = [&](int f, const Vector3& hit) {
     for (const auto& t : b.face_triangles()[f]) {
       const Vector3 &ta = xb[t[0]], &tb = xb[t[1]], &tc = xb[t[2]];
-      const Vector3& n = normal[f];
+      const Vector3& n = g.normal[f];
       if (n.dot((tb - ta).cross(hit - ta)) >= 0 && n.dot((tc - tb).cross(hit - tb)) >= 0 &&
           n.dot((ta - tc).cross(hit - tc)) >= 0)
         return true;
@@ -853,9 +895,6 @@ std::optional<Vector3> EdgeThroughFace(const Polyhedron& a, const Eigen::Isometr
     }
     return edge_dist;
   };
-  const BoxGrid faces(face_lo, face_hi, 0);  // the boxes are grown by tol already
-  std::optional<Triangles> tris;  // b's, in its frame: built at the first proper crossing
-  const Eigen::Isometry3d X_BW = X_WB.inverse();
   std::vector<double> crossings;
   for (const auto& face : a.faces()) {
     const int m = static_cast<int>(face.size());
@@ -864,12 +903,12 @@ std::optional<Vector3> EdgeThroughFace(const Polyhedron& a, const Eigen::Isometr
       const Vector3& q = xa[face[(i + 1) % m]];
       if (face[i] > face[(i + 1) % m]) continue;  // each edge once
       const Vector3 e_lo = p.cwiseMin(q), e_hi = p.cwiseMax(q);
-      if (boxes_apart(e_lo, e_hi, b_lo, b_hi)) continue;
+      if (boxes_apart(e_lo, e_hi, g.lo, g.hi)) continue;
       bool proper = false;
       crossings.assign({0.0, 1.0});
-      for (const int f : faces.Query(e_lo, e_hi)) {
-        if (boxes_apart(e_lo, e_hi, face_lo[f], face_hi[f])) continue;
-        const double dp = normal[f].dot(p) - offset[f], dq = normal[f].dot(q) - offset[f];
+      for (const int f : g.faces.QueryUnordered(e_lo, e_hi)) {  // crossings sorted below
+        if (boxes_apart(e_lo, e_hi, g.face_lo[f], g.face_hi[f])) continue;
+        const double dp = g.normal[f].dot(p) - g.offset[f], dq = g.normal[f].dot(q) - g.offset[f];
         if ((dp > 0) == (dq > 0) || dp == dq) continue;
         const double t = dp / (dp - dq);
         const Vector3 hit = p + (q - p) * t;
@@ -879,11 +918,10 @@ std::optional<Vector3> EdgeThroughFace(const Polyhedron& a, const Eigen::Isometr
                             edge_distance(f, hit) > tol);
       }
       if (!proper) continue;
-      if (!tris) tris = Triangles::Of(b, tol);
       std::sort(crossings.begin(), crossings.end());
       for (size_t k = 0; k + 1 < crossings.size(); ++k) {
         const Vector3 mid = p + (q - p) * (0.5 * (crossings[k] + crossings[k + 1]));
-        if (DeeperInside(*tris, X_BW * mid, tol)) return mid;
+        if (DeeperInside(g.tris, mid, tol)) return X_WB * mid;
       }
     }
   }
@@ -891,6 +929,12 @@ std::optional<Vector3> EdgeThroughFace(const Polyhedron& a, const Eigen::Isometr
 }
 
 }  // namespace
+
+PreparedSolid::PreparedSolid(const Polyhedron& poly, double tol)
+    : poly_(&poly), tol_(tol), grids_(std::make_unique<Grids>(MakeGrids(poly, tol))) {}
+PreparedSolid::~PreparedSolid() = default;
+PreparedSolid::PreparedSolid(PreparedSolid&&) noexcept = default;
+PreparedSolid& PreparedSolid::operator=(PreparedSolid&&) noexcept = default;
 
 double PolyhedronOverlapDepth(const Polyhedron& a, const Eigen::Isometry3d& X_WA,
                               const Polyhedron& b, const Eigen::Isometry3d& X_WB, double tol,
@@ -905,10 +949,26 @@ double PolyhedronOverlapDepth(const Polyhedron& a, const Eigen::Isometry3d& X_WA
 std::optional<Vector3> FindPolyhedronOverlap(const Polyhedron& a, const Eigen::Isometry3d& X_WA,
                                              const Polyhedron& b, const Eigen::Isometry3d& X_WB,
                                              double tol) {
-  if (auto p = SampleInside(a, X_WA, b, X_WB, tol)) return p;
-  if (auto p = SampleInside(b, X_WB, a, X_WA, tol)) return p;
-  if (auto p = EdgeThroughFace(a, X_WA, b, X_WB, tol)) return p;
-  if (auto p = EdgeThroughFace(b, X_WB, a, X_WA, tol)) return p;
+  return FindPolyhedronOverlap(PreparedSolid(a, tol), X_WA, PreparedSolid(b, tol), X_WB);
+}
+
+double SignedDistance(const PreparedSolid& b, const Eigen::Isometry3d& X_WB, const Vector3& p_W) {
+  const PreparedSolid::Grids& g = b.grids();
+  const Vector3 p = X_WB.inverse() * p_W;
+  const double start = std::max(b.tol(), kNearestStart * (g.tris.hi - g.tris.lo).norm());
+  const double dist = NearestTriangleDistance(g.tris, p, start);
+  return Inside(g.tris, p) ? -dist : dist;
+}
+
+std::optional<Vector3> FindPolyhedronOverlap(const PreparedSolid& a, const Eigen::Isometry3d& X_WA,
+                                             const PreparedSolid& b,
+                                             const Eigen::Isometry3d& X_WB) {
+  CAIRN_THROW_UNLESS(a.tol() == b.tol(),
+                     "FindPolyhedronOverlap: the two solids were prepared at different tolerances");
+  if (auto p = SampleInside(a, X_WA, b, X_WB)) return p;
+  if (auto p = SampleInside(b, X_WB, a, X_WA)) return p;
+  if (auto p = EdgeThroughFace(a, X_WA, b, X_WB)) return p;
+  if (auto p = EdgeThroughFace(b, X_WB, a, X_WA)) return p;
   return std::nullopt;
 }
 

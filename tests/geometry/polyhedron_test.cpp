@@ -586,5 +586,44 @@ TEST(PolyhedronOverlap, SamplesOverEdgesAndVerticalFacesAreJudgedRight) {
   EXPECT_GT(overlaps, 100);
 }
 
+// A prepared solid (PreparedSolid: its grids built once, its faces and
+// triangles in its own frame) answers as the polyhedron does: the overlaps
+// of the L prism and small cubes on a grid over it, the L turned and moved,
+// in both orders; and the signed distance of points around the L, inside,
+// outside and near its faces.
+TEST(PreparedSolid, AnswersAsThePolyhedronDoes) {
+  const Polyhedron l = Polyhedron::Create(LPrism(2), kTol);
+  const PreparedSolid pl(l, kTol);
+  Eigen::Isometry3d X_WL = Eigen::Isometry3d::Identity();
+  X_WL.rotate(Eigen::AngleAxisd(0.3, Vector3(1, 2, 3).normalized()));
+  X_WL.pretranslate(Vector3(0.5, -1, 2));
+  const Eigen::Isometry3d I = Eigen::Isometry3d::Identity();
+  int overlaps = 0, cases = 0;
+  for (int i = -1; i <= 13; i += 2)
+    for (int j = -1; j <= 13; j += 2)
+      for (const double z : {0.5, 2.25}) {
+        const Vector3 c = X_WL * Vector3(0.25 * i, 0.25 * j, z);
+        const Polyhedron cube =
+            Polyhedron::Create(Box(0.1, 0.1, 0.1, c - Vector3(0.05, 0.05, 0.05)), kTol);
+        const PreparedSolid pc(cube, kTol);
+        SCOPED_TRACE(::testing::Message() << "cube at " << c.transpose());
+        const bool plain = FindPolyhedronOverlap(l, X_WL, cube, I, kTol).has_value();
+        EXPECT_EQ(FindPolyhedronOverlap(pl, X_WL, pc, I).has_value(), plain);
+        EXPECT_EQ(FindPolyhedronOverlap(pc, I, pl, X_WL).has_value(), plain);
+        overlaps += plain;
+        ++cases;
+        const double sd = SignedDistance(l, X_WL, c);
+        EXPECT_NEAR(SignedDistance(pl, X_WL, c), sd, 1e-12);
+        const Vector3 near = c + Vector3(0.013, -0.007, 0.021);
+        EXPECT_NEAR(SignedDistance(pl, X_WL, near), SignedDistance(l, X_WL, near), 1e-12);
+      }
+  EXPECT_EQ(cases, 8 * 8 * 2);
+  EXPECT_GT(overlaps, 10);
+  EXPECT_LT(overlaps, cases);
+  // Solids prepared at different tolerances are refused.
+  const PreparedSolid coarse(l, 10 * kTol);
+  EXPECT_THROW(FindPolyhedronOverlap(pl, I, coarse, I), std::invalid_argument);
+}
+
 }  // namespace
 }  // namespace cairn

@@ -301,6 +301,25 @@ TEST(Ndbg3d, NonConvexPairsAgreeWithDirectGraphsInEveryCell) {
   EXPECT_GE(ndbg.normals.size(), 3u);
   EXPECT_GT(ndbg.cells.size(), 20u);
   ExpectConsistent(assembly, config, ndbg);
+  // Opposite cells: their representatives are exact antipodes, and i runs
+  // into j along d exactly when j runs into i along −d, so each one's graphs
+  // are the other's reversed (the NDBG computes each swept test once for
+  // both: this is what makes that sound).
+  int opposite_pairs = 0;
+  for (const NdbgCell& cell : ndbg.cells) {
+    std::vector<int> minus = cell.signs;
+    for (int& x : minus) x = -x;
+    const auto it = std::find_if(ndbg.cells.begin(), ndbg.cells.end(), [&](const NdbgCell& o) {
+      return o.signs == minus && (&o != &cell || minus == cell.signs);
+    });
+    ASSERT_NE(it, ndbg.cells.end());
+    if (&*it == &cell) continue;
+    EXPECT_EQ(it->direction, Vector3(-cell.direction));
+    EXPECT_EQ(Arcs(it->infinity), Arcs(Reversed(cell.infinity)));
+    EXPECT_EQ(Arcs(it->infinitesimal), Arcs(Reversed(cell.infinitesimal)));
+    ++opposite_pairs;
+  }
+  EXPECT_EQ(opposite_pairs, static_cast<int>(ndbg.cells.size()));
   // Physics: the inner block leaves the slot straight up only with the lid
   // gone; along +y it slides out of the open end.
   const int inner = 1, lid = 2;

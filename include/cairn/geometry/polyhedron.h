@@ -11,6 +11,7 @@
 
 #include <Eigen/Geometry>
 #include <array>
+#include <memory>
 #include <optional>
 #include <string>
 #include <variant>
@@ -112,6 +113,39 @@ double PolyhedronOverlapDepth(const Polyhedron& a, const Eigen::Isometry3d& X_WA
 std::optional<Vector3> FindPolyhedronOverlap(const Polyhedron& a, const Eigen::Isometry3d& X_WA,
                                              const Polyhedron& b, const Eigen::Isometry3d& X_WB,
                                              double tol);
+
+/// A polyhedron made ready for many overlap tests at one tolerance (length):
+/// its triangles and its faces in grids, its sample points, all in its own
+/// frame. A swept test places one pair at hundreds of times; with both
+/// prepared once, each FindPolyhedronOverlap costs only the queries. A
+/// query uses the grids' scratch space: one thread at a time per object.
+class PreparedSolid {
+ public:
+  PreparedSolid(const Polyhedron& poly, double tol);
+  ~PreparedSolid();
+  PreparedSolid(PreparedSolid&&) noexcept;
+  PreparedSolid& operator=(PreparedSolid&&) noexcept;
+
+  const Polyhedron& polyhedron() const { return *poly_; }
+  double tol() const { return tol_; }
+
+  struct Grids;  ///< polyhedron.cpp
+  const Grids& grids() const { return *grids_; }
+
+ private:
+  const Polyhedron* poly_;
+  double tol_;
+  std::unique_ptr<Grids> grids_;
+};
+
+/// FindPolyhedronOverlap of two prepared solids at their common tolerance
+/// (they must share it): the same tests, the same answers.
+std::optional<Vector3> FindPolyhedronOverlap(const PreparedSolid& a, const Eigen::Isometry3d& X_WA,
+                                             const PreparedSolid& b, const Eigen::Isometry3d& X_WB);
+
+/// SignedDistance of a point to a prepared solid (the same number, found
+/// from its grids: the triangles near p, and a ray's parity).
+double SignedDistance(const PreparedSolid& b, const Eigen::Isometry3d& X_WB, const Vector3& p_W);
 
 /// Exact mass properties of a closed, outward-oriented triangle mesh
 /// (divergence theorem over the triangles; exact for any polyhedron).
