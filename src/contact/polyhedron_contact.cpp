@@ -13,6 +13,7 @@
 #include <boost/geometry/geometries/point_xy.hpp>
 #include <boost/geometry/geometries/polygon.hpp>
 #include <cmath>
+#include <limits>
 #include <utility>
 #include <vector>
 
@@ -189,6 +190,50 @@ bool EdgeMaterialAbove(const Placed& P, int e, const Vector3& n, double sin_tol)
   return convex || (n.dot(P.n[f1]) <= sin_tol && n.dot(P.n[f2]) <= sin_tol);
 }
 
+// Whether P's material next to its vertex i, touching face `face` (2-D, in
+// the face's plane basis u, w about o; outward normal n) at or near the
+// face's boundary, lies over the face: some direction of P's surface
+// leaving i (each corner's two edges, and the middle of a convex corner),
+// projected on the plane, runs into the face polygon. A vertex beside the
+// face, at its corner or on its edge with its material across the face's
+// boundary in the plane, touches nothing that the faces there do not
+// already give: a wheel arch's corner at the end of a bumper's inside step
+// (the toy truck, issue 31) gave a contact normal to the step, and so an
+// arc along it, where the two parts only meet at that corner. A vertex
+// inside the face by more than tol needs no test; where the face is too
+// small to step into, the answer is yes (keep the contact).
+bool OverFace(const Placed& P, int i, const Vector3& n, const Polygon2& face, const Vector3& o,
+              const Vector3& u, const Vector3& w, double tol, double sin_tol) {
+  const Vector3& x = P.v[i];
+  const Point2 at((x - o).dot(u), (x - o).dot(w));
+  const auto& ring = face.outer();
+  double boundary = std::numeric_limits<double>::infinity(), shortest = boundary;
+  for (size_t k = 0; k + 1 < ring.size(); ++k) {  // the ring repeats its first point
+    const Vector2 a(ring[k].x(), ring[k].y()), b(ring[k + 1].x(), ring[k + 1].y());
+    const Vector2 q(at.x(), at.y());
+    const double len2 = (b - a).squaredNorm();
+    const double t = len2 > 0 ? std::clamp((q - a).dot(b - a) / len2, 0.0, 1.0) : 0.0;
+    boundary = std::min(boundary, (a + t * (b - a) - q).norm());
+    shortest = std::min(shortest, std::sqrt(len2));
+  }
+  if (boundary > tol) return true;
+  for (const auto& [p, q, f] : P.corners[i]) {
+    const Vector3 a = P.v[p] - x, b = P.v[q] - x;
+    std::array<Vector3, 3> dirs{a, b, Vector3::Zero()};
+    if ((-a).cross(b).dot(P.n[f]) > kCornerFlat * a.norm() * b.norm())
+      dirs[2] = a.normalized() + b.normalized();
+    for (const Vector3& d : dirs) {
+      const Vector3 t = d - n.dot(d) * n;
+      if (t.norm() <= sin_tol * d.norm()) continue;  // along the normal (or none)
+      const double step = 0.5 * std::min(shortest, t.norm());
+      if (step <= 4 * tol) return true;  // too small to tell
+      const Vector3 r = x + step * t.normalized() - o;
+      if (bg::distance(Point2(r.dot(u), r.dot(w)), face) <= tol) return true;
+    }
+  }
+  return false;
+}
+
 // The face–face patches found so far on each face of b (in b-face 2-D
 // coordinates), to skip vertex and edge points inside them.
 struct Patch {
@@ -312,8 +357,9 @@ class PairContacts {
         PlaneBasis(Q.n[f], &u, &w);
         const Vector3 o = Q.v[Q.shape->faces()[f][0]];
         const Vector3 r = P.v[i] - o;
-        if (bg::distance(Point2(r.dot(u), r.dot(w)), FacePolygon(Q, f, o, u, w)) > length_tol)
-          continue;
+        const Polygon2 face = FacePolygon(Q, f, o, u, w);
+        if (bg::distance(Point2(r.dot(u), r.dot(w)), face) > length_tol) continue;
+        if (!OverFace(P, i, Q.n[f], face, o, u, w, length_tol, sin_tol)) continue;
         // Inside a face–face patch of this face: already a contact.
         if (p_is_a ? InPatch(P.v[i], f, true) : InPatch(P.v[i], f, false)) continue;
         PolyhedronContactPoint c;

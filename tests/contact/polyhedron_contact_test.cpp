@@ -5,8 +5,10 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
+#include <vector>
 
 namespace cairn {
 namespace {
@@ -87,6 +89,50 @@ TEST(PolyhedronContact, AVertexInsideAStraightEdgeBesideAFaceAddsNoContact) {
         EXPECT_TRUE(HasPoint(cs, p)) << p.transpose();
     }
   }
+}
+
+// A stepped block (x from 0 to 2, y from 0 to 1; 2 high for x < 1, 1 high
+// beyond: an inside step whose riser is the face x = 1, z from 1 to 2) and a
+// unit box beside it across y = 0 (x from 1 to 2, y from −1 to 0, 1 high),
+// touching it face to face. The box's corner (1, 0, 1) lies at the end of
+// the step's inside edge, on the riser's corner, but the box is beside the
+// riser, not across it: it may slide along x either way. Only the face-face
+// patch on y = 0 touches (the toy truck's wheel arch beside its bumper's
+// step gave a contact normal to the riser, and an arc along +x, issue 31).
+TEST(PolyhedronContact, ACornerBesideAnInsideStepTouchesOnlyTheFaceItIsAcross) {
+  PolyhedronDef d;
+  const std::vector<std::array<double, 2>> profile = {{0, 0}, {2, 0}, {2, 1},
+                                                      {1, 1}, {1, 2}, {0, 2}};
+  const int n = static_cast<int>(profile.size());
+  for (const double y : {0.0, 1.0})
+    for (const auto& [x, z] : profile) d.vertices.emplace_back(x, y, z);
+  std::vector<int> front, back;
+  for (int k = 0; k < n; ++k) front.push_back(k), back.push_back(2 * n - 1 - k);
+  d.faces = {front, back};
+  for (int k = 0; k < n; ++k) d.faces.push_back({k, n + k, n + (k + 1) % n, (k + 1) % n});
+  const Polyhedron stepped = Polyhedron::Create(d, kPatchTol);
+  const Polyhedron beside = Box({1, -1, 0}, {2, 0, 1});
+  for (const bool swap : {false, true}) {
+    SCOPED_TRACE(swap);
+    const auto cs = swap ? Contacts(beside, Iso::Identity(), stepped, Iso::Identity())
+                         : Contacts(stepped, Iso::Identity(), beside, Iso::Identity());
+    ASSERT_EQ(cs.size(), 4u);
+    for (const auto& c : cs) {
+      EXPECT_EQ(c.kind, ContactKind3::kFaceFace) << c.p_W.transpose();
+      EXPECT_NEAR(std::abs(c.n_W.y()), 1.0, 1e-12) << c.p_W.transpose();
+    }
+    EXPECT_TRUE(HasPoint(cs, Vector3(1, 0, 1)));
+  }
+  // A box in the step's inside corner touches both the tread and the riser.
+  const Polyhedron in_corner = Box({1, 0.2, 1}, {1.5, 0.8, 1.5});
+  const auto cs = Contacts(in_corner, Iso::Identity(), stepped, Iso::Identity());
+  const auto along = [&](const Vector3& m) {
+    return std::count_if(cs.begin(), cs.end(), [&](const PolyhedronContactPoint& c) {
+      return (c.n_W - m).norm() < 1e-12;
+    });
+  };
+  EXPECT_EQ(along(Vector3::UnitZ()), 4);
+  EXPECT_EQ(along(Vector3::UnitX()), 4);
 }
 
 // The same cube on a table: the split vertices are above the table, and its
