@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "cairn/geometry/box_grid.h"
+#include "cairn/geometry/polygon.h"
 
 namespace cairn {
 
@@ -210,11 +211,8 @@ bool OverFace(const Placed& P, int i, const Vector3& n, const Polygon2& face, co
   double boundary = std::numeric_limits<double>::infinity(), shortest = boundary;
   for (size_t k = 0; k + 1 < ring.size(); ++k) {  // the ring repeats its first point
     const Vector2 a(ring[k].x(), ring[k].y()), b(ring[k + 1].x(), ring[k + 1].y());
-    const Vector2 q(at.x(), at.y());
-    const double len2 = (b - a).squaredNorm();
-    const double t = len2 > 0 ? std::clamp((q - a).dot(b - a) / len2, 0.0, 1.0) : 0.0;
-    boundary = std::min(boundary, (a + t * (b - a) - q).norm());
-    shortest = std::min(shortest, std::sqrt(len2));
+    boundary = std::min(boundary, DistanceToSegment(Vector2(at.x(), at.y()), a, b));
+    shortest = std::min(shortest, (b - a).norm());
   }
   if (boundary > tol) return true;
   for (const auto& [p, q, f] : P.corners[i]) {

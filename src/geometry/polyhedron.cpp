@@ -773,22 +773,6 @@ double NearestTriangleDistance(const Triangles& tris, const Vector3& p, double s
   }
 }
 
-// The deepest of a's samples inside b (deeper than tol): its depth, and the
-// point (world) in *deepest.
-double DeepestSampleInside(const Polyhedron& a, const Eigen::Isometry3d& X_WA, const Polyhedron& b,
-                           const Eigen::Isometry3d& X_WB, double tol, Vector3* deepest) {
-  const Triangles tris = Triangles::Of(b, tol);
-  const Eigen::Isometry3d X_BA = X_WB.inverse() * X_WA;
-  double depth = 0;
-  for (const Vector3& s : OverlapSamples(a, tol)) {
-    const Vector3 p = X_BA * s;
-    if (!DeeperInside(tris, p, tol)) continue;
-    const double d = NearestTriangleDistance(tris, p, std::max(tol, depth));
-    if (d > depth) depth = d, *deepest = X_WA * s;
-  }
-  return depth;
-}
-
 }  // namespace
 
 // A prepared solid's grids (own frame): its triangles (inside tests), its
@@ -844,6 +828,24 @@ std::optional<Vector3> SampleInside(const PreparedSolid& a, const Eigen::Isometr
   for (const Vector3& s : a.grids().samples)
     if (DeeperInside(b.grids().tris, X_BA * s, b.tol())) return X_WA * s;
   return std::nullopt;
+}
+
+// The deepest of a's samples inside b (deeper than tol): its depth, and the
+// point (world) in *deepest.
+double DeepestSampleInside(const PreparedSolid& a, const Eigen::Isometry3d& X_WA,
+                           const PreparedSolid& b, const Eigen::Isometry3d& X_WB,
+                           Vector3* deepest) {
+  const Triangles& tris = b.grids().tris;
+  const double tol = b.tol();
+  const Eigen::Isometry3d X_BA = X_WB.inverse() * X_WA;
+  double depth = 0;
+  for (const Vector3& s : a.grids().samples) {
+    const Vector3 p = X_BA * s;
+    if (!DeeperInside(tris, p, tol)) continue;
+    const double d = NearestTriangleDistance(tris, p, std::max(tol, depth));
+    if (d > depth) depth = d, *deepest = X_WA * s;
+  }
+  return depth;
 }
 
 // An edge of `a` crossing a face of `b` properly (both ends more than tol off
@@ -940,8 +942,9 @@ double PolyhedronOverlapDepth(const Polyhedron& a, const Eigen::Isometry3d& X_WA
                               const Polyhedron& b, const Eigen::Isometry3d& X_WB, double tol,
                               Vector3* deepest) {
   Vector3 in_b{0, 0, 0}, in_a{0, 0, 0};
-  const double depth_in_b = DeepestSampleInside(a, X_WA, b, X_WB, tol, &in_b);
-  const double depth_in_a = DeepestSampleInside(b, X_WB, a, X_WA, tol, &in_a);
+  const PreparedSolid pa(a, tol), pb(b, tol);
+  const double depth_in_b = DeepestSampleInside(pa, X_WA, pb, X_WB, &in_b);
+  const double depth_in_a = DeepestSampleInside(pb, X_WB, pa, X_WA, &in_a);
   if (deepest) *deepest = depth_in_b >= depth_in_a ? in_b : in_a;
   return std::max(depth_in_b, depth_in_a);
 }

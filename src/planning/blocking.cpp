@@ -499,8 +499,9 @@ struct BlockedCone {
 
 // What the swept tests of one computation keep, found on first use: each
 // convex shape's extents on its own axes, and each ordered convex pair's
-// slabs (the same numbers a direct computation gives, computed once); and
-// each ordered non-convex pair's cones of directions proved blocked.
+// slabs (the same numbers a direct computation gives, computed once); and,
+// 3-D, each non-convex solid prepared for overlap tests, and each non-convex
+// pair's (i < j) tests done and cones of directions proved blocked.
 class SweptCache {
  public:
   explicit SweptCache(const Scene& sc) : sc_(sc), own_(sc.shapes.size()) {}
@@ -533,10 +534,10 @@ class SweptCache {
     return slabs_.emplace(std::make_pair(ia, ib), std::move(slabs)).first->second;
   }
 
-  // The cones of directions along which part ia is known to run into part
-  // ib (3-D, either non-convex: ConeOfOverlap), gathered as the directions
-  // are tested.
-  std::vector<BlockedCone>& Cones(int ia, int ib) { return cones_[{ia, ib}]; }
+  // The cones of directions along which part i is known to run into part
+  // j > i (3-D, either non-convex: ConeOfOverlap), gathered as the
+  // directions are tested.
+  std::vector<BlockedCone>& Cones(int i, int j) { return cones_[{i, j}]; }
 
   // A swept test of a non-convex pair (i < j, i moving along d) done before.
   using FarKey = std::tuple<int, int, double, double, double>;
@@ -859,14 +860,14 @@ std::optional<BlockedCone> ConeOfOverlap(const Shape& a, const PreparedSolid& pa
 // missed: bench/blocking_oracle.py confirms them).
 bool EventSweptOverlap3(const Shape& a, const PreparedSolid& pa, const Shape& b,
                         const PreparedSolid& pb, const Vector3& d, double tol,
-                        std::vector<BlockedCone>* cones = nullptr) {
+                        std::vector<BlockedCone>& cones) {
   const auto [t_lo, t_hi] = BoxWindow(a, b, d, tol);
   const auto overlaps_at = [&](double t) {
     Eigen::Isometry3d X = a.X_WB;
     X.pretranslate(t * d);
     const std::optional<Vector3> w = FindPolyhedronOverlap(pa, X, pb, b.X_WB);
-    if (w && cones)
-      if (const auto cone = ConeOfOverlap(a, pa, b, pb, d, t, *w, tol)) cones->push_back(*cone);
+    if (w)
+      if (const auto cone = ConeOfOverlap(a, pa, b, pb, d, t, *w, tol)) cones.push_back(*cone);
     return w.has_value();
   };
   const double t_c = d.dot(b.X_WB * b.solid->mass().centroid - a.X_WB * a.solid->mass().centroid);
@@ -918,7 +919,7 @@ bool SweptOverlap(const Scene& sc, SweptCache& cache, int ia, int ib, const Vect
   for (const BlockedCone& c : cones)
     if (dd.dot(c.axis) >= c.cos_angle) return cache.Remember(key, true);
   return cache.Remember(key, EventSweptOverlap3(sc.shapes[i], cache.Prepared(i), sc.shapes[j],
-                                                cache.Prepared(j), dd, sc.tol_length, &cones));
+                                                cache.Prepared(j), dd, sc.tol_length, cones));
 }
 
 // Both relations of a pair at d, given its infinitesimal bits there.
