@@ -297,9 +297,12 @@ def _normalize(normalize):
     return str(normalize)
 
 
-def check(m, without=None, normalize=None, html=None):
+def check(m, without=None, normalize=None, html=None, rule="loaded-from-rest"):
     """``cairn check --json``: is the assembly, with the parts ``without``
-    taken away, stable? The dict has the CLI's keys, plus ``contact_arrays``
+    taken away, stable? ``rule`` (``--rule``) decides where rigid bodies leave
+    it open: ``"loaded-from-rest"`` (the default) or ``"equilibrium"``; the
+    dict's ``stability`` says whether strong stability is proved (what
+    ``--require strong`` asks). The dict has the CLI's keys, plus ``contact_arrays``
     (numpy columns of ``contacts``: ``point`` (n, d), ``normal`` (n, d),
     ``normal_force`` (n,), ``friction_force`` ((n,) in 2-D, (n, 3) in 3-D),
     ``parts`` (n, 2) part indices into ``m.parts``, -1 for the world).
@@ -307,7 +310,7 @@ def check(m, without=None, normalize=None, html=None):
     file to write the result page to (``--html``)."""
     _check_model(m)
     doc, _, page, *_ = _cairn.check(m, _names(without, "without"), _normalize(normalize),
-                                    html is not None)
+                                    html is not None, str(rule))
     if html is not None:
         _write_outputs(m, [(html, page, "html")])
     doc = json.loads(doc)

@@ -122,10 +122,15 @@ Answer AnswerOf(app::CommandResult&& r) {
 
 // `cairn check --json`.
 Answer Check(const py::object& model, const std::vector<std::string>& without,
-             const std::string& normalize, bool page) {
+             const std::string& normalize, bool page, const std::string& rule) {
   const PyModel& m = ModelOf(model);
-  py::gil_scoped_release release;
   app::CheckQuery q;
+  if (rule == "equilibrium")
+    q.rule = VerdictRule::kEquilibrium;
+  else if (rule != "loaded-from-rest")
+    throw InputError("", "rule",
+                     "must be \"loaded-from-rest\" or \"equilibrium\", not \"" + rule + "\"");
+  py::gil_scoped_release release;
   q.without = without;
   q.normalize = normalize;
   q.page = page;
@@ -292,7 +297,7 @@ PYBIND11_MODULE(_cairn, m) {
   m.def("load", &Load, py::arg("file"), py::arg("format"), py::arg("options"));
   m.def("from_compas", &FromCompas, py::arg("text"), py::arg("name"), py::arg("options"));
   m.def("check", &Check, py::arg("model"), py::arg("without"), py::arg("normalize"),
-        py::arg("page"));
+        py::arg("page"), py::arg("rule") = "loaded-from-rest");
   m.def("simulate", &Simulate, py::arg("model"), py::arg("plan_file"), py::arg("plan_text"),
         py::arg("continue_after_failure"), py::arg("normalize"), py::arg("suggest_fixtures"),
         py::arg("max_fixels"), py::arg("max_ticks"), py::arg("margin"), py::arg("page"));

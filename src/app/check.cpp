@@ -16,10 +16,13 @@ CommandResult CheckDocument(const Model& model, const CheckQuery& query, const M
   monitor.Poll();
   StabilityOptions analysis;
   analysis.check_equilibrium = true;  // report jamming (weak stability) too
+  analysis.rule = query.rule;
   const StabilityResult result = AnalyzeConfiguration(assembly, config, analysis);
   CommandResult out;
   out.document = StabilityToJson(assembly, config, result, report);
-  out.exit = result.stable() ? kExitStable : kExitUnstable;
+  out.exit = !result.stable()                                                      ? kExitUnstable
+             : query.require_strong && result.stability != StabilityProof::kStrong ? kExitNotStrong
+                                                                                   : kExitStable;
   out.text = StabilityToText(assembly, config, result, report);
   if (query.page) out.page = CheckPage(assembly, out.document, report);
   return out;

@@ -79,9 +79,10 @@ void CheckModelFlags(const ModelArgs& args) {
                        "applies to --format step only (it joins the parts' exact solids)");
     for (const std::string& pair : *pairs) PartPair(pair, flag);
   }
-  if (!args.sidecar.empty() && args.format != "step" && args.format != "asap")
+  if (!args.sidecar.empty() && args.format != "step" && args.format != "asap" &&
+      args.format != "compas")
     throw InputError("", "--sidecar",
-                     "applies to --format step and asap (a scene file says it all itself)");
+                     "applies to --format step, asap and compas (a scene file says it all itself)");
   if (args.max_input_size == 0)
     throw InputError("", "--max-input-size", "must be a positive number of bytes");
   for (double g : args.gravity) {
@@ -361,6 +362,12 @@ Model LoadCompasModel(const CompasAssembly& parsed, const std::string& file,
   options.tolerance = args.tolerance.value_or(0.0);
   options.stored_interfaces = args.interfaces == "stored";
   CompasModel compas = CompasToModel(parsed, options, file);
+  // The sidecar: densities, masses, fixed blocks the file does not carry
+  // (the CRA bridge's weights, density 3.51).
+  if (!args.sidecar.empty()) {
+    CheckInputFile(args.sidecar, args.max_input_size);
+    ApplySidecar(args.sidecar, compas.def, args.max_input_size);
+  }
   ApplyModelFlags(args, file, compas.def);
   Model m;
   m.def = compas.def;

@@ -21,6 +21,8 @@ std::string Numbered(const std::string& stem, size_t k, const std::string& suffi
 PlannerOptions OptionsOf(const Model& model, const PlanQuery& query, const Monitor& monitor) {
   const Assembly& assembly = model.assembly;
   PlannerOptions options;
+  options.rule = query.rule;
+  options.require_strong = query.require_strong;
   options.max_sequences = query.max;
   options.threads = query.threads;
   options.subassemblies = !query.single_parts;

@@ -77,6 +77,7 @@ CommandResult SimulateDocument(const Model& model, const SimulateQuery& query,
   // and its contacts (the timeline).
   SimulationOptions options;
   options.continue_after_failure = query.continue_after_failure;
+  options.rule = query.rule;
   options.record_timeline = query.timeline || query.page;
   std::vector<SimulationFrame> frames;
   options.on_analysis = [&](const AnalysisInputs& in) {
@@ -118,6 +119,8 @@ CommandResult SimulateDocument(const Model& model, const SimulateQuery& query,
                                    : nlohmann::json(nullptr);
   if (margin) out.document["margin"] = PlanMarginToJson(assembly, *margin);
   out.exit = ExitOf(result);
+  if (out.exit == kExitStable && query.require_strong && !result.rest_strong)
+    out.exit = kExitNotStrong;
   out.text = SimulationToText(assembly, plan, result, report);
   if (suggestion) out.text += FixtureSuggestionToText(assembly, *suggestion, search, report);
   if (margin) out.text += PlanMarginToText(assembly, *margin);

@@ -17,6 +17,8 @@ app::CheckQuery QueryOf(const CheckArgs& args) {
                : args.contacts == "none" ? ContactListing::kNone
                                          : ContactListing::kSummary;
   q.page = !args.html.empty();
+  q.rule = args.rule == "equilibrium" ? VerdictRule::kEquilibrium : VerdictRule::kLoadedFromRest;
+  q.require_strong = args.require == "strong";
   return q;
 }
 

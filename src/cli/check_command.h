@@ -13,10 +13,12 @@ namespace cairn::cli {
 struct CheckArgs {
   std::string scene;
   bool json = false;
-  std::string html;                  // --html FILE: the result page, or empty
-  std::string normalize;             // part name, or empty
-  std::vector<std::string> without;  // part names
-  std::string contacts = "summary";  // --contacts: summary, all or none (text only)
+  std::string html;                       // --html FILE: the result page, or empty
+  std::string normalize;                  // part name, or empty
+  std::vector<std::string> without;       // part names
+  std::string contacts = "summary";       // --contacts: summary, all or none (text only)
+  std::string rule = "loaded-from-rest";  // --rule: loaded-from-rest or equilibrium
+  std::string require;                    // --require: "strong" or empty
   ModelArgs model;
 };
 

@@ -202,6 +202,21 @@ void AddHtml(CLI::App* cmd, std::string& html) {
       ->check(kNotEmpty);
 }
 
+// --rule and --require (check, simulate, plan): one verdict, the same flags.
+void AddRuleOptions(CLI::App* cmd, std::string& rule, std::string& require) {
+  cmd->add_option("--rule", rule,
+                  "Where rigid bodies leave a static check open (an equilibrium, and no proof "
+                  "that every contact solution rests): loaded-from-rest (default: it stands iff "
+                  "it stands when gravity loads it from rest on compliant contacts) or "
+                  "equilibrium (it stands iff a static equilibrium exists, as "
+                  "rigid-block-equilibrium tools say)")
+      ->check(CLI::IsMember({"loaded-from-rest", "equilibrium"}));
+  cmd->add_option("--require", require,
+                  "strong: exit 3 when it stands but strong stability (every contact solution "
+                  "at rest) is not proved (plan: such states are not stable)")
+      ->check(CLI::IsMember({"strong"}));
+}
+
 CLI::App* AddCheck(CLI::App& app, cairn::cli::CheckArgs& check) {
   CLI::App* cmd =
       AddSceneCommand(app, "check", "Is one configuration of a scene stable under gravity?",
@@ -215,6 +230,7 @@ CLI::App* AddCheck(CLI::App& app, cairn::cli::CheckArgs& check) {
                   "has every one")
       ->check(CLI::IsMember({"summary", "all", "none"}));
   AddHtml(cmd, check.html);
+  AddRuleOptions(cmd, check.rule, check.require);
   AddModelOptions(cmd, check.model);
   return cmd;
 }
@@ -228,6 +244,7 @@ CLI::App* AddSimulate(CLI::App& app, cairn::cli::SimulateArgs& sim) {
                   "Write one CSV row per time step and contact to this file")
       ->check(kNotEmpty);
   AddHtml(cmd, sim.html);
+  AddRuleOptions(cmd, sim.rule, sim.require);
   cmd->add_option("--margin", sim.margin,
                   "Also find the least friction (factor) for which every tick is stable, and the "
                   "tick that decides it")
@@ -290,6 +307,7 @@ CLI::App* AddPlan(CLI::App& app, cairn::cli::PlanArgs& plan) {
                   "Write the AND/OR graph (Graphviz dot) with stable and unstable edges")
       ->check(kNotEmpty);
   AddHtml(cmd, plan.html);
+  AddRuleOptions(cmd, plan.rule, plan.require);
   AddNameList(cmd, "--keep", plan.keep, "Parts that stay in the assembly (comma-separated)");
   cmd->add_option("--support", plan.support,
                   "Support of straight removals: full (carried, default), none (pushed "

@@ -16,6 +16,8 @@ namespace {
 
 app::PlanQuery QueryOf(const PlanArgs& args) {
   app::PlanQuery q;
+  q.rule = args.rule == "equilibrium" ? VerdictRule::kEquilibrium : VerdictRule::kLoadedFromRest;
+  q.require_strong = args.require == "strong";
   q.max = args.max;
   q.threads = args.threads;
   q.paths = args.paths;

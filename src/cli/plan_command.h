@@ -14,17 +14,19 @@ namespace cairn::cli {
 struct PlanArgs {
   std::string scene;
   bool json = false;
-  int max = 0;                      // --max K; 0: every sequence
-  int threads = 0;                  // --threads; 0: every core
-  std::string paths;                // --paths FILE: candidate paths per part
-  std::string emit_plans;           // --emit-plans DIR
-  std::string html;                 // --html FILE: the result page, or empty
-  std::string dot;                  // --dot FILE
-  std::vector<std::string> keep;    // --keep: parts never removed
-  std::string support = "full";     // --support full|none|both
-  bool no_subassemblies = false;    // --single-parts
-  double dt = 0, speed = 0;         // --dt, --speed; 0: automatic
-  int allow_fixtures = 0;           // --allow-fixtures N
+  int max = 0;                            // --max K; 0: every sequence
+  int threads = 0;                        // --threads; 0: every core
+  std::string paths;                      // --paths FILE: candidate paths per part
+  std::string emit_plans;                 // --emit-plans DIR
+  std::string html;                       // --html FILE: the result page, or empty
+  std::string dot;                        // --dot FILE
+  std::vector<std::string> keep;          // --keep: parts never removed
+  std::string support = "full";           // --support full|none|both
+  std::string rule = "loaded-from-rest";  // --rule: loaded-from-rest or equilibrium
+  std::string require;                    // --require: "strong" or empty
+  bool no_subassemblies = false;          // --single-parts
+  double dt = 0, speed = 0;               // --dt, --speed; 0: automatic
+  int allow_fixtures = 0;                 // --allow-fixtures N
   std::string directions = "ndbg";  // --directions ndbg|axes: the NDBG's cells, or ±x, ±y (, ±z)
   ModelArgs model;
 };

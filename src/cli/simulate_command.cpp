@@ -12,6 +12,8 @@ namespace {
 
 app::SimulateQuery QueryOf(const SimulateArgs& args) {
   app::SimulateQuery q;
+  q.rule = args.rule == "equilibrium" ? VerdictRule::kEquilibrium : VerdictRule::kLoadedFromRest;
+  q.require_strong = args.require == "strong";
   q.plan_file = args.plan;
   q.normalize = args.normalize;
   q.continue_after_failure = args.continue_after_failure;

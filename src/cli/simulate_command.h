@@ -19,6 +19,8 @@ struct SimulateArgs {
   std::string html;       // --html FILE: the result page, or empty
   std::string normalize;  // part name, or empty
   bool continue_after_failure = false;
+  std::string rule = "loaded-from-rest";  // --rule: loaded-from-rest or equilibrium
+  std::string require;                    // --require: "strong" or empty
   /// --suggest-fixtures: when a step fails, look for the fewest fixels that
   /// make the plan stable (planning/fixtures.h) and report them.
   bool suggest_fixtures = false;

@@ -17,6 +17,35 @@ namespace {
 constexpr double kCosineRoundoff = 1e-15;
 }  // namespace
 
+Contact FlippedContact(Contact c) {
+  std::swap(c.part_a, c.part_b);
+  std::swap(c.index_a, c.index_b);
+  c.n_W = -c.n_W;
+  switch (c.feature) {
+    case ContactFeature::kVertexOfAOnEdgeOfB:
+      c.feature = ContactFeature::kVertexOfBOnEdgeOfA;
+      break;
+    case ContactFeature::kVertexOfBOnEdgeOfA:
+      c.feature = ContactFeature::kVertexOfAOnEdgeOfB;
+      break;
+    case ContactFeature::kVertexFace:
+      c.feature = ContactFeature::kFaceVertex;
+      break;
+    case ContactFeature::kFaceVertex:
+      c.feature = ContactFeature::kVertexFace;
+      break;
+    case ContactFeature::kEdgeFace:
+      c.feature = ContactFeature::kFaceEdge;
+      break;
+    case ContactFeature::kFaceEdge:
+      c.feature = ContactFeature::kEdgeFace;
+      break;
+    default:
+      break;
+  }
+  return c;
+}
+
 const char* to_string(ContactFeature feature) {
   switch (feature) {
     case ContactFeature::kVertexOfAOnEdgeOfB:
@@ -415,10 +444,29 @@ void PairContacts(const Assembly& assembly, const PlacedParts& placed, int i, in
                   double angle_tol, std::vector<Contact>& contacts, int& patches,
                   PairContactCache::Impl* cache) {
   const double mu = assembly.Friction(i, j);
+  // The movable part of a movable–fixed pair is a, else the lower index. The
+  // points of two movable parts are computed from the side of the one whose
+  // box's low corner comes first (x, then y, then z), and turned back: the
+  // same points to the last bit however the parts are numbered (a permuted
+  // file), in the usual orientation.
+  const auto first = [&](int x, int y) {
+    const Vector3& p = placed.boxes[x].first;
+    const Vector3& q = placed.boxes[y].first;
+    return std::make_tuple(p.x(), p.y(), p.z(), x) < std::make_tuple(q.x(), q.y(), q.z(), y);
+  };
   const bool swap = assembly.part(i).fixed;
-  const int a = swap ? j : i, b = swap ? i : j;
+  const bool turn = !swap && !assembly.part(j).fixed && first(j, i);
+  const int a = swap || turn ? j : i, b = swap || turn ? i : j;
+  const size_t first_new = contacts.size();
+  // Turned back to a = i (the lower index) where computed from j's side.
+  const auto orient = [&] {
+    if (turn)
+      for (size_t k = first_new; k < contacts.size(); ++k)
+        contacts[k] = FlippedContact(contacts[k]);
+  };
   if (!assembly.is_3d()) {
     DetectPairContacts(placed.polys[a], placed.polys[b], a, b, mu, tol, angle_tol, contacts);
+    orient();
     return;
   }
   const size_t before = contacts.size();
@@ -442,6 +490,7 @@ void PairContacts(const Assembly& assembly, const PlacedParts& placed, int i, in
     c.patch = patches + p.patch;
     contacts.push_back(c);
   }
+  orient();
   int most = -1;
   for (size_t k = before; k < contacts.size(); ++k) most = std::max(most, contacts[k].patch);
   if (most >= 0) patches = most + 1;

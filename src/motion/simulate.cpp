@@ -280,9 +280,13 @@ class PlanSimulation {
     StabilityOptions so;
     so.dt = tm.dt;
     so.lemke = options_.lemke;
+    so.rule = options_.rule;
     const Tolerances tol = a_.MakeTolerances(tm.dt);
     so.tolerances = tol;
     const TickAnalysis an = Analyze(st, tm, so);
+    for (const ComponentReport& c : an.r.components)
+      if (c.stability == StabilityProof::kWeak || c.stability == StabilityProof::kNotCertified)
+        result_.rest_strong = false;
     TickVerdict v = Classify(st, tm, an, tol);
     if (v.failure.verdict != MotionVerdict::kStable && !st.failed)
       RecordFailure(st, tm, v.judged_by_moved ? an.moved : an.r, v);

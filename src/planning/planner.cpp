@@ -373,9 +373,12 @@ void Planner::CheckNodes(std::vector<int> nodes) {
   const std::vector<std::string> results = executor_->Map(cost, threads_, [&](int k) {
     if (opt_.checkpoint) opt_.checkpoint();
     const Configuration config = ConfigOf(keys_[nodes[k]]);
-    const StabilityResult r = AnalyzeConfiguration(assembly_, config);
+    StabilityOptions options;
+    options.rule = opt_.rule;
+    const StabilityResult r = AnalyzeConfiguration(assembly_, config, options);
     planning_codec::Writer w;
-    w.Put(static_cast<uint8_t>(r.stable()));
+    w.Put(static_cast<uint8_t>(r.stable() &&
+                               (!opt_.require_strong || r.stability == StabilityProof::kStrong)));
     std::vector<Contact> contacts;
     if (friction) {
       const Tolerances tol = assembly_.MakeTolerances();
@@ -556,6 +559,7 @@ Plan Planner::OneStepPlan(const std::vector<int>& s, const CandidatePath& c, Pla
 SimulationOptions Planner::NodeSimulation(const Key& from_key) const {
   SimulationOptions so;
   so.carry_when_unsupported = true;
+  so.rule = opt_.rule;
   if (opt_.checkpoint) {
     const std::function<void()> checkpoint = opt_.checkpoint;
     so.on_analysis = [checkpoint](const AnalysisInputs&) { checkpoint(); };

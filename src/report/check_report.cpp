@@ -132,6 +132,21 @@ json ComponentsToJson(const Assembly& assembly, const StabilityResult& result) {
       mech["held"] = held;
       jr["mechanism"] = mech;
     }
+    if (r.loaded_from_rest) {
+      json loaded;
+      loaded["outcome"] = to_string(*r.loaded_from_rest);
+      json gives = json::array();
+      for (int i : r.loaded_gives_way) gives.push_back(assembly.part(i).name);
+      loaded["gives_way"] = gives;
+      if (*r.loaded_from_rest == LoadedFromRest::Outcome::kStands)
+        loaded["unbalanced"] = r.loaded_unbalanced;
+      jr["loaded_from_rest"] = loaded;
+    }
+    if (!r.rigid_motion_parts.empty()) {
+      json moved = json::array();
+      for (int i : r.rigid_motion_parts) moved.push_back(assembly.part(i).name);
+      jr["rigid_motion"] = moved;
+    }
     jr["status"] = to_string(r.status);
     jr["pivots"] = r.pivots;
     // Decided by a linear program's solution at rest rather than by Lemke's
@@ -177,6 +192,11 @@ nlohmann::json StabilityToJson(const Assembly& assembly, const Configuration& co
   // no rest is possible (unstable without an equilibrium) or not examined.
   doc["stability"] =
       result.stability == StabilityProof::kNone ? json(nullptr) : json(to_string(result.stability));
+  // The rule where rigid bodies leave the answer open, and what loading from
+  // rest said (null when no component needed it).
+  doc["rule"] = to_string(result.rule);
+  doc["loaded_from_rest"] =
+      result.loaded_from_rest ? json(to_string(*result.loaded_from_rest)) : json(nullptr);
   doc["force_unit"] = force_unit;
 
   doc["parts"] = PartsToJson(cx, config, result);
@@ -240,6 +260,41 @@ void TextHeadline(const Assembly& assembly, const Configuration& config,
 
 std::string PartCount(size_t n) { return std::to_string(n) + (n == 1 ? " part" : " parts"); }
 
+// Part names, comma-separated.
+std::string Names(const Assembly& assembly, const std::vector<int>& parts) {
+  std::string out;
+  for (size_t i = 0; i < parts.size(); ++i) out += (i ? ", " : "") + assembly.part(parts[i]).name;
+  return out;
+}
+
+// One line on why it stands or falls where rigid bodies leave it open.
+void TextWhy(const Assembly& assembly, const StabilityResult& result, std::ostringstream& os) {
+  for (const ComponentReport& c : result.components) {
+    if (!c.loaded_from_rest) continue;
+    const std::string rigid =
+        c.rigid_motion_parts.empty()
+            ? std::string("no rigid motion found")
+            : "a rigid solution also moves " + Names(assembly, c.rigid_motion_parts);
+    switch (*c.loaded_from_rest) {
+      case LoadedFromRest::Outcome::kStands:
+        os << "  stands when loaded from rest on compliant contacts (rigid bodies leave it "
+              "open: an equilibrium exists, "
+           << rigid << ")\n";
+        break;
+      case LoadedFromRest::Outcome::kGivesWay:
+        os << "  falls: an equilibrium exists, but loaded from rest on compliant contacts "
+           << (c.loaded_gives_way.empty() ? std::string("it") : Names(assembly, c.loaded_gives_way))
+           << " gives way: nothing produces the forces that equilibrium needs\n";
+        break;
+      case LoadedFromRest::Outcome::kNotRun:
+      case LoadedFromRest::Outcome::kFailed:
+        os << "  stands by the equilibrium: loading from rest " << to_string(*c.loaded_from_rest)
+           << " (see the component's message)\n";
+        break;
+    }
+  }
+}
+
 // The sizes, what decided the components (each one's message, once), and
 // what is proved about rest.
 void TextSummary(const Assembly& assembly, const StabilityResult& result, std::ostringstream& os) {
@@ -271,9 +326,12 @@ void TextSummary(const Assembly& assembly, const StabilityResult& result, std::o
           "  from rest (a squeeze between faces: jamming); the contact dynamics move\n";
   else if (result.static_equilibrium)
     os << "  static equilibrium: " << (*result.static_equilibrium ? "exists" : "none") << '\n';
+  TextWhy(assembly, result, os);
   if (result.stability == StabilityProof::kStrong)
     os << "  strongly stable: a frictionless equilibrium exists, so every solution of the contact\n"
           "  problem is at rest\n";
+  else if (result.stability == StabilityProof::kWeak && result.stable())
+    os << "  weakly stable only: rest is possible, and so is a motion of the rigid parts\n";
   else if (result.stability == StabilityProof::kNotCertified)
     os << "  stability not certified as strong: rest is possible and no motion was found, but\n"
           "  motion from rest is not ruled out\n";

@@ -115,6 +115,14 @@ json MarginToJson(const Assembly& assembly, const MarginRequest& req, const Marg
       for (const PartMotion& p : r.failing_below)
         failing.push_back({{"part", assembly.part(p.part).name}, {"motion", to_string(p.kind)}});
       m["failing_below"] = failing;
+      // The threshold of the verdict `cairn check` gives (loaded from rest
+      // where rigid bodies leave it open); null: it stands at no μ allowed.
+      if (r.verdict_computed) {
+        m["verdict_critical"] = Optional(r.verdict_critical);
+        m["verdict_tolerance"] = r.verdict_tolerance;
+        m["verdict_checks"] = r.verdict_checks;
+        m["verdict_searched_to"] = r.verdict_searched_to;
+      }
       break;
     }
     case MarginQuantity::kTilt: {
@@ -235,6 +243,14 @@ std::string MarginToText(const Assembly& assembly, const MarginRequest& req, con
         os << "  below it: the check at " << (r.factor ? "k = " : "mu = ") << Num(*r.failing_at)
            << " (the contact dynamics from rest) moves " << PartList(names) << '\n';
       }
+      if (r.verdict_computed)
+        os << "  the check stands (loaded from rest where rigid bodies leave it open) "
+           << (r.verdict_critical
+                   ? "from " + std::string(r.factor ? "k = " : "mu = ") + Num(*r.verdict_critical) +
+                         " (within " + Num(r.verdict_tolerance) + ")"
+                   : "at no " + std::string(r.factor ? "k" : "mu") + " up to " +
+                         Num(r.verdict_searched_to))
+           << '\n';
       break;
     case MarginQuantity::kTilt:
       os << "critical tilt about [" << Num(r.axis.x()) << ", " << Num(r.axis.y()) << ", "

@@ -30,6 +30,8 @@ nlohmann::json SimulationToJson(const Assembly& assembly, const Plan& plan,
   const int dim = assembly.dimension();
   json doc;
   doc["verdict"] = to_string(result.verdict);
+  // Every configuration checked from rest proved strongly stable (--require strong).
+  doc["strong_at_rest"] = result.rest_strong;
   doc["stable"] = result.stable();
   doc["mode"] = to_string(plan.mode);
   doc["force_unit"] = force_unit;

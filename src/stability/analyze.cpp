@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <limits>
 #include <numeric>
+#include <tuple>
 #include <unordered_map>
 
 #include "cairn/contact/contact_reduction.h"
@@ -108,10 +109,37 @@ struct Component {
   std::vector<int> contacts;  // indices into the contact list, ascending
 };
 
+// The canonical order of the parts: by centroid (x, then y, then z), the
+// part index only between parts whose centroids coincide. The LCP of a
+// component lists its bodies and contacts in this order, and orients each
+// contact between two movable parts from the earlier to the later, so that
+// permuting or renaming the parts of a file changes no LCP, hence no answer
+// of a solver whose choices follow the order of its unknowns (Lemke's
+// method among several solutions).
+std::vector<int> CanonicalRanks(const Assembly& assembly, const Configuration& config) {
+  const int n = assembly.num_parts();
+  std::vector<Vector3> centroid(n, Vector3::Zero());
+  std::vector<int> order(n);
+  std::iota(order.begin(), order.end(), 0);
+  for (int i = 0; i < n; ++i)
+    if (config.present[i]) centroid[i] = config.WorldCentroid(assembly, i);
+  std::sort(order.begin(), order.end(), [&](int x, int y) {
+    const Vector3& a = centroid[x];
+    const Vector3& b = centroid[y];
+    if (a.x() != b.x()) return a.x() < b.x();
+    if (a.y() != b.y()) return a.y() < b.y();
+    if (a.z() != b.z()) return a.z() < b.z();
+    return x < y;
+  });
+  std::vector<int> rank(n);
+  for (int k = 0; k < n; ++k) rank[order[k]] = k;
+  return rank;
+}
+
 // Movable parts joined by contacts (contacts with fixed parts or the world
 // join nothing). Ordered by smallest part index: deterministic.
 std::vector<Component> SplitComponents(const Assembly& assembly, const Configuration& config,
-                                       const std::vector<Contact>& contacts) {
+                                       const std::vector<Contact>& contacts, bool canonical) {
   const int n = assembly.num_parts();
   const auto movable = [&](int i) {
     return i >= 0 && config.present[i] && !assembly.part(i).fixed;
@@ -136,6 +164,12 @@ std::vector<Component> SplitComponents(const Assembly& assembly, const Configura
     const int owner = movable(contacts[c].part_a) ? contacts[c].part_a : contacts[c].part_b;
     out[index_of_root[Find(parent, owner)]].contacts.push_back(c);
   }
+  // Each component's parts in the canonical order (CanonicalRanks).
+  if (!canonical) return out;
+  const std::vector<int> rank = CanonicalRanks(assembly, config);
+  for (Component& comp : out)
+    std::sort(comp.parts.begin(), comp.parts.end(),
+              [&rank](int x, int y) { return rank[x] < rank[y]; });
   return out;
 }
 
@@ -149,7 +183,8 @@ ContactLcp BuildComponent(const Assembly& assembly, const Configuration& config,
                           const std::vector<Contact>& contacts, const Component& comp,
                           Formulation formulation, double dt, const DriveInputs* drive,
                           LcpStorage storage, double length_tol,
-                          std::vector<int>* lcp_index = nullptr) {
+                          std::vector<int>* lcp_index = nullptr,
+                          std::vector<char>* flipped = nullptr, bool canonical = true) {
   std::vector<BodyDynamics> bodies;
   for (int p : comp.parts) {
     const Part& part = assembly.part(p);
@@ -183,8 +218,36 @@ ContactLcp BuildComponent(const Assembly& assembly, const Configuration& config,
   // Only the corners of each planar contact patch: exact for the LCP and the
   // equilibrium LP (contact/contact_reduction.h); `lcp_index` maps the
   // component's contacts to the LCP's (−1: dropped, no force).
+  // The contacts in the canonical order, each between two movable parts
+  // oriented from the earlier part to the later (`flipped` says which were
+  // turned, by the component's contact index).
+  std::vector<int> rank;
+  if (canonical) {
+    rank = CanonicalRanks(assembly, config);
+  } else {  // the parts' own order
+    rank.resize(assembly.num_parts());
+    std::iota(rank.begin(), rank.end(), 0);
+  }
+  const auto movable = [&](int p) { return p >= 0 && !assembly.part(p).fixed; };
+  std::vector<Contact> oriented(comp.contacts.size());
+  if (flipped) flipped->assign(comp.contacts.size(), 0);
+  for (size_t k = 0; k < comp.contacts.size(); ++k) {
+    const Contact& c = contacts[comp.contacts[k]];
+    const bool turn = movable(c.part_a) && movable(c.part_b) && rank[c.part_a] > rank[c.part_b];
+    oriented[k] = turn ? FlippedContact(c) : c;
+    if (flipped) (*flipped)[k] = turn;
+  }
+  std::vector<int> order(comp.contacts.size());
+  std::iota(order.begin(), order.end(), 0);
+  const auto key = [&](const Contact& c) {
+    return std::make_tuple(rank[c.part_a], c.part_b < 0 ? -1 : rank[c.part_b], c.p_WC.x(),
+                           c.p_WC.y(), c.p_WC.z(), c.n_W.x(), c.n_W.y(), c.n_W.z());
+  };
+  if (canonical)
+    std::stable_sort(order.begin(), order.end(),
+                     [&](int x, int y) { return key(oriented[x]) < key(oriented[y]); });
   std::vector<Contact> comp_contacts;
-  for (int c : comp.contacts) comp_contacts.push_back(contacts[c]);
+  for (int k : order) comp_contacts.push_back(oriented[k]);
   ContactReductionTolerances reduction;
   reduction.length = length_tol;
   reduction.gap = std::numeric_limits<double>::infinity();  // use_gaps = false below
@@ -192,7 +255,7 @@ ContactLcp BuildComponent(const Assembly& assembly, const Configuration& config,
   std::vector<Contact> kept;
   if (lcp_index) lcp_index->assign(comp_contacts.size(), -1);
   for (int i : keep) {
-    if (lcp_index) (*lcp_index)[i] = static_cast<int>(kept.size());
+    if (lcp_index) (*lcp_index)[order[i]] = static_cast<int>(kept.size());
     kept.push_back(comp_contacts[i]);
   }
   LcpBuildOptions build;
@@ -335,10 +398,12 @@ std::vector<ContactLcp> BuildComponentLcps(const Assembly& assembly, const Confi
       options.tolerances ? *options.tolerances : assembly.MakeTolerances(options.dt);
   const std::vector<Contact> contacts = DetectContacts(assembly, config, tol.length, tol.angle);
   std::vector<ContactLcp> out;
-  for (const Component& comp : SplitComponents(assembly, config, contacts))
+  // In the parts' own order: the margins' linear programs (whose optima do
+  // not depend on it) and the benchmarks see the LCPs as the file lists them.
+  for (const Component& comp : SplitComponents(assembly, config, contacts, false))
     out.push_back(BuildComponent(assembly, config, contacts, comp,
                                  ChooseFormulation(assembly, options, drive), options.dt, drive,
-                                 options.lcp_storage, tol.length));
+                                 options.lcp_storage, tol.length, nullptr, nullptr, false));
   return out;
 }
 
@@ -370,24 +435,24 @@ Vector3 RelativeMotion(const ContactLcp& lcp, const ContactSolution& s, const Co
   return u;
 }
 
-// The contact motions of a mechanism (no forces: a virtual motion).
-ContactSolution MechanismMotion(const ContactLcp& lcp, const Mechanism& m) {
+// The contact motions of a virtual motion `nu` of the bodies (a mechanism,
+// or a collapse when loaded from rest): no forces.
+ContactSolution VirtualMotion(const ContactLcp& lcp, const std::vector<Vector6>& nu) {
   ContactSolution s;
   const int nc = static_cast<int>(lcp.contacts.size());
-  s.body_motion = m.nu;
+  s.body_motion = nu;
   s.normal_force = VectorX::Zero(nc);
   s.friction_force.assign(nc, Vector3::Zero());
   s.normal_motion = VectorX::Zero(nc);
   s.tangent_motion.assign(nc, Vector3::Zero());
   for (int c = 0; c < nc; ++c) {
     const Contact& ct = lcp.contacts[c];
-    s.normal_motion[c] = lcp.normal_rows[c].Dot(m.nu);
+    s.normal_motion[c] = lcp.normal_rows[c].Dot(nu);
     if (lcp.tangent2_rows.empty()) {
-      s.tangent_motion[c] = ct.t_W() * lcp.tangent_rows[c].Dot(m.nu);
+      s.tangent_motion[c] = ct.t_W() * lcp.tangent_rows[c].Dot(nu);
     } else {
       const auto [t1, t2] = TangentBasis(ct.n_W);
-      s.tangent_motion[c] =
-          t1 * lcp.tangent_rows[c].Dot(m.nu) + t2 * lcp.tangent2_rows[c].Dot(m.nu);
+      s.tangent_motion[c] = t1 * lcp.tangent_rows[c].Dot(nu) + t2 * lcp.tangent2_rows[c].Dot(nu);
     }
   }
   return s;
@@ -397,7 +462,8 @@ ContactSolution MechanismMotion(const ContactLcp& lcp, const Mechanism& m) {
 ComponentReport ReportSolve(const Component& comp, const ContactLcp& lcp,
                             const ComponentSolution& s) {
   ComponentReport report;
-  report.parts = comp.parts;
+  report.parts = comp.parts;  // canonical order (BuildComponent); the report lists them ascending
+  std::sort(report.parts.begin(), report.parts.end());
   report.num_contacts = static_cast<int>(comp.contacts.size());
   report.lcp_size = lcp.size();
   report.decided_by = s.decided_by;
@@ -419,6 +485,15 @@ ComponentReport ReportSolve(const Component& comp, const ContactLcp& lcp,
     report.mechanism_power = s.mechanism->power;
     for (int b : s.mechanism->moving) report.mechanism_parts.push_back(lcp.bodies[b].part);
   }
+  if (s.loaded) {
+    report.loaded_from_rest = s.loaded->outcome;
+    report.loaded_unbalanced = s.loaded->equilibrium_residual;
+    for (size_t b = 0; b < s.loaded->unbalanced.size(); ++b)
+      if (s.loaded->outcome == LoadedFromRest::Outcome::kGivesWay &&
+          s.loaded->unbalanced[b] > s.loaded->tolerance)
+        report.loaded_gives_way.push_back(lcp.bodies[b].part);
+  }
+  for (int b : s.rigid_motion) report.rigid_motion_parts.push_back(lcp.bodies[b].part);
   for (size_t i = 0; i < s.notes.size(); ++i) report.message += (i ? "; " : "") + s.notes[i];
   return report;
 }
@@ -430,9 +505,35 @@ StabilityProof Summarize(const StabilityResult& r) {
   if (r.verdict == Verdict::kUnstable)
     return r.weakly_stable ? StabilityProof::kWeak : StabilityProof::kNone;
   if (r.verdict != Verdict::kStable) return StabilityProof::kNone;
+  StabilityProof out = StabilityProof::kStrong;
+  for (const ComponentReport& c : r.components) {
+    if (c.stability == StabilityProof::kWeak) return StabilityProof::kWeak;
+    if (c.stability != StabilityProof::kStrong) out = StabilityProof::kNotCertified;
+  }
+  return out;
+}
+
+// The least favourable loaded-from-rest outcome over the components: gives
+// way, failed, not run, stands (empty when none was loaded).
+std::optional<LoadedFromRest::Outcome> LeastFavourable(const StabilityResult& r) {
+  std::optional<LoadedFromRest::Outcome> out;
+  const auto rank = [](LoadedFromRest::Outcome o) {
+    switch (o) {
+      case LoadedFromRest::Outcome::kGivesWay:
+        return 3;
+      case LoadedFromRest::Outcome::kFailed:
+        return 2;
+      case LoadedFromRest::Outcome::kNotRun:
+        return 1;
+      case LoadedFromRest::Outcome::kStands:
+        return 0;
+    }
+    return 0;
+  };
   for (const ComponentReport& c : r.components)
-    if (c.stability != StabilityProof::kStrong) return StabilityProof::kNotCertified;
-  return StabilityProof::kStrong;
+    if (c.loaded_from_rest && (!out || rank(*c.loaded_from_rest) > rank(*out)))
+      out = c.loaded_from_rest;
+  return out;
 }
 
 }  // namespace
@@ -456,6 +557,7 @@ class ConfigurationAnalysis {
     result_.tolerances =
         options.tolerances ? *options.tolerances : assembly.MakeTolerances(options.dt);
     result_.formulation = ChooseFormulation(assembly, options, drive);
+    result_.rule = options.rule;
     st_ = result_.formulation == Formulation::kStewartTrinkle;
     motion_tol_ = st_ ? result_.tolerances.velocity : result_.tolerances.acceleration;
   }
@@ -476,7 +578,7 @@ class ConfigurationAnalysis {
     contacts_ = DetectContacts(assembly_, config_, tol.length, tol.angle, nullptr,
                                workspace_ ? &workspace_->impl().contacts : nullptr);
     result_.profile.detect = Seconds(t0);
-    components_ = SplitComponents(assembly_, config_, contacts_);
+    components_ = SplitComponents(assembly_, config_, contacts_, true);
     result_.contacts.resize(contacts_.size());
     for (size_t c = 0; c < contacts_.size(); ++c) result_.contacts[c].contact = contacts_[c];
     vertices_.resize(assembly_.num_parts());
@@ -490,9 +592,10 @@ class ConfigurationAnalysis {
     const Component& comp = components_[ci];
     auto t0 = Clock::now();
     std::vector<int> lcp_index;
-    const ContactLcp lcp =
-        BuildComponent(assembly_, config_, contacts_, comp, result_.formulation, options_.dt,
-                       drive_, options_.lcp_storage, result_.tolerances.length, &lcp_index);
+    std::vector<char> flipped;
+    const ContactLcp lcp = BuildComponent(assembly_, config_, contacts_, comp, result_.formulation,
+                                          options_.dt, drive_, options_.lcp_storage,
+                                          result_.tolerances.length, &lcp_index, &flipped);
     result_.profile.build += Seconds(t0);
 
     t0 = Clock::now();
@@ -507,8 +610,10 @@ class ConfigurationAnalysis {
     const ContactLcp& solved = s.held_lcp ? *s.held_lcp : lcp;
     if (s.has_solution)
       phys = RecoverSolution(solved, s.z);
+    else if (!s.collapse.empty())
+      phys = VirtualMotion(lcp, s.collapse);
     else if (s.mechanism && s.mechanism->found)
-      phys = MechanismMotion(lcp, *s.mechanism);
+      phys = VirtualMotion(lcp, s.mechanism->nu);
     if (!phys) {
       if (s.decided_by != DecidedBy::kJammed) any_undecided_ = true;
       for (int p : comp.parts) {
@@ -523,7 +628,7 @@ class ConfigurationAnalysis {
     }
     report.consistency_residual = phys->consistency_residual;
     // ClassifyMotion: contacts first, then parts.
-    const std::vector<bool> keeps_contact = ClassifyContacts(comp, lcp, lcp_index, *phys);
+    const std::vector<bool> keeps_contact = ClassifyContacts(comp, lcp, lcp_index, flipped, *phys);
     ClassifyParts(ci, comp, lcp, *phys, keeps_contact);
     result_.profile.classify += Seconds(t0);
     result_.components.push_back(report);
@@ -535,6 +640,7 @@ class ConfigurationAnalysis {
     SolveContext ctx;
     ctx.lemke = options_.lemke;
     ctx.static_check = static_check_;
+    ctx.rule = options_.rule;
     // Whether an LCP solution moves a part that must stay put.
     ctx.moves = [this](const ContactLcp& l, const VectorX& z) {
       const ContactSolution sol = RecoverSolution(l, z);
@@ -559,11 +665,12 @@ class ConfigurationAnalysis {
     ctx.rest_first = options_.rest_first && !static_check_ && assembly_.is_3d() && st_ &&
                      lcp.num_friction > 0 && ctx.has_driven && !carried;
     // A component of a path's tick that nothing drives and that starts at
-    // rest (tick 0, before the gripper moves) is a static check: the
-    // equilibrium first, as `cairn check` decides it, rather than Lemke's
-    // method on the whole component (Jenga: 18 ms against 10). Small
-    // components keep Lemke's forces either way (SolveComponent).
-    if (!ctx.has_driven && !lcp.has_dense() && AllAtRest(lcp)) ctx.static_check = true;
+    // rest (tick 0, before the gripper moves) is a static check, decided as
+    // `cairn check` decides it (one verdict: the equilibrium first, and the
+    // rule where rigid bodies leave it open), rather than by Lemke's method
+    // on the whole component (Jenga: 18 ms against 10). Small components
+    // keep Lemke's forces where it finds rest (SolveComponent).
+    if (!ctx.has_driven && AllAtRest(lcp)) ctx.static_check = true;
     std::uint64_t hash = 0;
     LcpBasis* basis = nullptr;
     if (workspace_) {
@@ -614,15 +721,19 @@ class ConfigurationAnalysis {
   // slides; whether each body keeps a closed contact.
   std::vector<bool> ClassifyContacts(const Component& comp, const ContactLcp& lcp,
                                      const std::vector<int>& lcp_index,
+                                     const std::vector<char>& flipped,
                                      const ContactSolution& phys) {
     std::vector<bool> keeps_contact(comp.parts.size(), false);
     for (size_t k = 0; k < comp.contacts.size(); ++k) {
       ContactReport& cr = result_.contacts[comp.contacts[k]];
       if (const int m = lcp_index[k]; m >= 0) {
+        // The LCP's contact may be seen from the other side (BuildComponent):
+        // the force on a and a's motion over b turn with it.
+        const double side = flipped[k] ? -1.0 : 1.0;
         cr.normal_force = phys.normal_force(m);
-        cr.friction_force = phys.friction_force[m];
+        cr.friction_force = side * phys.friction_force[m];
         cr.normal_motion = phys.normal_motion(m);
-        cr.tangent_motion = phys.tangent_motion[m];
+        cr.tangent_motion = side * phys.tangent_motion[m];
       } else {  // a dropped point of a patch: no force, the bodies' motion
         const Vector3 u = RelativeMotion(lcp, phys, cr.contact);
         cr.normal_force = 0;
@@ -706,7 +817,10 @@ class ConfigurationAnalysis {
     if (known && (static_check_ || options_.check_equilibrium)) r.static_equilibrium = all;
     r.weakly_stable =
         r.verdict == Verdict::kUnstable && r.jammed.empty() && r.static_equilibrium.value_or(false);
-    if (static_check_) r.stability = Summarize(r);
+    if (static_check_) {
+      r.stability = Summarize(r);
+      r.loaded_from_rest = LeastFavourable(r);
+    }
   }
 
   const Assembly& assembly_;

@@ -667,6 +667,51 @@ MarginMechanism FrictionMechanism(const Assembly& scene, const ContactLcp& lcp,
   return ToCertificate(scene, lcp, FindMechanism(WithFrictionFactor(lcp, past)), past);
 }
 
+// The verdict's threshold is found to this relative bracket (dimensionless),
+// and looked for up to this multiple of the larger of k* and the nominal μ
+// (dimensionless): friction far beyond any material's is not a margin.
+constexpr double kVerdictBracket = 1e-3;
+constexpr double kVerdictReach = 10;
+
+// The threshold of the verdict (MarginResult::verdict_critical): the least
+// factor at which `cairn check` stands. Below the equilibrium's k* nothing
+// can stand; from k* up the check decides: first a bracket by doubling from
+// k* (up to k_max), then bisection on the check. It assumes the verdict is
+// monotone in μ, as it is on every shared model and bundled example
+// (tests/cli/model_test.cpp, FrictionMonotone).
+void VerdictThreshold(const FrictionScaling& scaling, const Assembly& scene,
+                      const Configuration& config, MarginResult& r) {
+  r.verdict_computed = true;
+  const MarginSide& side = r.sides[0];
+  if (!side.critical) return;  // no equilibrium at any μ: it never stands
+  const auto stands = [&](double k) {
+    ++r.verdict_checks;
+    return AnalyzeConfiguration(scaling.At(scene, k), config).stable();
+  };
+  double lo = *side.critical, hi = lo;
+  const double top =
+      std::min(scaling.k_max, kVerdictReach * std::max({lo, r.nominal, kVerdictBracket}));
+  r.verdict_searched_to = top;
+  if (stands(hi)) {
+    r.verdict_critical = hi;
+    r.verdict_tolerance = r.tolerance;
+    return;
+  }
+  // Bracket: double from k* until it stands (the check at `top` last).
+  do {
+    lo = hi;
+    hi = std::min(top, std::max(2 * hi, kVerdictBracket));
+    if (stands(hi)) break;
+    if (hi >= top) return;  // falls at every μ up to `top`
+  } while (true);
+  while (hi - lo > kVerdictBracket * hi) {
+    const double mid = 0.5 * (lo + hi);
+    (stands(mid) ? hi : lo) = mid;
+  }
+  r.verdict_critical = hi;
+  r.verdict_tolerance = hi - lo;
+}
+
 // `lcps` are the components of the base model (scaling.At(scene, 1)).
 void FrictionMargin(const FrictionScaling& scaling, const Assembly& scene,
                     const Configuration& config, const std::vector<ContactLcp>& lcps,
@@ -726,6 +771,7 @@ void FrictionMargin(const FrictionScaling& scaling, const Assembly& scene,
     for (const PartMotion& m : check.parts)
       if (m.moving && m.role == PartRole::kJudged) r.failing_below.push_back(m);
   }
+  VerdictThreshold(scaling, scene, config, r);
 }
 
 }  // namespace

@@ -20,10 +20,16 @@ const char* to_string(DecidedBy d) {
       return "drag";
     case DecidedBy::kJammed:
       return "jammed";
+    case DecidedBy::kLoadedFromRest:
+      return "loaded from rest";
     case DecidedBy::kUndecided:
       return "undecided";
   }
   return "unknown";
+}
+
+const char* to_string(VerdictRule r) {
+  return r == VerdictRule::kEquilibrium ? "equilibrium" : "loaded-from-rest";
 }
 
 const char* to_string(StabilityProof s) {
@@ -227,6 +233,111 @@ void ExplainByDrag(const ContactLcp& lcp, const SolveContext& ctx, ComponentSolu
   if (out.has_solution) out.decided_by = DecidedBy::kDrag;
 }
 
+// The collapse motion of a component that gives way when loaded from rest:
+// the loading step's displacements, scaled so that the fastest body moves by
+// 1; bodies far slower than it (the springs' elastic give, below
+// kCollapseFraction of it) at rest.
+constexpr double kCollapseFraction = 1e-3;
+
+std::vector<Vector6> CollapseMotion(const ContactLcp& lcp, const LoadedFromRest& loaded) {
+  std::vector<Vector6> nu = loaded.displacement;
+  double fastest = 0;
+  std::vector<double> speed(nu.size(), 0.0);
+  for (size_t b = 0; b < nu.size(); ++b) {
+    const double r = std::sqrt(lcp.bodies[b].inertia.trace() / (2.0 * lcp.bodies[b].mass));
+    speed[b] = nu[b].head<3>().norm() + r * nu[b].tail<3>().norm();
+    fastest = std::max(fastest, speed[b]);
+  }
+  for (size_t b = 0; b < nu.size(); ++b)
+    nu[b] = fastest > 0 && speed[b] > kCollapseFraction * fastest ? Vector6(nu[b] / fastest)
+                                                                  : Vector6::Zero();
+  return nu;
+}
+
+// The bodies of `lcp` that give way when loaded from rest with every other
+// body held where it is (local indices).
+std::vector<int> PartsThatGiveWayAlone(const ContactLcp& lcp) {
+  std::vector<int> out;
+  for (size_t k = 0; k < lcp.bodies.size(); ++k) {
+    if (lcp.bodies[k].motion != BodyMotion::kFree) continue;
+    std::vector<BodyDynamics> bodies = lcp.bodies;
+    for (size_t b = 0; b < bodies.size(); ++b) {
+      if (b == k || bodies[b].motion != BodyMotion::kFree) continue;
+      bodies[b].motion = BodyMotion::kPrescribed;
+      bodies[b].nu_prescribed.setZero();
+    }
+    LcpBuildOptions build = lcp.build;
+    build.use_gaps = false;
+    build.storage = LcpStorage::kDense;
+    const ContactLcp alone = BuildContactLcp(std::move(bodies), lcp.contacts, build);
+    if (LoadFromRest(alone).outcome == LoadedFromRest::Outcome::kGivesWay)
+      out.push_back(static_cast<int>(k));
+  }
+  return out;
+}
+
+// It gives way, and neither the rigid probe nor the collapse step says how:
+// the parts that give way even with every other part held, and how they
+// move with the others held (a verified solution of that LCP).
+void ExplainByPartsThatGiveWay(const ContactLcp& lcp, const SolveContext& ctx,
+                               ComponentSolution& out) {
+  const std::vector<int> alone = PartsThatGiveWayAlone(lcp);
+  if (alone.empty()) {
+    out.notes.push_back(
+        "no part gives way alone, and the collapse step failed: how it moves "
+        "is not known");
+    return;
+  }
+  std::vector<char> free(lcp.bodies.size(), 0);
+  for (int b : alone) free[b] = 1;
+  SolveWithOthersHeld(lcp, ctx, free, out);
+  if (out.has_solution) {
+    out.decided_by = DecidedBy::kLoadedFromRest;
+    out.notes.push_back("the parts that give way even with the others held, with the others held");
+  }
+}
+
+// An equilibrium exists and strong stability is not proved: the rule decides
+// (VerdictRule). `lemke`/`moves`: the probe solved the LCP, and moves a part.
+void DecideOpenCase(const ContactLcp& lcp, const SolveContext& ctx, bool lemke, bool moves,
+                    ComponentSolution& out) {
+  // A rigid solution at rest for the report: Lemke's, else the equilibrium's.
+  const auto stand = [&](DecidedBy by) {
+    if ((lemke && !moves && Accept(lcp, out.lemke.z, ctx.lemke, by, out)) ||
+        AcceptEquilibrium(lcp, ctx, out))
+      out.decided_by = by;
+  };
+  if (ctx.rule == VerdictRule::kEquilibrium) {
+    out.notes.push_back("an equilibrium exists: it stands by the equilibrium rule");
+    stand(lemke && !moves ? DecidedBy::kLemke : DecidedBy::kEquilibrium);
+    return;
+  }
+  out.loaded = LoadFromRest(lcp);
+  const LoadedFromRest& loaded = *out.loaded;
+  switch (loaded.outcome) {
+    case LoadedFromRest::Outcome::kStands:
+      out.notes.push_back("it stands when loaded from rest on compliant contacts");
+      stand(DecidedBy::kLoadedFromRest);
+      return;
+    case LoadedFromRest::Outcome::kGivesWay:
+      out.notes.push_back("it gives way when loaded from rest on compliant contacts");
+      if (moves && Accept(lcp, out.lemke.z, ctx.lemke, DecidedBy::kLoadedFromRest, out)) return;
+      if (!loaded.displacement.empty()) {
+        out.decided_by = DecidedBy::kLoadedFromRest;
+        out.collapse = CollapseMotion(lcp, loaded);
+        return;
+      }
+      ExplainByPartsThatGiveWay(lcp, ctx, out);
+      return;
+    case LoadedFromRest::Outcome::kNotRun:
+    case LoadedFromRest::Outcome::kFailed:
+      out.notes.push_back("loaded from rest: " + std::string(to_string(loaded.outcome)) + " (" +
+                          loaded.message + "); the equilibrium decides");
+      stand(lemke && !moves ? DecidedBy::kLemke : DecidedBy::kEquilibrium);
+      return;
+  }
+}
+
 // The static policy (file comment of the header, "From rest").
 void SolveFromRest(const ContactLcp& lcp, const SolveContext& ctx, ComponentSolution& out) {
   // 1. Can the parts stand at all?
@@ -251,17 +362,28 @@ void SolveFromRest(const ContactLcp& lcp, const SolveContext& ctx, ComponentSolu
     RunLemke(lcp, ctx, ProbePivots(lcp), out);
     const bool lemke = Solved(out.lemke);
     const bool moves = lemke && ctx.moves && ctx.moves(lcp, out.lemke.z);
-    if (lemke && moves && strong)
-      out.notes.push_back(
-          "Lemke's method found motion below the certificate's resolution; rest is guaranteed");
-    if (lemke && (!moves || !strong)) {
-      Accept(lcp, out.lemke.z, ctx.lemke, DecidedBy::kLemke, out);
-      out.stability = moves ? StabilityProof::kWeak
-                            : (strong ? StabilityProof::kStrong : StabilityProof::kNotCertified);
+    if (strong) {
+      if (lemke && moves)
+        out.notes.push_back(
+            "Lemke's method found motion below the certificate's resolution; rest is guaranteed");
+      if ((lemke && !moves && Accept(lcp, out.lemke.z, ctx.lemke, DecidedBy::kLemke, out)) ||
+          AcceptEquilibrium(lcp, ctx, out))
+        out.stability = StabilityProof::kStrong;
       return;
     }
-    if (AcceptEquilibrium(lcp, ctx, out))
-      out.stability = strong ? StabilityProof::kStrong : StabilityProof::kNotCertified;
+    // Rigid bodies leave it open: rest is possible, not guaranteed.
+    if (moves) {
+      out.stability = StabilityProof::kWeak;
+      const ContactSolution probe = RecoverSolution(lcp, out.lemke.z);
+      double fastest = 0;
+      for (const Vector6& nu : probe.body_motion) fastest = std::max(fastest, nu.norm());
+      for (size_t b = 0; b < lcp.bodies.size(); ++b)
+        if (probe.body_motion[b].norm() > kCollapseFraction * fastest)
+          out.rigid_motion.push_back(static_cast<int>(b));
+    } else {
+      out.stability = StabilityProof::kNotCertified;
+    }
+    DecideOpenCase(lcp, ctx, lemke, moves, out);
     return;
   }
 

@@ -290,8 +290,11 @@ TEST(CompasCheck, HFrameIsHeldOnlyByJamming) {
   EXPECT_EQ(doc["weakly_stable"], true);
   EXPECT_EQ(doc["stability"], "weak");  // rest possible, motion found: jamming
   EXPECT_EQ(doc["moving"], json({"2"}));
+  EXPECT_EQ(doc["loaded_from_rest"], "gives way");
   const CliRun text = Cairn("check " + file + " --format compas --friction 0.84 --supports 0,1");
   EXPECT_THAT(text.out, HasSubstr("WEAKLY STABLE"));
+  EXPECT_THAT(text.out, HasSubstr("falls: an equilibrium exists, but loaded from rest on "
+                                  "compliant contacts 2 gives way"));
 }
 
 // The A frame: the crossbar's sides face outward and up, so moving down opens
@@ -965,7 +968,8 @@ TEST_P(EveryFriction, AVerdictWithItsEvidence) {
     for (const json& c : doc["components"]) EXPECT_NE(c["decided_by"], "undecided");
     if (doc["verdict"] == "stable") {
       EXPECT_EQ(r.exit_code, 0);
-      EXPECT_TRUE(doc["stability"] == "strong" || doc["stability"] == "not certified")
+      EXPECT_TRUE(doc["stability"] == "strong" || doc["stability"] == "not certified" ||
+                  doc["stability"] == "weak")
           << doc["stability"];
       EXPECT_EQ(doc["moving"], json::array());
       ExpectEveryBlockBalanced(doc);
@@ -1019,6 +1023,255 @@ INSTANTIATE_TEST_SUITE_P(
         if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
       return name;
     });
+
+// ---- One answer per assembly: monotone in μ ---------------------------------
+
+// More friction cannot make an assembly fall: on a grid of 20 values of μ from
+// 0.05 to 2, once a model stands it stands at every larger μ (issue 32).
+// Where rigid bodies leave the answer open (an equilibrium and a motion),
+// loading from rest decides, so the verdict no longer follows whichever
+// solution Lemke's method meets first.
+constexpr double kFrictionGrid[] = {0.05, 0.15, 0.25, 0.35, 0.45, 0.55, 0.6, 0.65, 0.7, 0.75,
+                                    0.8,  0.84, 0.85, 0.9,  0.95, 1.0,  1.1, 1.25, 1.5, 2.0};
+
+struct MonotoneCase {
+  const char* file;   // under ../shared/datasets (COMPAS), or examples/ when `example`
+  const char* model;  // extra options
+  bool example = false;
+};
+
+void PrintTo(const MonotoneCase& c, std::ostream* os) { *os << c.file << " " << c.model; }
+
+class FrictionMonotone : public ::testing::TestWithParam<MonotoneCase> {};
+
+TEST_P(FrictionMonotone, OnceItStandsItStandsAtEveryLargerMu) {
+  const MonotoneCase& c = GetParam();
+  std::string file;
+  if (c.example) {
+    file = ExamplePath(c.file);
+  } else {
+    SHARED_OR_SKIP(shared, c.file);
+    file = shared;
+  }
+  std::string verdicts;
+  double stands_from = -1;
+  for (const double mu : kFrictionGrid) {
+    const CliRun r = c.example ? Cairn("check " + file + " --friction " + std::to_string(mu) + " " +
+                                       c.model + " --json")
+                               : CheckCompas(file, mu, c.model);
+    ASSERT_TRUE(r.exit_code == 0 || r.exit_code == 1) << "mu " << mu << ": " << r.err;
+    const bool stands = r.exit_code == 0;
+    verdicts += stands ? 'S' : 'F';
+    if (stands && stands_from < 0) stands_from = mu;
+    if (!stands) {
+      EXPECT_LT(stands_from, 0) << "falls at mu " << mu << " after standing at " << stands_from
+                                << ": " << verdicts;
+    }
+  }
+  RecordProperty("verdicts", verdicts);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Shared, FrictionMonotone,
+    ::testing::Values(MonotoneCase{"compas_assembly/arch_assembly.json", ""},
+                      MonotoneCase{"compas_assembly/stack_assembly.json", ""},
+                      MonotoneCase{"compas_assembly/two-blocks_assembly.json", ""},
+                      MonotoneCase{"compas_assembly/wall_assembly.json", ""},
+                      MonotoneCase{"compas_cra/A.json", "--supports 0,1"},
+                      MonotoneCase{"compas_cra/H.json", "--supports 0,1"},
+                      MonotoneCase{"compas_cra/cubes.json", "--supports 0"},
+                      MonotoneCase{"compas_cra/type-a.json", "--supports 0,1"},
+                      MonotoneCase{"compas_cra/type-b.json", "--supports 0,1"},
+                      MonotoneCase{"compas_cra/type-c.json", "--supports 0,1"},
+                      MonotoneCase{"compas_cra/type-d.json", "--supports 0,1"},
+                      MonotoneCase{"compas_cra/concave-short.json", "--supports 0"},
+                      MonotoneCase{"compas_cra/concave-long.json", "--supports 0"},
+                      MonotoneCase{"compas_cra/cube-curve-short.json", "--supports 0"},
+                      // (shelf, shelf-s1, -s2, -s3 and the bridge take 1–2 minutes
+                      // each under the sanitizers: their 20-point sweeps are
+                      // bench/compas_sweep.sh's, recorded in docs/loaded-from-rest.md.)
+                      MonotoneCase{"compas_cra/shelf-stable.json", "--supports 0"},
+                      MonotoneCase{"compas_cra/snake.json", "--supports 0"}),
+    [](const ::testing::TestParamInfo<MonotoneCase>& param_info) {
+      std::string name = param_info.param.file;
+      for (char& ch : name)
+        if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
+      return name;
+    });
+
+INSTANTIATE_TEST_SUITE_P(
+    Examples, FrictionMonotone,
+    ::testing::Values(
+        MonotoneCase{"incline.json", "", true}, MonotoneCase{"incline_slides.json", "", true},
+        MonotoneCase{"ladder.json", "", true}, MonotoneCase{"flush_joint.json", "", true},
+        MonotoneCase{"flush_joint_wall.json", "", true}, MonotoneCase{"l_shapes.json", "", true},
+        MonotoneCase{"overhang.json", "", true}, MonotoneCase{"paper_fig1.json", "", true},
+        MonotoneCase{"paper_fig4.json", "", true}, MonotoneCase{"paper_fig6.json", "", true},
+        MonotoneCase{"paper_fig14.json", "", true}, MonotoneCase{"paper_fig19.json", "", true},
+        MonotoneCase{"peg_in_slot.json", "", true}, MonotoneCase{"pyramid10.json", "", true},
+        MonotoneCase{"stack3.json", "", true}, MonotoneCase{"wall.json", "", true},
+        MonotoneCase{"jenga.json", "", true}),
+    [](const ::testing::TestParamInfo<MonotoneCase>& param_info) {
+      std::string name = param_info.param.file;
+      for (char& ch : name)
+        if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
+      return name;
+    });
+
+// `cairn margin --friction` gives the threshold of the check's verdict: the
+// check stands just above it and falls just below it (and below the
+// equilibrium's μ*, which is at most it).
+TEST(CompasCheck, MarginsVerdictThresholdSplitsTheChecks) {
+  for (const auto& [rel, supports] : std::vector<std::pair<std::string, std::string>>{
+           {"compas_cra/snake.json", "0"}, {"compas_cra/A.json", "0,1"}}) {
+    SCOPED_TRACE(rel);
+    SHARED_OR_SKIP(file, rel);
+    const CliRun m = Cairn("margin " + file + " --format compas --supports " + supports +
+                           " --friction 0.84 --json");
+    ASSERT_TRUE(m.exit_code == 0 || m.exit_code == 1) << m.err;
+    const json margin = Doc(m)["margin"];
+    ASSERT_TRUE(margin.contains("verdict_critical")) << margin.dump();
+    const double eq = margin["critical"].get<double>();
+    if (margin["verdict_critical"].is_null()) {  // never stands up to the search's end
+      const double top = margin["verdict_searched_to"].get<double>();
+      EXPECT_EQ(CheckCompas(file, top, "--supports " + supports).exit_code, 1);
+      continue;
+    }
+    const double v = margin["verdict_critical"].get<double>();
+    const double tol = margin["verdict_tolerance"].get<double>();
+    EXPECT_GE(v, eq * (1 - 1e-9));
+    EXPECT_EQ(CheckCompas(file, v * (1 + 1e-3), "--supports " + supports).exit_code, 0) << v;
+    EXPECT_EQ(CheckCompas(file, (v - tol) * (1 - 1e-3), "--supports " + supports).exit_code, 1)
+        << v;
+  }
+}
+
+// Permuting and renaming the blocks of a file changes no verdict, no proof
+// and no reported motion beyond the renaming: the LCP lists its bodies and
+// contacts in a canonical order of the geometry (stability/analyze.cpp,
+// CanonicalRanks) and the contacts are computed from the same side
+// (contact/detect_contacts.cpp), so every solver sees the same problem.
+TEST(CompasCheck, PermutingAndRenamingTheBlocksChangesNoAnswer) {
+  struct Case {
+    const char* file;
+    std::vector<std::string> supports;
+  };
+  for (const Case& c :
+       {Case{"compas_cra/shelf-stable.json", {"0"}}, Case{"compas_cra/snake.json", {"0"}},
+        Case{"compas_cra/A.json", {"0", "1"}}}) {
+    SCOPED_TRACE(c.file);
+    SHARED_OR_SKIP(file, c.file);
+    json doc = json::parse(std::ifstream(file));
+    json& graph = doc["data"]["graph"]["data"];
+    // New names: the keys reversed and offset (a block keeps its geometry).
+    std::vector<std::string> keys;
+    for (const auto& [k, v] : graph["node"].items()) keys.push_back(k);
+    std::map<std::string, std::string> rename, back;
+    for (size_t i = 0; i < keys.size(); ++i) {
+      rename[keys[i]] = std::to_string(100 + keys.size() - i);
+      back[rename[keys[i]]] = keys[i];
+    }
+    json nodes = json::object(), edges = json::object();
+    for (auto it = keys.rbegin(); it != keys.rend(); ++it) nodes[rename[*it]] = graph["node"][*it];
+    for (const auto& [u, vs] : graph["edge"].items())
+      for (const auto& [v, e] : vs.items()) edges[rename[u]][rename[v]] = e;
+    graph["node"] = nodes;
+    graph["edge"] = edges;
+    const std::string permuted = WriteFile("permuted.json", doc.dump());
+    std::string supports, renamed_supports;
+    for (const std::string& k : c.supports) {
+      supports += (supports.empty() ? "" : ",") + k;
+      renamed_supports += (renamed_supports.empty() ? "" : ",") + rename[k];
+    }
+    for (const double mu : {0.25, 0.55, 0.9}) {
+      const json a = Doc(CheckCompas(file, mu, "--supports " + supports));
+      const json b = Doc(CheckCompas(permuted, mu, "--supports " + renamed_supports));
+      EXPECT_EQ(a["stable"], b["stable"]) << "mu " << mu;
+      EXPECT_EQ(a["stability"], b["stability"]) << "mu " << mu;
+      std::map<std::string, std::string> motion_a, motion_b;
+      for (const json& p : a["parts"])
+        if (p.value("moving", false)) motion_a[p["name"]] = p["motion"];
+      for (const json& p : b["parts"])
+        if (p.value("moving", false)) motion_b[back[p["name"]]] = p["motion"];
+      EXPECT_EQ(motion_a, motion_b) << "mu " << mu;
+    }
+  }
+}
+
+// The outcomes of the CRA paper (Kao et al. 2022) that loading from rest
+// reproduces: the H and A frames fall at μ 0.84 although an equilibrium
+// exists (the squeeze nothing produces), the snake stands at 0.7; and the
+// shelf, which the paper shows standing at 0.9, falls: its strut 9 tips off
+// the inclined face of strut 5 (its centroid is outside that face's lower
+// edge, and tipping lowers its top away from the frame's beam, so the beam
+// never presses it down: docs/loaded-from-rest.md). `--rule equilibrium`
+// gives the rigid-block-equilibrium answer: all four stand.
+TEST(CompasCheck, TheCraOutcomesLoadedFromRest) {
+  struct Case {
+    const char* file;
+    const char* supports;
+    double mu;
+    int exit_code;
+    const char* loaded;  // loaded_from_rest
+  };
+  for (const Case& c : {Case{"compas_cra/H.json", "0,1", 0.84, 1, "gives way"},
+                        Case{"compas_cra/A.json", "0,1", 0.84, 1, "gives way"},
+                        Case{"compas_cra/snake.json", "0", 0.7, 0, "stands"},
+                        Case{"compas_cra/shelf.json", "0", 0.9, 1, "gives way"}}) {
+    SCOPED_TRACE(c.file);
+    SHARED_OR_SKIP(file, c.file);
+    const std::string supports = std::string("--supports ") + c.supports;
+    const CliRun r = CheckCompas(file, c.mu, supports);
+    ASSERT_EQ(r.exit_code, c.exit_code) << r.err << r.out.substr(0, 800);
+    const json doc = Doc(r);
+    EXPECT_EQ(doc["rule"], "loaded-from-rest");
+    EXPECT_EQ(doc["static_equilibrium"], true);
+    EXPECT_EQ(doc["loaded_from_rest"], c.loaded);
+    EXPECT_NE(doc["stability"], "strong");
+    if (c.exit_code == 1) {
+      EXPECT_FALSE(doc["moving"].empty());
+    }
+    // The rigid-block-equilibrium rule: it stands, and strong stability is not
+    // proved, so --require strong exits 3.
+    const CliRun rbe = CheckCompas(file, c.mu, supports + " --rule equilibrium");
+    EXPECT_EQ(rbe.exit_code, 0) << rbe.err;
+    EXPECT_EQ(Doc(rbe)["rule"], "equilibrium");
+    EXPECT_EQ(CheckCompas(file, c.mu, supports + " --rule equilibrium --require strong").exit_code,
+              3);
+  }
+  // Strut 9 alone, every other part held: it gives way. (At μ 0.9 Lemke's
+  // method fails on this one's loaded-from-rest LCP in both forms, and the
+  // equilibrium decides: the component's message says so.)
+  SHARED_OR_SKIP(shelf, "compas_cra/shelf.json");
+  for (const double mu : {1.0, 2.0, 5.0}) {
+    const CliRun r = CheckCompas(shelf, mu, "--supports 0,1,2,3,4,5,6,7,8,10");
+    ASSERT_EQ(r.exit_code, 1) << r.err;
+    EXPECT_EQ(Doc(r)["moving"], json({"9"})) << "mu " << mu;
+  }
+  // The bridge with its weights (blocks 11–15) of density 3.51, as the CRA
+  // example script makes them (a sidecar gives the densities): it stands at
+  // μ 0.9, loaded from rest.
+  SHARED_OR_SKIP(bridge, "compas_cra/bridge.json");
+  const std::string sidecar =
+      WriteFile("bridge_weights.json",
+                R"({"cairn_sidecar": 1, "parts": {"11": {"density": 3.51}, "12": {"density": 3.51},
+          "13": {"density": 3.51}, "14": {"density": 3.51}, "15": {"density": 3.51}}})");
+  const CliRun heavy = CheckCompas(bridge, 0.9, "--supports 0,1 --sidecar " + sidecar);
+  ASSERT_EQ(heavy.exit_code, 0) << heavy.err;
+  const json heavy_doc = Doc(heavy);
+  EXPECT_EQ(heavy_doc["loaded_from_rest"], "stands");
+  const json light = Doc(CheckCompas(bridge, 0.9, "--supports 0,1"));
+  double heavy_mass = 0, light_mass = 0;
+  for (const json& p : heavy_doc["parts"])
+    if (p["name"] == "11") heavy_mass = p["mass"].get<double>();
+  for (const json& p : light["parts"])
+    if (p["name"] == "11") light_mass = p["mass"].get<double>();
+  EXPECT_NEAR(heavy_mass, 3.51 * light_mass, 1e-9);
+  EXPECT_GT(light_mass, 0);
+  // A model that is strongly stable passes --require strong.
+  SHARED_OR_SKIP(cubes, "compas_cra/cubes.json");
+  EXPECT_EQ(CheckCompas(cubes, 0.84, "--supports 0 --require strong").exit_code, 0);
+}
 
 }  // namespace
 }  // namespace cairn

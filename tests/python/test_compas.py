@@ -143,3 +143,19 @@ def test_from_compas_takes_the_assembly_object():
     by_object = cairn.check(cairn.from_compas(assembly, friction=0.84), without=[7, 8, 9])
     by_dict = cairn.check(cairn.from_compas(data, friction=0.84), without=[7, 8, 9])
     assert by_object["contacts"] == by_dict["contacts"] and by_object["stable"]
+
+
+def test_the_rule_decides_what_rigid_bodies_leave_open():
+    # The H frame: an equilibrium exists (a squeeze), and loaded from rest on
+    # compliant contacts the bar slides down (docs/loaded-from-rest.md).
+    m = cairn.load(shared_file("compas_cra/H.json"), format="compas", friction=0.84,
+                   supports=[0, 1])
+    loaded = cairn.check(m)
+    assert not loaded["stable"] and loaded["moving"] == ["2"]
+    assert loaded["rule"] == "loaded-from-rest"
+    assert loaded["loaded_from_rest"] == "gives way"
+    assert loaded["static_equilibrium"] is True
+    rbe = cairn.check(m, rule="equilibrium")
+    assert rbe["stable"] and rbe["rule"] == "equilibrium" and rbe["stability"] != "strong"
+    with pytest.raises(cairn.InputError, match="rule"):
+        cairn.check(m, rule="rbe")

@@ -43,7 +43,18 @@ TEST(StabilityProof, ABlockHeldByFrictionIsNotCertified) {
   EXPECT_EQ(r.stability, StabilityProof::kNotCertified);
   ASSERT_EQ(r.components.size(), 1u);
   EXPECT_EQ(r.components[0].frictionless_equilibrium, std::optional<bool>(false));
-  EXPECT_EQ(r.components[0].decided_by, DecidedBy::kLemke);
+  // Rigid bodies leave it open (no certificate): loading from rest decides,
+  // and the forces reported are Lemke's rest solution.
+  EXPECT_EQ(r.components[0].decided_by, DecidedBy::kLoadedFromRest);
+  EXPECT_EQ(r.loaded_from_rest, LoadedFromRest::Outcome::kStands);
+  // The rigid-block-equilibrium rule: an equilibrium is enough.
+  StabilityOptions rbe;
+  rbe.rule = VerdictRule::kEquilibrium;
+  const Assembly a = Assembly::Create(BlockOnIncline(20 * kOneDegree, 0.5), "incline");
+  const StabilityResult e = AnalyzeConfiguration(a, Configuration::Assembled(a), rbe);
+  EXPECT_TRUE(e.stable());
+  EXPECT_EQ(e.components[0].decided_by, DecidedBy::kLemke);
+  EXPECT_FALSE(e.loaded_from_rest.has_value());
 }
 
 TEST(StabilityProof, JammingIsWeakAndNoEquilibriumIsNone) {

@@ -21,6 +21,9 @@ inline constexpr int kExitStable = 0;
 inline constexpr int kExitUnstable = 1;
 inline constexpr int kExitBadInput = 2;
 inline constexpr int kExitInfeasible = 3;
+/// `--require strong`: it stands, but strong stability is not proved (the same
+/// code as `simulate`'s infeasible step: a requirement the answer does not meet).
+inline constexpr int kExitNotStrong = 3;
 /// A defect of Cairn's (an exception that is not bad input, a solver that
 /// failed): reported as an internal error, never a crash.
 inline constexpr int kExitInternalError = 4;

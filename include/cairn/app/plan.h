@@ -26,6 +26,9 @@ struct PlanQuery {
   bool dot = false;                 ///< also the --dot graph
   bool emit_plans = false;          ///< also the --emit-plans files
   bool page = false;                ///< also the result page
+  /// --rule: where rigid bodies leave a node check open.
+  VerdictRule rule = VerdictRule::kLoadedFromRest;
+  bool require_strong = false;  ///< --require strong: states not proved strong are not stable
   std::uint64_t max_input_size = kDefaultMaxInputSize;  ///< the paths file's largest size
   /// Runs the node checks and edges; null: this process's threads (the
   /// CLI passes its MPI executor under mpirun).

@@ -10,6 +10,7 @@
 #include "cairn/app/model.h"
 #include "cairn/geometry/plan.h"
 #include "cairn/io/input_file.h"
+#include "cairn/stability/solve_component.h"
 
 namespace cairn::app {
 
@@ -31,11 +32,17 @@ struct SimulateQuery {
   bool timeline = false;                                ///< also the --timeline CSV
   bool page = false;                                    ///< also the result page
   std::uint64_t max_input_size = kDefaultMaxInputSize;  ///< the plan file's largest size
+  /// --rule: where rigid bodies leave a static check open.
+  VerdictRule rule = VerdictRule::kLoadedFromRest;
+  /// --require strong: exit kExitNotStrong when every step stands but some
+  /// configuration checked from rest is not proved strongly stable.
+  bool require_strong = false;
 };
 
 /// The plan run on `model`: exit 0 stable, 1 unstable or unsupported, 3
-/// infeasible. `monitor` is polled at every time step and told the step and
-/// time step. @throws InputError on bad input (the plan file, a part name).
+/// infeasible, or (--require strong) stable without strong stability proved. `monitor` is polled at
+/// every time step and told the step and time step. @throws InputError on bad input (the plan file,
+/// a part name).
 CommandResult SimulateDocument(const Model& model, const SimulateQuery& query,
                                const Monitor& monitor = {});
 

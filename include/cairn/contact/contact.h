@@ -61,6 +61,11 @@ struct Contact {
   Vector3 t_W() const { return {-n_W.y(), n_W.x(), 0.0}; }
 };
 
+/// The contact `c` seen from its other side: a and b, their features and the
+/// normal swapped (the same contact: its force on the new a is minus the old
+/// one's on the old a).
+Contact FlippedContact(Contact c);
+
 /// An orthonormal basis (t1, t2) of the plane normal to the unit vector n, with
 /// t1 × t2 = n, chosen by a fixed rule (deterministic, continuous wherever
 /// n is not parallel to the world axis the rule switches on): t1 = the

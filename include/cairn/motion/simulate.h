@@ -110,6 +110,10 @@ struct SimulationResult {
   std::optional<MotionFailure> failure;  ///< the first failure
   std::vector<TimelineRow> timeline;     ///< when asked for
   std::string diagnostics;               ///< solver trouble, if any
+  /// Every configuration checked from rest (each step's tick 0) is proved
+  /// strongly stable: no component left "weak" or "not certified"
+  /// (`--require strong`).
+  bool rest_strong = true;
 };
 
 /// One analysis SimulatePlan is about to make (for benchmarks that replay a
@@ -142,6 +146,9 @@ struct SimulationOptions {
   /// subassembly (a node of the planner's AND/OR graph). Default: none.
   std::vector<int> absent;
   LemkeParameters lemke;
+  /// The static checks' rule where rigid bodies leave the answer open
+  /// (stability/solve_component.h).
+  VerdictRule rule = VerdictRule::kLoadedFromRest;
   /// Called before every AnalyzeConfiguration, in order (may be empty).
   std::function<void(const AnalysisInputs&)> on_analysis;
 };

@@ -89,6 +89,11 @@ class PlanExecutor {
 
 /// Options of PlanDisassembly.
 struct PlannerOptions {
+  /// The node checks' and paths' rule where rigid bodies leave a static check
+  /// open (stability/solve_component.h).
+  VerdictRule rule = VerdictRule::kLoadedFromRest;
+  /// A state is stable only when strong stability is proved (--require strong).
+  bool require_strong = false;
   /// Stop after this many stable sequences (best-first search); 0: enumerate
   /// the whole graph and list every stable sequence.
   int max_sequences = 0;

@@ -141,6 +141,17 @@ struct ComponentReport {
   /// power along it (force · length/s for a unit-speed motion).
   std::vector<int> mechanism_parts;
   double mechanism_power = 0;
+  /// The component loaded from rest on compliant contacts, when rigid bodies
+  /// left its answer open (static checks with the loaded-from-rest rule).
+  std::optional<LoadedFromRest::Outcome> loaded_from_rest;
+  /// Its forces' imbalance: the largest over the parts of the force the
+  /// contacts leave unbalanced, as a fraction of the part's weight; and the
+  /// parts above the tolerance (those that give way), part indices.
+  double loaded_unbalanced = 0;
+  std::vector<int> loaded_gives_way;
+  /// The parts a rigid solution of the LCP moves although the verdict may be
+  /// that they stand (weak stability's evidence), part indices.
+  std::vector<int> rigid_motion_parts;
 };
 
 /// The overall answer.
@@ -188,6 +199,13 @@ struct StabilityResult {
   /// but not proved impossible; kNone, unstable with no equilibrium (or along
   /// paths, where it is not examined).
   StabilityProof stability = StabilityProof::kNone;
+  /// The rule of the static check (StabilityOptions::rule).
+  VerdictRule rule = VerdictRule::kLoadedFromRest;
+  /// Static checks: whether loading from rest decided (kStands, kGivesWay) a
+  /// component, or was beyond its budget or failed (kNotRun, kFailed: the
+  /// equilibrium decided); the least favourable over the components (gives
+  /// way, then failed, not run, stands). Empty: no component needed it.
+  std::optional<LoadedFromRest::Outcome> loaded_from_rest;
 };
 
 /// How the gripper drives the parts of one configuration (motion stage). Every
@@ -253,6 +271,9 @@ struct StabilityOptions {
   /// components fails); this asks whether the parts can stay put (weak
   /// stability). Off: Lemke's method only, as in 2-D.
   bool rest_first = true;
+  /// Static checks: the rule where rigid bodies leave the answer open
+  /// (stability/solve_component.h).
+  VerdictRule rule = VerdictRule::kLoadedFromRest;
 };
 
 /// The contact LCP of every contact-graph component of `config`: the first

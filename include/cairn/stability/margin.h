@@ -127,6 +127,17 @@ struct MarginResult {
   /// kFriction: every component has a frictionless equilibrium (strongly
   /// stable at every μ); false: the certificate holds at no μ.
   std::optional<bool> strong_all;
+  /// kFriction: the threshold of the verdict (`cairn check`, the
+  /// loaded-from-rest rule: stability/solve_component.h): the least μ (or
+  /// factor) at which the check stands, to `verdict_tolerance` (the final
+  /// bracket). It is at least the equilibrium's `critical`; empty when the
+  /// check stands at no μ up to `verdict_searched_to` (ten times the larger
+  /// of `critical` and the nominal μ).
+  std::optional<double> verdict_critical;
+  double verdict_searched_to = 0;
+  double verdict_tolerance = 0;
+  bool verdict_computed = false;
+  int verdict_checks = 0;  ///< checks made to find it
 };
 
 /// Computes the margin of `config` (see the file comment). `def` is the

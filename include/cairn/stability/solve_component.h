@@ -12,13 +12,17 @@
 ///  2. If an equilibrium exists: the strong-stability certificate (a
 ///     frictionless equilibrium: every LCP solution is then at rest; the proof
 ///     is in static_equilibrium.h), under a work budget; then Lemke's method as
-///     a probe for a moving solution, under a work budget:
-///       - it moves: jamming, `stability` "weak" (rest possible, not
-///         guaranteed; verdict unstable, as Pang and Trinkle's weak stability);
-///       - it rests: its forces are reported; "strong" with the certificate,
-///         else "not certified";
-///       - it fails or runs out of budget: the equilibrium's forces (checked as
-///         an LCP solution at rest) are reported, "strong" or "not certified".
+///     a probe for a moving solution, under a work budget: it moves, `stability`
+///     "weak" (rest possible, not guaranteed: Pang and Trinkle's weak
+///     stability); it rests, "strong" with the certificate, else "not
+///     certified". With the certificate the component stands. Without it
+///     rigid bodies leave the answer open, and the rule decides
+///     (VerdictRule): the component loaded from rest on compliant contacts
+///     (mechanics/loaded_from_rest.h) stands, and the forces reported are a
+///     rigid solution at rest (Lemke's, or the equilibrium's); or it gives
+///     way, and the motion reported is the probe's, or else the loading's
+///     collapse motion. Beyond that analysis's budget, and with the
+///     equilibrium rule, the equilibrium decides: it stands.
 ///  3. If no equilibrium exists, some part must move: Lemke's method gives how.
 ///     If it fails, the mechanism LP names the parts that must move (a virtual
 ///     motion along which gravity does work and no contact resists, checked);
@@ -48,6 +52,7 @@
 
 #include "cairn/lcp/lemke.h"
 #include "cairn/mechanics/contact_model.h"
+#include "cairn/mechanics/loaded_from_rest.h"
 #include "cairn/mechanics/rest_solution.h"
 #include "cairn/mechanics/static_equilibrium.h"
 
@@ -63,11 +68,14 @@ enum class DecidedBy {
   kDrag,            ///< along a path, no rest and no mechanism: the driven parts' neighbours
                     ///< move (their LCP with every other part held at rest)
   kJammed,          ///< the driven motion is blocked: no contact forces allow it (Lemke's ray)
+  kLoadedFromRest,  ///< rigid bodies left it open (an equilibrium and no proof that every
+                    ///< solution rests): the component loaded from rest on compliant contacts
+                    ///< (mechanics/loaded_from_rest.h) decided
   kUndecided,       ///< nothing above could decide (a defect: reported with its reasons)
 };
 
 /// "lemke", "equilibrium", "rest hypothesis", "mechanism", "drag", "jammed",
-/// "undecided".
+/// "loaded from rest", "undecided".
 const char* to_string(DecidedBy d);
 
 /// What is proved about rest.
@@ -81,11 +89,28 @@ enum class StabilityProof {
 /// "none", "strong", "weak", "not certified".
 const char* to_string(StabilityProof s);
 
+/// Which question a static check answers where rigid bodies leave it open
+/// (an equilibrium exists, strong stability is not proved).
+enum class VerdictRule {
+  /// Stands iff it stands when loaded from rest on compliant contacts
+  /// (mechanics/loaded_from_rest.h); where that analysis is beyond its budget,
+  /// the equilibrium decides (and the report says so).
+  kLoadedFromRest,
+  /// Stands iff a static equilibrium exists: the rigid-block-equilibrium
+  /// answer of RBE tools and rigid-block planners.
+  kEquilibrium,
+};
+
+/// "loaded-from-rest", "equilibrium" (the CLI's --rule values).
+const char* to_string(VerdictRule r);
+
 /// What the caller knows of the component's bodies.
 struct SolveContext {
   LemkeParameters lemke;
   /// From rest, nothing driven: the static policy (equilibrium first).
   bool static_check = true;
+  /// The static policy's rule where rigid bodies leave the answer open.
+  VerdictRule rule = VerdictRule::kLoadedFromRest;
   /// Along paths: try the rest hypothesis LP first (3-D, friction, a driven
   /// part, no carried one).
   bool rest_first = false;
@@ -120,6 +145,17 @@ struct ComponentSolution {
   std::optional<StaticEquilibrium> equilibrium;
   std::optional<bool> frictionless_equilibrium;  ///< the certificate, when tried and decided
   std::optional<Mechanism> mechanism;
+  /// The static check where an equilibrium exists and strong stability is not
+  /// proved: the component loaded from rest (with the loaded-from-rest rule).
+  std::optional<LoadedFromRest> loaded;
+  /// When it gives way and the rigid analysis found no motion: the bodies'
+  /// collapse motion from the loading step (its displacements, scaled so the
+  /// fastest body moves by 1: a direction), decided_by kLoadedFromRest.
+  std::vector<Vector6> collapse;
+  /// The rigid LCP's probe found a solution in which a part moves (weak
+  /// stability's evidence), even where the verdict is that it stands; the
+  /// local indices of the bodies it moves.
+  std::vector<int> rigid_motion;
   std::vector<int> held;   ///< local body indices held at rest (mechanism refinement)
   int lp_iterations = 0;   ///< rest-hypothesis LP iterations
   bool rest_none = false;  ///< the rest hypothesis proved no rest exists

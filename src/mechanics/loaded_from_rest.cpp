@@ -1,0 +1,282 @@
+#include "cairn/mechanics/loaded_from_rest.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace cairn {
+
+const char* to_string(LoadedFromRest::Outcome o) {
+  switch (o) {
+    case LoadedFromRest::Outcome::kStands:
+      return "stands";
+    case LoadedFromRest::Outcome::kGivesWay:
+      return "gives way";
+    case LoadedFromRest::Outcome::kNotRun:
+      return "not run";
+    case LoadedFromRest::Outcome::kFailed:
+      return "failed";
+  }
+  return "unknown";
+}
+
+namespace {
+
+// The collapse step's inertia against the contacts' stiffness,
+// m / Δt² = ρ k_n (dimensionless): small, so that a body the springs hold
+// barely moves and one they cannot hold runs away.
+constexpr double kInertiaRatio = 1e-6;
+// The equilibrium's residual a solution may leave, as a fraction of the
+// largest weight (dimensionless): round-off of the pivoting.
+constexpr double kResidualTolerance = 1e-6;
+// In the collapse step, a body moves when its displacement is above this
+// share of the fastest body's (dimensionless): the rest is the springs' give.
+constexpr double kCollapseShare = 1e-3;
+
+// The unknowns of the loaded-from-rest LCP, in order: the free displacement
+// coordinates ξ of every body, then per contact f_n, then per frictional
+// contact its D friction components β, then its slip γ. ξ is free, written
+// either as ξ⁺ − ξ⁻ (both ≥ 0, the equilibrium rows w = ∓Bᵀ(F + Jᵀ z) ≥ 0 as
+// their partners: together equality), or `shifted`, as ξ' − s·1 (ξ' ≥ 0 and
+// one shift s ≥ 0, partnered with w_i = −Bᵀ(F + Jᵀ z)_i ≥ 0 and their negated
+// sum). The first is tried first; Lemke's method can stall on either (pairs
+// of opposite columns, or the shift's dense row), rarely on both.
+struct Layout {
+  std::vector<int> body_offset;  // (nb + 1) into ξ
+  int nxi = 0, nc = 0, nf = 0, D = 0;
+  bool shifted = false;
+  int first() const { return 0; }     // ξ⁺ or ξ'
+  int second() const { return nxi; }  // ξ⁻ (nxi of them) or s (one)
+  int forces() const { return shifted ? nxi + 1 : 2 * nxi; }
+  int normal(int c) const { return forces() + c; }
+  int beta(int f, int k) const { return forces() + nc + D * f + k; }
+  int gamma(int f) const { return forces() + nc + D * nf + f; }
+  int size() const { return forces() + nc + (D + 1) * nf; }
+};
+
+// Adds the row `row` (a linear form on the bodies' (v, ω)) written in the
+// free coordinates ξ at LCP row r (on ξ', and −Σ on s); and its skew
+// transpose in the equilibrium rows: column r of the ξ' rows gets −rowᵀ, of
+// the s row +Σ rowᵀ.
+void AddCoupling(const JacobianRow& row, const std::vector<Eigen::Matrix<double, 6, -1>>& B,
+                 const Layout& L, int r, MatrixX& M) {
+  for (int s = 0; s < 2; ++s) {
+    const int b = row.body[s];
+    if (b < 0) continue;
+    const VectorX g = B[b].transpose() * row.g[s];
+    for (int i = 0; i < g.size(); ++i) {
+      const int x = L.body_offset[b] + i;
+      const int minus = L.shifted ? L.second() : L.second() + x;
+      M(r, L.first() + x) += g[i];
+      M(r, minus) -= g[i];
+      M(L.first() + x, r) -= g[i];
+      M(minus, r) += g[i];
+    }
+  }
+}
+
+// The contacts' reach about their bodies' centroids (length), for the
+// stiffness's scale: the largest |p − c|, at least the smallest positive one
+// the data allow.
+double Reach(const ContactLcp& lcp) {
+  double r = 0;
+  for (const Contact& c : lcp.contacts)
+    for (const BodyDynamics& b : lcp.bodies)
+      if (b.part == c.part_a || b.part == c.part_b) r = std::max(r, (c.p_WC - b.p_WBcm).norm());
+  return r > 0 ? r : 1.0;
+}
+
+// The LCP of the file comment, ξ shifted (Layout).
+void BuildStaticLcp(const ContactLcp& lcp, const std::vector<Eigen::Matrix<double, 6, -1>>& B,
+                    const Layout& L, double kn, double kt, MatrixX& M, VectorX& q) {
+  const int nb = static_cast<int>(lcp.bodies.size());
+  const int n = L.size();
+  M = MatrixX::Zero(n, n);
+  q = VectorX::Zero(n);
+  // Equilibrium rows: w_ξ' = −Bᵀ(F + Jᵀ z) ≥ 0, w_s = Σ Bᵀ(F + Jᵀ z) ≥ 0.
+  for (int b = 0; b < nb; ++b) {
+    const VectorX f = B[b].transpose() * lcp.bodies[b].F_ext;
+    for (int i = 0; i < f.size(); ++i) {
+      q[L.first() + L.body_offset[b] + i] = -f[i];
+      q[L.shifted ? L.second() : L.second() + L.body_offset[b] + i] += f[i];
+    }
+  }
+  // Normal laws: w_n = J_n u + f_n / k_n.
+  for (int c = 0; c < L.nc; ++c) {
+    AddCoupling(lcp.normal_rows[c], B, L, L.normal(c), M);
+    M(L.normal(c), L.normal(c)) = 1.0 / kn;
+  }
+  // Tangential laws: w_β = J_D u + GᵀG β / k_t + E γ, w_γ = μ f_n − Eᵀ β.
+  for (int c = 0; c < L.nc; ++c) {
+    const int f = L.nf > 0 ? lcp.friction_of[c] : -1;
+    if (f < 0) continue;
+    for (int k = 0; k < L.D; ++k) {
+      const int r = L.beta(f, k);
+      AddCoupling(lcp.direction_rows[L.D * f + k], B, L, r, M);
+      const Vector3& dk = lcp.friction_directions[L.D * f + k];
+      for (int j = 0; j < L.D; ++j)
+        M(r, L.beta(f, j)) = dk.dot(lcp.friction_directions[L.D * f + j]) / kt;
+      M(r, L.gamma(f)) = 1.0;
+      M(L.gamma(f), r) = -1.0;
+    }
+    M(L.gamma(f), L.normal(c)) = lcp.contacts[c].mu;
+  }
+}
+
+// The forces, slips and displacements of a solution z, and the equilibrium's
+// residual (force units).
+void ReadState(const ContactLcp& lcp, const std::vector<Eigen::Matrix<double, 6, -1>>& B,
+               const Layout& L, const VectorX& z, LoadedFromRest& out) {
+  const int nb = static_cast<int>(lcp.bodies.size());
+  out.normal_force = VectorX::Zero(L.nc);
+  out.friction_force.assign(L.nc, Vector3::Zero());
+  out.slipping.assign(L.nc, false);
+  std::vector<Vector6> wrench(nb, Vector6::Zero());
+  for (int b = 0; b < nb; ++b) wrench[b] = lcp.bodies[b].F_ext;
+  const auto apply = [&](const JacobianRow& row, double x) {
+    for (int s = 0; s < 2; ++s)
+      if (row.body[s] >= 0) wrench[row.body[s]] += x * row.g[s];
+  };
+  for (int c = 0; c < L.nc; ++c) {
+    out.normal_force[c] = std::max(0.0, z[L.normal(c)]);
+    apply(lcp.normal_rows[c], out.normal_force[c]);
+    const int f = L.nf > 0 ? lcp.friction_of[c] : -1;
+    if (f < 0) continue;
+    for (int k = 0; k < L.D; ++k) {
+      const double beta = std::max(0.0, z[L.beta(f, k)]);
+      out.friction_force[c] += beta * lcp.friction_directions[L.D * f + k];
+      apply(lcp.direction_rows[L.D * f + k], beta);
+    }
+    out.slipping[c] = z[L.gamma(f)] > 0;
+  }
+  out.displacement.assign(nb, Vector6::Zero());
+  out.unbalanced.assign(nb, 0.0);
+  for (int b = 0; b < nb; ++b) {
+    const int k = static_cast<int>(B[b].cols());
+    const VectorX minus = L.shifted ? VectorX::Constant(k, z[L.second()])
+                                    : VectorX(z.segment(L.second() + L.body_offset[b], k));
+    out.displacement[b] = B[b] * (z.segment(L.first() + L.body_offset[b], k) - minus);
+    const double w = std::max(lcp.bodies[b].F_ext.head<3>().norm(), 1e-300);
+    out.unbalanced[b] = (B[b].transpose() * wrench[b]).lpNorm<Eigen::Infinity>() / w;
+    out.equilibrium_residual = std::max(out.equilibrium_residual, out.unbalanced[b]);
+  }
+}
+
+// How a component that gives way moves: one implicit Stewart–Trinkle step
+// from rest with the compliant contacts and almost no inertia (m / Δt² =
+// ρ k_n, Δt = 1): bodies the springs hold barely move, the others run away.
+// Their displacements (ν⁺ Δt), or empty when Lemke's method fails on it.
+std::vector<Vector6> CollapseStep(const ContactLcp& lcp, double kn, double kt,
+                                  const LemkeParameters& lemke) {
+  const int nc = static_cast<int>(lcp.contacts.size());
+  // The step: bodies whose inertia is kInertiaRatio of the contact stiffness
+  // (m / Δt² = ρ k_n, Δt = 1 s), from rest.
+  std::vector<BodyDynamics> bodies = lcp.bodies;
+  for (BodyDynamics& b : bodies) {
+    const double s = kInertiaRatio * kn / b.mass;
+    b.mass *= s;
+    b.inertia *= s;
+    b.nu_prev.setZero();
+  }
+  LcpBuildOptions build = lcp.build;
+  build.formulation = Formulation::kStewartTrinkle;
+  build.dt = 1.0;
+  build.use_gaps = false;
+  build.storage = LcpStorage::kDense;
+  // The unscaled F_ext stays: the bodies' weights.
+  std::vector<Contact> contacts = lcp.contacts;
+  ContactLcp step = BuildContactLcp(std::move(bodies), std::move(contacts), build);
+  // The contact laws' compliance: p_n / k_n in the normal rows, Gᵀ G β / k_t
+  // in the friction rows.
+  MatrixX A = step.M;
+  for (int c = 0; c < nc; ++c) A(c, c) += 1.0 / kn;
+  const int D = step.num_directions;
+  for (int c = 0; c < nc; ++c) {
+    const int f = step.friction_of.empty() ? -1 : step.friction_of[c];
+    if (f < 0) continue;
+    for (int k = 0; k < D; ++k)
+      for (int j = 0; j < D; ++j)
+        A(nc + D * f + k, nc + D * f + j) +=
+            step.friction_directions[D * f + k].dot(step.friction_directions[D * f + j]) / kt;
+  }
+  const LcpResult r = SolveLemke(A, step.q, lemke);
+  if (r.status != LcpStatus::kSolved && r.status != LcpStatus::kTrivial) return {};
+  return RecoverSolution(step, r.z).body_motion;
+}
+
+}  // namespace
+
+LoadedFromRest LoadFromRest(const ContactLcp& lcp, const LoadFromRestOptions& options) {
+  LoadedFromRest out;
+  out.tolerance = kResidualTolerance;
+  const int nb = static_cast<int>(lcp.bodies.size());
+  Layout L;
+  L.nc = static_cast<int>(lcp.contacts.size());
+  L.nf = lcp.formulation == Formulation::kStewartTrinkle ? lcp.num_friction : 0;
+  L.D = lcp.num_directions;
+  std::vector<Eigen::Matrix<double, 6, -1>> B(nb);
+  L.body_offset.assign(nb + 1, 0);
+  double weight = 0;
+  for (int b = 0; b < nb; ++b) {
+    B[b] = lcp.bodies[b].FreeBasis();
+    L.body_offset[b + 1] = L.body_offset[b] + static_cast<int>(B[b].cols());
+    weight = std::max(weight, lcp.bodies[b].F_ext.head<3>().norm());
+  }
+  L.nxi = L.body_offset[nb];
+  const int n = L.size();  // the first form's: the larger
+  out.variables = n;
+  if (n > options.max_variables) {
+    out.message = "the loaded-from-rest LCP has " + std::to_string(n) +
+                  " variables, beyond its budget of " + std::to_string(options.max_variables);
+    return out;
+  }
+  // Stiffness: any value gives the same answer (homogeneity); this one makes
+  // displacements of the order of the parts' size, for conditioning.
+  const double kn = options.stiffness_scale * std::max(weight, 1e-300) / Reach(lcp);
+  const double kt = options.stiffness_ratio * kn;
+  out.stiffness = kn;
+
+  MatrixX M;
+  VectorX q;
+  BuildStaticLcp(lcp, B, L, kn, kt, M, q);
+  LcpResult r = SolveLemke(M, q, options.lemke);
+  out.pivots = r.pivots;
+  if (r.status == LcpStatus::kPivotLimit || r.status == LcpStatus::kNumericalFailure) {
+    L.shifted = true;  // the other form of the free displacements (Layout)
+    BuildStaticLcp(lcp, B, L, kn, kt, M, q);
+    r = SolveLemke(M, q, options.lemke);
+    out.pivots += r.pivots;
+  }
+  if (r.status == LcpStatus::kRayTermination) {
+    // No state of the springs holds full gravity: it gives way. How: the
+    // collapse step's displacements.
+    out.outcome = LoadedFromRest::Outcome::kGivesWay;
+    out.message = "no state of the compliant contacts holds full gravity (Lemke's ray)";
+    out.displacement = CollapseStep(lcp, kn, kt, options.lemke);
+    out.unbalanced.assign(nb, 0.0);
+    if (!out.displacement.empty()) {
+      double fastest = 0;
+      for (const Vector6& u : out.displacement) fastest = std::max(fastest, u.norm());
+      for (int b = 0; b < nb; ++b)
+        out.unbalanced[b] = fastest > 0 ? out.displacement[b].norm() / fastest : 0.0;
+    }
+    out.tolerance = kCollapseShare;
+    return out;
+  }
+  if (r.status != LcpStatus::kSolved && r.status != LcpStatus::kTrivial) {
+    out.outcome = LoadedFromRest::Outcome::kFailed;
+    out.message = std::string("Lemke's method: ") + to_string(r.status) +
+                  (r.message.empty() ? "" : ": " + r.message);
+    return out;
+  }
+  ReadState(lcp, B, L, r.z, out);
+  if (out.equilibrium_residual > kResidualTolerance) {
+    out.outcome = LoadedFromRest::Outcome::kFailed;
+    out.message = "the compliant solution does not balance the parts (residual " +
+                  std::to_string(out.equilibrium_residual) + " of a weight)";
+    return out;
+  }
+  out.outcome = LoadedFromRest::Outcome::kStands;
+  return out;
+}
+
+}  // namespace cairn
