@@ -955,6 +955,15 @@ struct SharedCase {
 
 void PrintTo(const SharedCase& c, std::ostream* os) { *os << c.file << " " << c.model; }
 
+// A parameterised test's name: its file, every other character an underscore.
+template <typename Case>
+std::string FileParamName(const ::testing::TestParamInfo<Case>& param_info) {
+  std::string name = param_info.param.file;
+  for (char& ch : name)
+    if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
+  return name;
+}
+
 class EveryFriction : public ::testing::TestWithParam<SharedCase> {};
 
 TEST_P(EveryFriction, AVerdictWithItsEvidence) {
@@ -1017,12 +1026,7 @@ INSTANTIATE_TEST_SUITE_P(
         SharedCase{"compas_cra/snake.json", "--supports 0"},
         SharedCase{"compas_cra/bridge.json", "--supports 0,1"},
         SharedCase{"compas_cra/armadillo_cra.json", "--interfaces stored"}),
-    [](const ::testing::TestParamInfo<SharedCase>& param_info) {
-      std::string name = param_info.param.file;
-      for (char& ch : name)
-        if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
-      return name;
-    });
+    FileParamName<SharedCase>);
 
 // ---- One answer per assembly: monotone in μ ---------------------------------
 
@@ -1092,12 +1096,7 @@ INSTANTIATE_TEST_SUITE_P(
                       // bench/compas_sweep.sh's, recorded in docs/loaded-from-rest.md.)
                       MonotoneCase{"compas_cra/shelf-stable.json", "--supports 0"},
                       MonotoneCase{"compas_cra/snake.json", "--supports 0"}),
-    [](const ::testing::TestParamInfo<MonotoneCase>& param_info) {
-      std::string name = param_info.param.file;
-      for (char& ch : name)
-        if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
-      return name;
-    });
+    FileParamName<MonotoneCase>);
 
 INSTANTIATE_TEST_SUITE_P(
     Examples, FrictionMonotone,
@@ -1111,12 +1110,7 @@ INSTANTIATE_TEST_SUITE_P(
         MonotoneCase{"peg_in_slot.json", "", true}, MonotoneCase{"pyramid10.json", "", true},
         MonotoneCase{"stack3.json", "", true}, MonotoneCase{"wall.json", "", true},
         MonotoneCase{"jenga.json", "", true}),
-    [](const ::testing::TestParamInfo<MonotoneCase>& param_info) {
-      std::string name = param_info.param.file;
-      for (char& ch : name)
-        if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
-      return name;
-    });
+    FileParamName<MonotoneCase>);
 
 // `cairn margin --friction` gives the threshold of the check's verdict: the
 // check stands just above it and falls just below it (and below the
