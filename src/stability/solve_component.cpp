@@ -61,6 +61,7 @@ namespace {
 constexpr double kProbeWork = 2e8;
 constexpr double kCertificateWork = 2e5;
 constexpr int kLeastProbePivots = 100;
+constexpr int kDenseProbePivotsPerVariable = 10;
 constexpr int kLeastCertificateIterations = 50;
 
 // r: the rank bound of the LCP matrix, the free motions of the bodies.
@@ -70,12 +71,17 @@ int RankBound(const ContactLcp& lcp) {
   return std::max(1, std::min(lcp.size(), free));
 }
 
-// The Lemke probe's pivot budget: kProbeWork / r² (0: no budget, for dense
-// LCPs, whose pivots are cheap). −1: not worth starting, because Lemke's
+// The Lemke probe's pivot budget: kProbeWork / r² (dense LCPs: ten pivots a
+// variable). −1: not worth starting, because Lemke's
 // method brings one basic variable in per pivot and a component whose loads
 // span r directions needs about r of them: a budget below r cannot finish.
 int ProbePivots(const ContactLcp& lcp) {
-  if (lcp.has_dense()) return 0;
+  // A dense probe's pivot costs O(n²): at most kDenseProbePivotsPerVariable
+  // per variable (a solution takes about one per variable; the shelf's
+  // 456-variable LCP ran to the default 50 per variable before ending on a
+  // ray: 24 000 pivots).
+  if (lcp.has_dense())
+    return std::max(kLeastProbePivots, kDenseProbePivotsPerVariable * (lcp.size() + 1));
   const double r = RankBound(lcp);
   const int budget = std::max(kLeastProbePivots, static_cast<int>(kProbeWork / (r * r)));
   return budget < r ? -1 : budget;
