@@ -31,6 +31,8 @@ constexpr double kResidualTolerance = 1e-6;
 // In the collapse step, a body moves when its displacement is above this
 // share of the fastest body's (dimensionless): the rest is the springs' give.
 constexpr double kCollapseShare = 1e-3;
+// The collapse step's Lemke pivots, per LCP variable (dimensionless).
+constexpr int kCollapsePivotsPerVariable = 10;
 
 // The unknowns of the loaded-from-rest LCP, in order: the free displacement
 // coordinates ξ of every body, then per contact f_n, then per frictional
@@ -198,7 +200,12 @@ std::vector<Vector6> CollapseStep(const ContactLcp& lcp, double kn, double kt,
         A(nc + D * f + k, nc + D * f + j) +=
             step.friction_directions[D * f + k].dot(step.friction_directions[D * f + j]) / kt;
   }
-  const LcpResult r = SolveLemke(A, step.q, lemke);
+  // A budget of kCollapsePivotsPerVariable pivots a variable: the step only
+  // says how it moves, and the caller has other ways to say it.
+  LemkeParameters budget = lemke;
+  const int most = kCollapsePivotsPerVariable * (step.size() + 1);
+  if (budget.max_pivots <= 0 || budget.max_pivots > most) budget.max_pivots = most;
+  const LcpResult r = SolveLemke(A, step.q, budget);
   if (r.status != LcpStatus::kSolved && r.status != LcpStatus::kTrivial) return {};
   return RecoverSolution(step, r.z).body_motion;
 }
