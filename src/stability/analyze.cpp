@@ -139,7 +139,8 @@ std::vector<int> CanonicalRanks(const Assembly& assembly, const Configuration& c
 // Movable parts joined by contacts (contacts with fixed parts or the world
 // join nothing). Ordered by smallest part index: deterministic.
 std::vector<Component> SplitComponents(const Assembly& assembly, const Configuration& config,
-                                       const std::vector<Contact>& contacts, bool canonical) {
+                                       const std::vector<Contact>& contacts,
+                                       const std::vector<int>* rank) {
   const int n = assembly.num_parts();
   const auto movable = [&](int i) {
     return i >= 0 && config.present[i] && !assembly.part(i).fixed;
@@ -164,12 +165,12 @@ std::vector<Component> SplitComponents(const Assembly& assembly, const Configura
     const int owner = movable(contacts[c].part_a) ? contacts[c].part_a : contacts[c].part_b;
     out[index_of_root[Find(parent, owner)]].contacts.push_back(c);
   }
-  // Each component's parts in the canonical order (CanonicalRanks).
-  if (!canonical) return out;
-  const std::vector<int> rank = CanonicalRanks(assembly, config);
+  // Each component's parts in the canonical order (CanonicalRanks), when
+  // given; else ascending, the file's.
+  if (!rank) return out;
   for (Component& comp : out)
     std::sort(comp.parts.begin(), comp.parts.end(),
-              [&rank](int x, int y) { return rank[x] < rank[y]; });
+              [rank](int x, int y) { return (*rank)[x] < (*rank)[y]; });
   return out;
 }
 
@@ -184,7 +185,8 @@ ContactLcp BuildComponent(const Assembly& assembly, const Configuration& config,
                           Formulation formulation, double dt, const DriveInputs* drive,
                           LcpStorage storage, double length_tol,
                           std::vector<int>* lcp_index = nullptr,
-                          std::vector<char>* flipped = nullptr, bool canonical = true) {
+                          std::vector<char>* flipped = nullptr,
+                          const std::vector<int>* canonical = nullptr) {
   std::vector<BodyDynamics> bodies;
   for (int p : comp.parts) {
     const Part& part = assembly.part(p);
@@ -221,13 +223,14 @@ ContactLcp BuildComponent(const Assembly& assembly, const Configuration& config,
   // The contacts in the canonical order, each between two movable parts
   // oriented from the earlier part to the later (`flipped` says which were
   // turned, by the component's contact index).
-  std::vector<int> rank;
-  if (canonical) {
-    rank = CanonicalRanks(assembly, config);
-  } else {  // the parts' own order
-    rank.resize(assembly.num_parts());
-    std::iota(rank.begin(), rank.end(), 0);
+  // Without `canonical` (CanonicalRanks, computed once per configuration by
+  // the caller): the contacts in the file's order and orientation.
+  std::vector<int> file_order;
+  if (!canonical) {
+    file_order.resize(assembly.num_parts());
+    std::iota(file_order.begin(), file_order.end(), 0);
   }
+  const std::vector<int>& rank = canonical ? *canonical : file_order;
   const auto movable = [&](int p) { return p >= 0 && !assembly.part(p).fixed; };
   std::vector<Contact> oriented(comp.contacts.size());
   if (flipped) flipped->assign(comp.contacts.size(), 0);
@@ -400,10 +403,10 @@ std::vector<ContactLcp> BuildComponentLcps(const Assembly& assembly, const Confi
   std::vector<ContactLcp> out;
   // In the parts' own order: the margins' linear programs (whose optima do
   // not depend on it) and the benchmarks see the LCPs as the file lists them.
-  for (const Component& comp : SplitComponents(assembly, config, contacts, false))
+  for (const Component& comp : SplitComponents(assembly, config, contacts, nullptr))
     out.push_back(BuildComponent(assembly, config, contacts, comp,
                                  ChooseFormulation(assembly, options, drive), options.dt, drive,
-                                 options.lcp_storage, tol.length, nullptr, nullptr, false));
+                                 options.lcp_storage, tol.length));
   return out;
 }
 
@@ -578,7 +581,8 @@ class ConfigurationAnalysis {
     contacts_ = DetectContacts(assembly_, config_, tol.length, tol.angle, nullptr,
                                workspace_ ? &workspace_->impl().contacts : nullptr);
     result_.profile.detect = Seconds(t0);
-    components_ = SplitComponents(assembly_, config_, contacts_, true);
+    rank_ = CanonicalRanks(assembly_, config_);
+    components_ = SplitComponents(assembly_, config_, contacts_, &rank_);
     result_.contacts.resize(contacts_.size());
     for (size_t c = 0; c < contacts_.size(); ++c) result_.contacts[c].contact = contacts_[c];
     vertices_.resize(assembly_.num_parts());
@@ -595,7 +599,7 @@ class ConfigurationAnalysis {
     std::vector<char> flipped;
     const ContactLcp lcp = BuildComponent(assembly_, config_, contacts_, comp, result_.formulation,
                                           options_.dt, drive_, options_.lcp_storage,
-                                          result_.tolerances.length, &lcp_index, &flipped);
+                                          result_.tolerances.length, &lcp_index, &flipped, &rank_);
     result_.profile.build += Seconds(t0);
 
     t0 = Clock::now();
@@ -832,6 +836,7 @@ class ConfigurationAnalysis {
   bool st_ = false;        // Stewart–Trinkle (velocities) rather than Baraff
   double motion_tol_ = 0;  // velocity or acceleration tolerance of a point
   std::vector<Contact> contacts_;
+  std::vector<int> rank_;  // CanonicalRanks of the configuration, once
   std::vector<Component> components_;
   std::vector<std::vector<Vector3>> vertices_;  // per part, world frame
   bool any_moving_ = false, any_undecided_ = false;

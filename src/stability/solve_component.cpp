@@ -171,19 +171,27 @@ bool StrongCertificate(const ContactLcp& lcp, const StaticEquilibrium& eq) {
   return fl.solved && fl.exists;
 }
 
+// The component's bodies with every free body outside `free` held at rest
+// (prescribed zero velocity); `held` gets their local indices.
+std::vector<BodyDynamics> HoldAllBut(const ContactLcp& lcp, const std::vector<char>& free,
+                                     std::vector<int>* held = nullptr) {
+  std::vector<BodyDynamics> bodies = lcp.bodies;
+  for (size_t b = 0; b < bodies.size(); ++b) {
+    if (free[b] || bodies[b].motion != BodyMotion::kFree) continue;
+    bodies[b].motion = BodyMotion::kPrescribed;
+    bodies[b].nu_prescribed.setZero();
+    if (held) held->push_back(static_cast<int>(b));
+  }
+  return bodies;
+}
+
 // Solves the component's LCP with every free body outside `free` held at
 // rest (prescribed zero velocity): how the bodies of `free` move when nothing
 // else gives way. A verified solution of that LCP, or a note.
 void SolveWithOthersHeld(const ContactLcp& lcp, const SolveContext& ctx,
                          const std::vector<char>& free, ComponentSolution& out) {
-  std::vector<BodyDynamics> bodies = lcp.bodies;
   out.held.clear();
-  for (size_t b = 0; b < bodies.size(); ++b) {
-    if (free[b] || bodies[b].motion != BodyMotion::kFree) continue;
-    bodies[b].motion = BodyMotion::kPrescribed;
-    bodies[b].nu_prescribed.setZero();
-    out.held.push_back(static_cast<int>(b));
-  }
+  std::vector<BodyDynamics> bodies = HoldAllBut(lcp, free, &out.held);
   if (out.held.empty()) return;  // nothing to hold: the component's own LCP failed
   LcpBuildOptions build = lcp.build;
   build.use_gaps = false;
@@ -266,12 +274,9 @@ std::vector<int> PartsThatGiveWayAlone(const ContactLcp& lcp) {
   std::vector<int> out;
   for (size_t k = 0; k < lcp.bodies.size(); ++k) {
     if (lcp.bodies[k].motion != BodyMotion::kFree) continue;
-    std::vector<BodyDynamics> bodies = lcp.bodies;
-    for (size_t b = 0; b < bodies.size(); ++b) {
-      if (b == k || bodies[b].motion != BodyMotion::kFree) continue;
-      bodies[b].motion = BodyMotion::kPrescribed;
-      bodies[b].nu_prescribed.setZero();
-    }
+    std::vector<char> free(lcp.bodies.size(), 0);
+    free[k] = 1;
+    std::vector<BodyDynamics> bodies = HoldAllBut(lcp, free);
     LcpBuildOptions build = lcp.build;
     build.use_gaps = false;
     build.storage = LcpStorage::kDense;
