@@ -443,7 +443,8 @@ def blocking(m, direction=None, without=None):
     return json.loads(_cairn.blocking(m, _names(without, "without"), d)[0])
 
 
-def margin(m, friction=False, tilt=None, load=None, point=None, direction=None, without=None):
+def margin(m, friction=False, tilt=None, load=None, point=None, direction=None, without=None,
+           rule="loaded-from-rest"):
     """``cairn margin --json``: how far from failing the assembly (with the
     parts ``without`` taken away) is, one quantity at a time:
     ``friction=True``, the least friction (μ*, or the factor k* on every
@@ -451,15 +452,17 @@ def margin(m, friction=False, tilt=None, load=None, point=None, direction=None, 
     about that axis in each sense (``critical_deg``); ``load="PART"`` with
     ``point`` and ``direction`` (2 or 3 numbers each), the largest force
     along the direction at the point that the part carries. The model's own
-    μ is the one it was loaded with (``cairn.load(..., friction=...)``). The
-    dict has the CLI's keys (docs/margin.md); its ``margin`` holds the answer.
+    μ is the one it was loaded with (``cairn.load(..., friction=...)``).
+    ``rule`` (``--rule``, as in ``check``) is the verdict whose threshold
+    ``verdict_critical`` and ``stands_at_nominal`` give. The dict has the
+    CLI's keys (docs/margin.md); its ``margin`` holds the answer.
     Raises InputError for no quantity or two, an unknown or fixed part, or a
     wrong count of numbers."""
     _check_model(m)
     return json.loads(_cairn.margin(m, _flag(friction, "friction"), _numbers(tilt, "tilt"),
                                     "" if load is None else str(load), _numbers(point, "point"),
                                     _numbers(direction, "direction"),
-                                    _names(without, "without"))[0])
+                                    _names(without, "without"), str(rule))[0])
 
 
 _INT_COLUMNS = ("step", "tick", "patch")

@@ -120,16 +120,21 @@ Answer AnswerOf(app::CommandResult&& r) {
           std::move(r.timeline), std::move(r.dot), std::move(r.plans)};
 }
 
+// The CLI's --rule, by name.
+VerdictRule RuleOf(const std::string& rule) {
+  if (rule == "equilibrium") return VerdictRule::kEquilibrium;
+  if (rule != "loaded-from-rest")
+    throw InputError("", "rule",
+                     "must be \"loaded-from-rest\" or \"equilibrium\", not \"" + rule + "\"");
+  return VerdictRule::kLoadedFromRest;
+}
+
 // `cairn check --json`.
 Answer Check(const py::object& model, const std::vector<std::string>& without,
              const std::string& normalize, bool page, const std::string& rule) {
   const PyModel& m = ModelOf(model);
   app::CheckQuery q;
-  if (rule == "equilibrium")
-    q.rule = VerdictRule::kEquilibrium;
-  else if (rule != "loaded-from-rest")
-    throw InputError("", "rule",
-                     "must be \"loaded-from-rest\" or \"equilibrium\", not \"" + rule + "\"");
+  q.rule = RuleOf(rule);
   py::gil_scoped_release release;
   q.without = without;
   q.normalize = normalize;
@@ -191,10 +196,12 @@ Answer Blocking(const py::object& model, const std::vector<std::string>& without
 // a point, a direction), as the CLI's --friction, --tilt, --load.
 Answer Margin(const py::object& model, bool friction, const std::vector<double>& tilt,
               const std::string& load, const std::vector<double>& point,
-              const std::vector<double>& direction, const std::vector<std::string>& without) {
+              const std::vector<double>& direction, const std::vector<std::string>& without,
+              const std::string& rule) {
   const PyModel& m = ModelOf(model);
+  const app::MarginQuery q{friction, tilt, load, point, direction, without, RuleOf(rule)};
   py::gil_scoped_release release;
-  return AnswerOf(app::MarginDocument(m, {friction, tilt, load, point, direction, without}));
+  return AnswerOf(app::MarginDocument(m, q));
 }
 
 }  // namespace
@@ -304,5 +311,6 @@ PYBIND11_MODULE(_cairn, m) {
   m.def("plan", &PlanSequences, py::arg("model"), py::arg("options"));
   m.def("blocking", &Blocking, py::arg("model"), py::arg("without"), py::arg("direction"));
   m.def("margin", &Margin, py::arg("model"), py::arg("friction"), py::arg("tilt"), py::arg("load"),
-        py::arg("point"), py::arg("direction"), py::arg("without"));
+        py::arg("point"), py::arg("direction"), py::arg("without"),
+        py::arg("rule") = "loaded-from-rest");
 }

@@ -52,6 +52,7 @@ MarginRequest ResolveMarginQuery(const Assembly& assembly, const MarginQuery& q,
     req.point = ReadVector(q.point, dim, "--point", file);
     req.direction = ReadVector(q.direction, dim, "--direction", file);
   }
+  req.rule = q.rule;
   CheckMarginRequest(assembly, req, file);
   if (req.quantity == MarginQuantity::kTilt) req.axis = *UnitVector(req.axis);
   if (req.quantity == MarginQuantity::kLoad) req.direction = *UnitVector(req.direction);
@@ -73,7 +74,7 @@ CommandResult MarginDocument(const Model& model, const MarginQuery& query, const
     out.exit = kExitInternalError;
     out.failure = result.message;
   } else {
-    out.exit = result.holds_at_nominal ? kExitStable : kExitUnstable;
+    out.exit = result.stands_at_nominal ? kExitStable : kExitUnstable;
   }
   return out;
 }

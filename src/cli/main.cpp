@@ -451,6 +451,10 @@ CLI::App* AddMargin(CLI::App& app, cairn::cli::MarginArgs& margin) {
                 "X,Y[,Z]");
   AddNumberList(cmd, "--direction", margin.query.direction, "The load's direction, X,Y[,Z]",
                 "X,Y[,Z]");
+  cmd->add_option("--rule", margin.rule,
+                  "The verdict whose threshold (and exit code) the margin gives, as on check: "
+                  "loaded-from-rest (default) or equilibrium")
+      ->check(CLI::IsMember({"loaded-from-rest", "equilibrium"}));
   return cmd;
 }
 

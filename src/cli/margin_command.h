@@ -23,6 +23,7 @@ struct MarginArgs {
   /// carry MU and only sets the model's μ.
   bool friction_given = false;
   std::string friction_value;
+  std::string rule;        // --rule
   app::MarginQuery query;  // tilt, load, point, direction (friction from above; without: below)
   app::ModelArgs model;    // --friction's value goes to model.friction
 };

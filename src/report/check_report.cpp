@@ -147,6 +147,13 @@ json ComponentsToJson(const Assembly& assembly, const StabilityResult& result) {
       for (int i : r.rigid_motion_parts) moved.push_back(assembly.part(i).name);
       jr["rigid_motion"] = moved;
     }
+    if (r.search) {
+      json search;
+      search["outcome"] = to_string(*r.search);
+      search["nodes"] = r.search_nodes;
+      search["open"] = r.search_open;
+      jr["search"] = search;
+    }
     jr["status"] = to_string(r.status);
     jr["pivots"] = r.pivots;
     // Decided by a linear program's solution at rest rather than by Lemke's
@@ -267,6 +274,40 @@ std::string Names(const Assembly& assembly, const std::vector<int>& parts) {
   return out;
 }
 
+// What is proved about rest, and by what (the certificate, or the complete
+// search for a moving solution and how far it got).
+void TextStability(const StabilityResult& result, std::ostringstream& os) {
+  bool searched = false;
+  int nodes = 0, open = 0;
+  std::string unsearched;
+  for (const ComponentReport& c : result.components) {
+    if (c.stability == StabilityProof::kStrong && c.search == MovingSolution::Outcome::kNone)
+      searched = true;
+    if (c.stability != StabilityProof::kNotCertified) continue;
+    if (c.search == MovingSolution::Outcome::kBudget) {
+      nodes += c.search_nodes;
+      open += c.search_open;
+    } else if (unsearched.empty()) {
+      unsearched = c.search ? to_string(*c.search) : "not run";
+    }
+  }
+  if (result.stability == StabilityProof::kStrong) {
+    os << "  strongly stable: every solution of the contact problem is at rest ("
+       << (searched ? "the complete search for a moving solution found none"
+                    : "a frictionless equilibrium exists")
+       << ")\n";
+  } else if (result.stability == StabilityProof::kWeak && result.stable()) {
+    os << "  weakly stable only: rest is possible, and so is a motion of the rigid parts\n";
+  } else if (result.stability == StabilityProof::kNotCertified) {
+    os << "  stability not certified as strong: rest is possible and no motion was found; ";
+    if (unsearched.empty())
+      os << "the complete search\n  for one stopped at its work budget after " << nodes
+         << " branches, " << open << " still open\n";
+    else
+      os << "the search for one:\n  " << unsearched << " (see the component's message)\n";
+  }
+}
+
 // One line on why it stands or falls where rigid bodies leave it open.
 void TextWhy(const Assembly& assembly, const StabilityResult& result, std::ostringstream& os) {
   for (const ComponentReport& c : result.components) {
@@ -327,14 +368,7 @@ void TextSummary(const Assembly& assembly, const StabilityResult& result, std::o
   else if (result.static_equilibrium)
     os << "  static equilibrium: " << (*result.static_equilibrium ? "exists" : "none") << '\n';
   TextWhy(assembly, result, os);
-  if (result.stability == StabilityProof::kStrong)
-    os << "  strongly stable: a frictionless equilibrium exists, so every solution of the contact\n"
-          "  problem is at rest\n";
-  else if (result.stability == StabilityProof::kWeak && result.stable())
-    os << "  weakly stable only: rest is possible, and so is a motion of the rigid parts\n";
-  else if (result.stability == StabilityProof::kNotCertified)
-    os << "  stability not certified as strong: rest is possible and no motion was found, but\n"
-          "  motion from rest is not ruled out\n";
+  TextStability(result, os);
 }
 
 // What moves, and how (in a summary, the first kSummaryRows).

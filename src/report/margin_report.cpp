@@ -105,6 +105,8 @@ json MarginToJson(const Assembly& assembly, const MarginRequest& req, const Marg
   m["solved"] = r.solved;
   if (!r.solved) m["message"] = r.message;
   m["holds_at_nominal"] = r.holds_at_nominal;
+  m["stands_at_nominal"] = r.stands_at_nominal;
+  m["rule"] = to_string(req.rule);
   switch (r.quantity) {
     case MarginQuantity::kFriction: {
       m["critical"] = r.sides.empty() ? json(nullptr) : Optional(r.sides[0].critical);
@@ -271,7 +273,12 @@ std::string MarginToText(const Assembly& assembly, const MarginRequest& req, con
       os << '\n';
       break;
   }
-  if (!r.holds_at_nominal) os << "  the assembly does not stand as given\n";
+  if (!r.holds_at_nominal)
+    os << "  the assembly does not stand as given\n";
+  else if (!r.stands_at_nominal)
+    os << "  the assembly does not stand as given: an equilibrium exists, but `cairn check` "
+          "(--rule "
+       << to_string(req.rule) << ") says it falls\n";
   for (size_t i = 0; i < r.sides.size(); ++i) {
     const MarginSide& s = r.sides[i];
     if (s.component < 0 || !s.mechanism || !s.mechanism->found) continue;

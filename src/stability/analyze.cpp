@@ -497,6 +497,11 @@ ComponentReport ReportSolve(const Component& comp, const ContactLcp& lcp,
         report.loaded_gives_way.push_back(lcp.bodies[b].part);
   }
   for (int b : s.rigid_motion) report.rigid_motion_parts.push_back(lcp.bodies[b].part);
+  if (s.search) {
+    report.search = s.search->outcome;
+    report.search_nodes = s.search->nodes;
+    report.search_open = s.search->open;
+  }
   for (size_t i = 0; i < s.notes.size(); ++i) report.message += (i ? "; " : "") + s.notes[i];
   return report;
 }

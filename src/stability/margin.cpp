@@ -681,13 +681,15 @@ constexpr double kVerdictReach = 10;
 // monotone in μ, as it is on every shared model and bundled example
 // (tests/cli/model_test.cpp, FrictionMonotone).
 void VerdictThreshold(const FrictionScaling& scaling, const Assembly& scene,
-                      const Configuration& config, MarginResult& r) {
+                      const Configuration& config, VerdictRule rule, MarginResult& r) {
   r.verdict_computed = true;
   const MarginSide& side = r.sides[0];
   if (!side.critical) return;  // no equilibrium at any μ: it never stands
+  StabilityOptions options;
+  options.rule = rule;
   const auto stands = [&](double k) {
     ++r.verdict_checks;
-    return AnalyzeConfiguration(scaling.At(scene, k), config).stable();
+    return AnalyzeConfiguration(scaling.At(scene, k), config, options).stable();
   };
   double lo = *side.critical, hi = lo;
   const double top =
@@ -716,7 +718,7 @@ void VerdictThreshold(const FrictionScaling& scaling, const Assembly& scene,
 // `lcps` are the components of the base model (scaling.At(scene, 1)).
 void FrictionMargin(const FrictionScaling& scaling, const Assembly& scene,
                     const Configuration& config, const std::vector<ContactLcp>& lcps,
-                    MarginResult& r) {
+                    VerdictRule rule, MarginResult& r) {
   r.factor = scaling.factor;
   r.nominal = scaling.nominal;
   const double k_max = scaling.k_max;
@@ -772,7 +774,7 @@ void FrictionMargin(const FrictionScaling& scaling, const Assembly& scene,
     for (const PartMotion& m : check.parts)
       if (m.moving && m.role == PartRole::kJudged) r.failing_below.push_back(m);
   }
-  VerdictThreshold(scaling, scene, config, r);
+  VerdictThreshold(scaling, scene, config, rule, r);
 }
 
 }  // namespace
@@ -862,7 +864,7 @@ MarginResult ComputeMargin(const AssemblyDef& def, const Assembly& assembly,
   // that fails stops them: r.solved, r.message).
   switch (req.quantity) {
     case MarginQuantity::kFriction:
-      FrictionMargin(scaling, assembly, config, lcps, r);
+      FrictionMargin(scaling, assembly, config, lcps, req.rule, r);
       break;
     case MarginQuantity::kTilt:
       TiltMargin(assembly, lcps, req, r);
@@ -875,6 +877,13 @@ MarginResult ComputeMargin(const AssemblyDef& def, const Assembly& assembly,
   for (const ComponentMargin& cm : r.components) {
     r.lps += cm.lps;
     r.holds_at_nominal = r.holds_at_nominal && cm.holds_at_nominal;
+  }
+  // 5. The check's verdict as given (no equilibrium: it falls, no check needed).
+  r.stands_at_nominal = false;
+  if (r.solved && r.holds_at_nominal) {
+    StabilityOptions options;
+    options.rule = req.rule;
+    r.stands_at_nominal = AnalyzeConfiguration(assembly, config, options).stable();
   }
   return r;
 }

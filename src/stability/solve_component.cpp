@@ -309,18 +309,18 @@ void ExplainByPartsThatGiveWay(const ContactLcp& lcp, const SolveContext& ctx,
 }
 
 // An equilibrium exists and strong stability is not proved: the rule decides
-// (VerdictRule). `lemke`/`moves`: the probe solved the LCP, and moves a part.
-void DecideOpenCase(const ContactLcp& lcp, const SolveContext& ctx, bool lemke, bool moves,
-                    ComponentSolution& out) {
+// (VerdictRule). `rest`: a verified LCP solution at rest (Lemke's), or null;
+// `moving`: a verified LCP solution in which a part moves, or null.
+void DecideOpenCase(const ContactLcp& lcp, const SolveContext& ctx, const VectorX* rest,
+                    const VectorX* moving, ComponentSolution& out) {
   // A rigid solution at rest for the report: Lemke's, else the equilibrium's.
   const auto stand = [&](DecidedBy by) {
-    if ((lemke && !moves && Accept(lcp, out.lemke.z, ctx.lemke, by, out)) ||
-        AcceptEquilibrium(lcp, ctx, out))
+    if ((rest && Accept(lcp, *rest, ctx.lemke, by, out)) || AcceptEquilibrium(lcp, ctx, out))
       out.decided_by = by;
   };
   if (ctx.rule == VerdictRule::kEquilibrium) {
     out.notes.push_back("an equilibrium exists: it stands by the equilibrium rule");
-    stand(lemke && !moves ? DecidedBy::kLemke : DecidedBy::kEquilibrium);
+    stand(rest ? DecidedBy::kLemke : DecidedBy::kEquilibrium);
     return;
   }
   out.loaded = LoadFromRest(lcp);
@@ -332,7 +332,7 @@ void DecideOpenCase(const ContactLcp& lcp, const SolveContext& ctx, bool lemke, 
       return;
     case LoadedFromRest::Outcome::kGivesWay:
       out.notes.push_back("it gives way when loaded from rest on compliant contacts");
-      if (moves && Accept(lcp, out.lemke.z, ctx.lemke, DecidedBy::kLoadedFromRest, out)) return;
+      if (moving && Accept(lcp, *moving, ctx.lemke, DecidedBy::kLoadedFromRest, out)) return;
       if (!loaded.displacement.empty()) {
         out.decided_by = DecidedBy::kLoadedFromRest;
         out.collapse = CollapseMotion(lcp, loaded);
@@ -344,9 +344,58 @@ void DecideOpenCase(const ContactLcp& lcp, const SolveContext& ctx, bool lemke, 
     case LoadedFromRest::Outcome::kFailed:
       out.notes.push_back("loaded from rest: " + std::string(to_string(loaded.outcome)) + " (" +
                           loaded.message + "); the equilibrium decides");
-      stand(lemke && !moves ? DecidedBy::kLemke : DecidedBy::kEquilibrium);
+      stand(rest ? DecidedBy::kLemke : DecidedBy::kEquilibrium);
       return;
   }
+}
+
+// The bodies a moving LCP solution moves (local indices): those faster than
+// kCollapseFraction of the fastest.
+std::vector<int> MovingBodies(const ContactLcp& lcp, const VectorX& z) {
+  const ContactSolution s = RecoverSolution(lcp, z);
+  double fastest = 0;
+  for (const Vector6& nu : s.body_motion) fastest = std::max(fastest, nu.norm());
+  std::vector<int> out;
+  for (size_t b = 0; b < lcp.bodies.size(); ++b)
+    if (s.body_motion[b].norm() > kCollapseFraction * fastest) out.push_back(static_cast<int>(b));
+  return out;
+}
+
+// Rest is possible and the certificate did not prove it guaranteed: is there
+// an LCP solution that moves? Lemke's probe may have found one (`lemke`,
+// `moves`); else the complete search (mechanics/moving_solution.h), within
+// its budget, finds one or proves there is none.
+void DecideWeakOrStrong(const ContactLcp& lcp, const SolveContext& ctx, bool lemke, bool moves,
+                        ComponentSolution& out) {
+  const VectorX* rest = lemke && !moves ? &out.lemke.z : nullptr;
+  if (moves) {
+    out.stability = StabilityProof::kWeak;
+    out.rigid_motion = MovingBodies(lcp, out.lemke.z);
+    DecideOpenCase(lcp, ctx, rest, &out.lemke.z, out);
+    return;
+  }
+  MovingSearchOptions o;
+  o.check_tolerance = CheckTolerance(lcp, ctx.lemke);
+  out.search = SearchMovingSolution(lcp, o);
+  const MovingSolution& search = *out.search;
+  if (search.outcome == MovingSolution::Outcome::kFound && ctx.moves && ctx.moves(lcp, search.z)) {
+    out.stability = StabilityProof::kWeak;
+    out.rigid_motion = MovingBodies(lcp, search.z);
+    DecideOpenCase(lcp, ctx, rest, &search.z, out);
+    return;
+  }
+  if (search.outcome == MovingSolution::Outcome::kNone) {
+    out.stability = StabilityProof::kStrong;
+    out.notes.push_back("the complete search proved that no LCP solution moves (" + search.message +
+                        "): rest is guaranteed");
+    if ((rest && Accept(lcp, *rest, ctx.lemke, DecidedBy::kLemke, out)) ||
+        AcceptEquilibrium(lcp, ctx, out))
+      return;
+  }
+  out.stability = StabilityProof::kNotCertified;
+  out.notes.push_back(std::string("the search for a moving solution: ") +
+                      to_string(search.outcome) + " (" + search.message + ")");
+  DecideOpenCase(lcp, ctx, rest, nullptr, out);
 }
 
 // The static policy (file comment of the header, "From rest").
@@ -382,19 +431,8 @@ void SolveFromRest(const ContactLcp& lcp, const SolveContext& ctx, ComponentSolu
         out.stability = StabilityProof::kStrong;
       return;
     }
-    // Rigid bodies leave it open: rest is possible, not guaranteed.
-    if (moves) {
-      out.stability = StabilityProof::kWeak;
-      const ContactSolution probe = RecoverSolution(lcp, out.lemke.z);
-      double fastest = 0;
-      for (const Vector6& nu : probe.body_motion) fastest = std::max(fastest, nu.norm());
-      for (size_t b = 0; b < lcp.bodies.size(); ++b)
-        if (probe.body_motion[b].norm() > kCollapseFraction * fastest)
-          out.rigid_motion.push_back(static_cast<int>(b));
-    } else {
-      out.stability = StabilityProof::kNotCertified;
-    }
-    DecideOpenCase(lcp, ctx, lemke, moves, out);
+    // Rigid bodies leave it open: rest is possible, not guaranteed?
+    DecideWeakOrStrong(lcp, ctx, lemke, moves, out);
     return;
   }
 

@@ -337,10 +337,17 @@ TEST_P(CompasFrictionMargin, LowerEndProvedByAFailingCheck) {
   if (SharedDir().empty()) GTEST_SKIP() << "../shared (the COMPAS datasets) is absent";
   const std::string model =
       SharedDir() + "/datasets/" + GetParam().file + " --format compas " + GetParam().options;
-  const CliRun r = Cairn("margin " + model + " --friction 0.84 --json");
+  // The equilibrium rule: its verdict is the equilibrium's, so its threshold
+  // is μ* itself, found with one check (the loaded-from-rest verdict's
+  // bisection is MarginsVerdictThresholdSplitsTheChecks's, on two models).
+  const CliRun r = Cairn("margin " + model + " --friction 0.84 --rule equilibrium --json");
   ASSERT_TRUE(r.exit_code == 0 || r.exit_code == 1) << "exit " << r.exit_code << ": " << r.err;
   const nlohmann::json m = nlohmann::json::parse(r.out)["margin"];
   ASSERT_EQ(m["solved"], true);
+  EXPECT_EQ(m["rule"], "equilibrium");
+  EXPECT_EQ(m["stands_at_nominal"], m["holds_at_nominal"]);
+  EXPECT_EQ(r.exit_code, m["holds_at_nominal"] == true ? 0 : 1);
+  EXPECT_EQ(m["verdict_critical"], m["critical"]);
   // The check's static equilibrium at μ (it exits 0 or 1, never 4).
   const auto stands = [&](double mu) {
     const CliRun c = Cairn("check " + model + " --friction " + Number(mu) + " --json");

@@ -37,16 +37,18 @@ TEST(StabilityProof, ABoxOnATableIsStronglyStable) {
   EXPECT_EQ(f.stability, StabilityProof::kStrong);
 }
 
-TEST(StabilityProof, ABlockHeldByFrictionIsNotCertified) {
+// The certificate cannot prove it (no frictionless equilibrium), the
+// complete search can: below the friction angle no solution of the LCP
+// slides, so rest is guaranteed without loading from rest.
+TEST(StabilityProof, ABlockHeldByFrictionIsProvedStrongByTheSearch) {
   const StabilityResult r = Check(BlockOnIncline(20 * kOneDegree, 0.5));
   EXPECT_EQ(r.verdict, Verdict::kStable) << r.diagnostics;
-  EXPECT_EQ(r.stability, StabilityProof::kNotCertified);
+  EXPECT_EQ(r.stability, StabilityProof::kStrong);
   ASSERT_EQ(r.components.size(), 1u);
   EXPECT_EQ(r.components[0].frictionless_equilibrium, std::optional<bool>(false));
-  // Rigid bodies leave it open (no certificate): loading from rest decides,
-  // and the forces reported are Lemke's rest solution.
-  EXPECT_EQ(r.components[0].decided_by, DecidedBy::kLoadedFromRest);
-  EXPECT_EQ(r.loaded_from_rest, LoadedFromRest::Outcome::kStands);
+  EXPECT_EQ(r.components[0].search, std::optional(MovingSolution::Outcome::kNone));
+  EXPECT_EQ(r.components[0].decided_by, DecidedBy::kLemke);
+  EXPECT_FALSE(r.loaded_from_rest.has_value());
   // The rigid-block-equilibrium rule: an equilibrium is enough.
   StabilityOptions rbe;
   rbe.rule = VerdictRule::kEquilibrium;

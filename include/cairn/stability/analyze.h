@@ -152,6 +152,11 @@ struct ComponentReport {
   /// The parts a rigid solution of the LCP moves although the verdict may be
   /// that they stand (weak stability's evidence), part indices.
   std::vector<int> rigid_motion_parts;
+  /// The complete search for a moving solution (mechanics/moving_solution.h),
+  /// when it ran: its outcome, the nodes it solved, and those left open when
+  /// its work budget ran out.
+  std::optional<MovingSolution::Outcome> search;
+  int search_nodes = 0, search_open = 0;
 };
 
 /// The overall answer.

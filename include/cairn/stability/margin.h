@@ -49,6 +49,9 @@ struct MarginRequest {
   int part = -1;
   Vector3 point{0, 0, 0};
   Vector3 direction{0, 0, 0};
+  /// The verdict whose threshold `verdict_critical` is, and whose answer at
+  /// the nominal value `stands_at_nominal` is (the check's --rule).
+  VerdictRule rule = VerdictRule::kLoadedFromRest;
 };
 
 /// The equilibrium at a critical value: the contact forces, re-checked.
@@ -106,6 +109,10 @@ struct MarginResult {
   /// The configuration as given stands (weakly): friction at its own μ,
   /// no tilt, no load.
   bool holds_at_nominal = true;
+  /// The verdict of `cairn check` (with the request's rule) on the
+  /// configuration as given: the command's exit code. It can fall where an
+  /// equilibrium holds (`holds_at_nominal`), never the other way round.
+  bool stands_at_nominal = true;
   /// kFriction: whether `critical` is μ itself (every contact the same μ) or
   /// a factor k scaling every μ (the scene has friction_pairs).
   bool factor = false;

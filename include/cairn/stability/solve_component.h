@@ -53,6 +53,7 @@
 #include "cairn/lcp/lemke.h"
 #include "cairn/mechanics/contact_model.h"
 #include "cairn/mechanics/loaded_from_rest.h"
+#include "cairn/mechanics/moving_solution.h"
 #include "cairn/mechanics/rest_solution.h"
 #include "cairn/mechanics/static_equilibrium.h"
 
@@ -148,6 +149,9 @@ struct ComponentSolution {
   /// The static check where an equilibrium exists and strong stability is not
   /// proved: the component loaded from rest (with the loaded-from-rest rule).
   std::optional<LoadedFromRest> loaded;
+  /// The complete search for a moving solution, when an equilibrium exists,
+  /// the certificate did not prove strong stability and the probe found none.
+  std::optional<MovingSolution> search;
   /// When it gives way and the rigid analysis found no motion: the bodies'
   /// collapse motion from the loading step (its displacements, scaled so the
   /// fastest body moves by 1: a direction), decided_by kLoadedFromRest.
