@@ -802,6 +802,16 @@ Assembly Assembly::WithFriction(double default_mu, double pair_factor) const {
   return out;
 }
 
+Assembly Assembly::WithGravity(const Vector3& g) const {
+  CAIRN_CHECK(g.allFinite());
+  Assembly out = *this;
+  out.gravity_ = g;
+  out.max_weight_ = 0;
+  for (const Part& p : out.parts_)
+    if (!p.fixed) out.max_weight_ = std::max(out.max_weight_, p.mass * g.norm());
+  return out;
+}
+
 std::optional<std::string> Assembly::FixtureFault(const FixtureDef& f) const {
   const int part = FindPart(f.part);
   if (part < 0) return "no part named '" + EscapedName(f.part) + "'";

@@ -132,6 +132,13 @@ json MarginToJson(const Assembly& assembly, const MarginRequest& req, const Marg
       json deg = json::array();
       for (const MarginSide& s : r.sides) deg.push_back(Optional(s.critical));
       m["critical_deg"] = deg;
+      // The threshold of the check's verdict per sense: the largest angle
+      // it stands at (null: every angle tried).
+      if (r.verdict_computed) {
+        json vdeg = json::array();
+        for (const MarginSide& s : r.sides) vdeg.push_back(Optional(s.verdict_critical));
+        m["verdict_critical_deg"] = vdeg;
+      }
       break;
     }
     case MarginQuantity::kLoad: {
@@ -145,8 +152,16 @@ json MarginToJson(const Assembly& assembly, const MarginRequest& req, const Marg
       m["critical_weights"] =
           bounded && r.part_weight > 0 ? json(f / r.part_weight) : json(nullptr);
       m["part_weight"] = r.part_weight;
+      // The threshold of the check's verdict: the largest load it stands
+      // under (null: every load up to verdict_searched_to).
+      if (r.verdict_computed) m["verdict_critical"] = Optional(r.sides[0].verdict_critical);
       break;
     }
+  }
+  if (r.verdict_computed && r.quantity != MarginQuantity::kFriction) {
+    m["verdict_tolerance"] = r.verdict_tolerance;
+    m["verdict_checks"] = r.verdict_checks;
+    m["verdict_searched_to"] = r.verdict_searched_to;
   }
   m["method"] = r.method;
   m["tolerance"] = r.tolerance;
@@ -258,6 +273,11 @@ std::string MarginToText(const Assembly& assembly, const MarginRequest& req, con
       os << "critical tilt about [" << Num(r.axis.x()) << ", " << Num(r.axis.y()) << ", "
          << Num(r.axis.z()) << "]: " << Deg(r.sides[0].critical, "negative") << " / "
          << Deg(r.sides[1].critical, "positive") << '\n';
+      if (r.verdict_computed)
+        os << "  the check stands (--rule " << to_string(req.rule) << ") up to "
+           << Deg(r.sides[0].verdict_critical, "negative") << " / "
+           << Deg(r.sides[1].verdict_critical, "positive") << " (within "
+           << Num(r.verdict_tolerance) << "°)\n";
       break;
     case MarginQuantity::kLoad:
       os << "largest load on " << assembly.part(req.part).name << ": ";
@@ -271,6 +291,12 @@ std::string MarginToText(const Assembly& assembly, const MarginRequest& req, con
            << " has no weight: "
            << (assembly.gravity().norm() > 0 ? "its mass is zero" : "gravity is zero") << ")";
       os << '\n';
+      if (r.verdict_computed && side)
+        os << "  the check stands (--rule " << to_string(req.rule) << ") under "
+           << (side->verdict_critical ? "up to " + Num(*side->verdict_critical) + " (within " +
+                                            Num(r.verdict_tolerance) + ")"
+                                      : "every load up to " + Num(r.verdict_searched_to))
+           << '\n';
       break;
   }
   if (!r.holds_at_nominal)

@@ -186,7 +186,8 @@ ContactLcp BuildComponent(const Assembly& assembly, const Configuration& config,
                           LcpStorage storage, double length_tol,
                           std::vector<int>* lcp_index = nullptr,
                           std::vector<char>* flipped = nullptr,
-                          const std::vector<int>* canonical = nullptr) {
+                          const std::vector<int>* canonical = nullptr,
+                          const std::vector<PartLoad>* loads = nullptr) {
   std::vector<BodyDynamics> bodies;
   for (int p : comp.parts) {
     const Part& part = assembly.part(p);
@@ -197,6 +198,13 @@ ContactLcp BuildComponent(const Assembly& assembly, const Configuration& config,
     b.p_WBcm = config.WorldCentroid(assembly, p);
     b.planar = !assembly.is_3d();
     b.F_ext.head<3>() = part.mass * assembly.gravity();
+    if (loads) {
+      for (const PartLoad& load : *loads) {
+        if (load.part != p) continue;
+        b.F_ext.head<3>() += load.force;
+        b.F_ext.tail<3>() += (load.point - b.p_WBcm).cross(load.force);
+      }
+    }
     if (drive && !drive->nu_prev.empty()) b.nu_prev = drive->nu_prev[p];
     const PartRole role = RoleOf(drive, p);
     if (IsDriven(role)) {
@@ -404,9 +412,9 @@ std::vector<ContactLcp> BuildComponentLcps(const Assembly& assembly, const Confi
   // In the parts' own order: the margins' linear programs (whose optima do
   // not depend on it) and the benchmarks see the LCPs as the file lists them.
   for (const Component& comp : SplitComponents(assembly, config, contacts, nullptr))
-    out.push_back(BuildComponent(assembly, config, contacts, comp,
-                                 ChooseFormulation(assembly, options, drive), options.dt, drive,
-                                 options.lcp_storage, tol.length));
+    out.push_back(BuildComponent(
+        assembly, config, contacts, comp, ChooseFormulation(assembly, options, drive), options.dt,
+        drive, options.lcp_storage, tol.length, nullptr, nullptr, nullptr, &options.loads));
   return out;
 }
 
@@ -602,9 +610,10 @@ class ConfigurationAnalysis {
     auto t0 = Clock::now();
     std::vector<int> lcp_index;
     std::vector<char> flipped;
-    const ContactLcp lcp = BuildComponent(assembly_, config_, contacts_, comp, result_.formulation,
-                                          options_.dt, drive_, options_.lcp_storage,
-                                          result_.tolerances.length, &lcp_index, &flipped, &rank_);
+    const ContactLcp lcp =
+        BuildComponent(assembly_, config_, contacts_, comp, result_.formulation, options_.dt,
+                       drive_, options_.lcp_storage, result_.tolerances.length, &lcp_index,
+                       &flipped, &rank_, &options_.loads);
     result_.profile.build += Seconds(t0);
 
     t0 = Clock::now();

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <utility>
 
@@ -715,6 +716,102 @@ void VerdictThreshold(const FrictionScaling& scaling, const Assembly& scene,
   r.verdict_tolerance = hi - lo;
 }
 
+// The largest value in [0, end] up to which `stands` holds, for a verdict
+// that stands at 0 and is monotone along the way (as the equilibrium is: the
+// check's threshold is inside the equilibrium's): the end itself when it
+// stands there, else bisection to kVerdictBracket of the end. The result's
+// tolerance grows to the final bracket.
+double LargestStanding(double end, const std::function<bool(double)>& stands, MarginResult& r) {
+  if (stands(end)) return end;
+  double lo = 0, hi = end;
+  while (hi - lo > kVerdictBracket * end) {
+    const double mid = 0.5 * (lo + hi);
+    (stands(mid) ? lo : hi) = mid;
+  }
+  r.verdict_tolerance = std::max(r.verdict_tolerance, hi - lo);
+  return lo;
+}
+
+// The steps (degrees) of the scan for the verdict's tilt where the
+// equilibrium holds all the way round, and the largest load (in the part's
+// weights) the verdict's load is looked for up to where any load is carried.
+constexpr double kVerdictTiltScan = 30;
+constexpr double kVerdictLoadReach = 1e3;
+
+// The verdict's threshold per tilt sense (MarginSide::verdict_critical):
+// gravity turned by θ about the axis, the check as `cairn check` makes it.
+void VerdictTilt(const Assembly& assembly, const Configuration& config, const MarginRequest& req,
+                 MarginResult& r) {
+  r.verdict_computed = true;
+  StabilityOptions options;
+  options.rule = req.rule;
+  const Vector3 g = assembly.gravity();
+  for (int s = 0; s < 2; ++s) {
+    MarginSide& side = r.sides[s];
+    const double sign = s == 1 ? 1.0 : -1.0;
+    if (!r.stands_at_nominal) {
+      side.verdict_critical = 0.0;
+      continue;
+    }
+    const auto stands = [&](double deg) {
+      ++r.verdict_checks;
+      const Assembly turned = assembly.WithGravity(TurnedGravity(g, r.axis, sign * deg / kDeg));
+      return AnalyzeConfiguration(turned, config, options).stable();
+    };
+    if (side.critical) {
+      side.verdict_critical = sign * LargestStanding(std::abs(*side.critical), stands, r);
+      continue;
+    }
+    // The equilibrium holds all the way round: scan for a failing check.
+    r.verdict_searched_to = 360;
+    double lo = 0;
+    for (double deg = kVerdictTiltScan; deg <= 360; deg += kVerdictTiltScan) {
+      if (!stands(deg)) {
+        const double failing = deg;
+        const auto from_lo = [&](double x) { return stands(lo + x); };
+        side.verdict_critical = sign * (lo + LargestStanding(failing - lo, from_lo, r));
+        break;
+      }
+      lo = deg;
+    }
+  }
+}
+
+// The verdict's threshold for the load (MarginSide::verdict_critical): the
+// force along the direction at the point, added to gravity.
+void VerdictLoad(const Assembly& assembly, const Configuration& config, const MarginRequest& req,
+                 MarginResult& r) {
+  r.verdict_computed = true;
+  MarginSide& side = r.sides[0];
+  if (!r.stands_at_nominal) {
+    side.verdict_critical = 0.0;
+    return;
+  }
+  StabilityOptions options;
+  options.rule = req.rule;
+  const auto stands = [&](double f) {
+    ++r.verdict_checks;
+    options.loads = {PartLoad{req.part, f * req.direction, req.point}};
+    return AnalyzeConfiguration(assembly, config, options).stable();
+  };
+  if (side.critical) {
+    side.verdict_critical = LargestStanding(*side.critical, stands, r);
+    return;
+  }
+  // Any load is carried at rest: double from the part's weight.
+  const double top = kVerdictLoadReach * std::max(r.part_weight, 1e-300);
+  r.verdict_searched_to = top;
+  double lo = 0;
+  for (double f = std::max(r.part_weight, 1e-300); f <= top; f *= 2) {
+    if (!stands(f)) {
+      const auto from_lo = [&](double x) { return stands(lo + x); };
+      side.verdict_critical = lo + LargestStanding(f - lo, from_lo, r);
+      return;
+    }
+    lo = f;
+  }
+}
+
 // `lcps` are the components of the base model (scaling.At(scene, 1)).
 void FrictionMargin(const FrictionScaling& scaling, const Assembly& scene,
                     const Configuration& config, const std::vector<ContactLcp>& lcps,
@@ -873,17 +970,17 @@ MarginResult ComputeMargin(const AssemblyDef& def, const Assembly& assembly,
       LoadMargin(assembly, lcps, req, r);
       break;
   }
+  // 5. The check's verdict as given, and its threshold (tilt, load; the
+  // friction margin found its own above).
+  StabilityOptions options;
+  options.rule = req.rule;
+  r.stands_at_nominal = r.solved && AnalyzeConfiguration(assembly, config, options).stable();
+  if (r.solved && req.quantity == MarginQuantity::kTilt) VerdictTilt(assembly, config, req, r);
+  if (r.solved && req.quantity == MarginQuantity::kLoad) VerdictLoad(assembly, config, req, r);
   r.holds_at_nominal = true;
   for (const ComponentMargin& cm : r.components) {
     r.lps += cm.lps;
     r.holds_at_nominal = r.holds_at_nominal && cm.holds_at_nominal;
-  }
-  // 5. The check's verdict as given (no equilibrium: it falls, no check needed).
-  r.stands_at_nominal = false;
-  if (r.solved && r.holds_at_nominal) {
-    StabilityOptions options;
-    options.rule = req.rule;
-    r.stands_at_nominal = AnalyzeConfiguration(assembly, config, options).stable();
   }
   return r;
 }

@@ -313,6 +313,26 @@ TEST(CliMargin, NoExampleIsAnInternalError) {
   }
 }
 
+// The exit code is the check's verdict under the same rule: the H frame at
+// μ 0.84 has an equilibrium (a squeeze) and falls when loaded from rest, so
+// margin exits 1 as check does, and 0 with --rule equilibrium, as check does.
+TEST(CliMargin, TheExitCodeIsTheChecksVerdictUnderTheSameRule) {
+  if (SharedDir().empty()) GTEST_SKIP() << "../shared (the COMPAS datasets) is absent";
+  const std::string model =
+      SharedDir() + "/datasets/compas_cra/H.json --format compas --supports 0,1 --friction 0.84";
+  for (const std::string rule : {"loaded-from-rest", "equilibrium"}) {
+    const CliRun m = Cairn("margin " + model + " --rule " + rule + " --json");
+    const CliRun c = Cairn("check " + model + " --rule " + rule + " --json");
+    ASSERT_TRUE(c.exit_code == 0 || c.exit_code == 1) << c.err;
+    EXPECT_EQ(m.exit_code, c.exit_code) << rule << ": " << m.err;
+    const nlohmann::json j = nlohmann::json::parse(m.out)["margin"];
+    EXPECT_EQ(j["holds_at_nominal"], true) << rule;
+    EXPECT_EQ(j["stands_at_nominal"], c.exit_code == 0) << rule;
+    EXPECT_EQ(j["rule"], rule);
+  }
+  EXPECT_EQ(Cairn("check " + model + " --json").exit_code, 1);
+}
+
 // The friction margin over every shared COMPAS file, with the supports and
 // options of the datasets' READMEs (μ 0.84). Its lower end is proved by the
 // check itself (`cairn check`, another code path: the check's equilibrium
@@ -422,6 +442,44 @@ INSTANTIATE_TEST_SUITE_P(
         if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
       return name;
     });
+
+// The V-notch wedges type-a and type-b (compas_cra, supports 0 and 1, μ
+// 0.84) turned about y: the check's verdict (loaded from rest where rigid
+// bodies leave it open) has one threshold per sense, inside the equilibrium's,
+// and `cairn check` with gravity turned (--gravity) stands at every angle of
+// a grid up to it and falls past it.
+TEST(CliMargin, TiltVerdictThresholdSplitsTheChecksOfTheWedges) {
+  if (SharedDir().empty()) GTEST_SKIP() << "../shared (the COMPAS datasets) is absent";
+  for (const std::string file : {"type-a.json", "type-b.json"}) {
+    const std::string model = SharedDir() + "/datasets/compas_cra/" + file +
+                              " --format compas --supports 0,1 --friction 0.84";
+    const CliRun r = Cairn("margin " + model + " --tilt 0,1,0 --json");
+    ASSERT_EQ(r.exit_code, 0) << file << ": " << r.err;
+    const nlohmann::json m = nlohmann::json::parse(r.out)["margin"];
+    const double tolerance = m["verdict_tolerance"].get<double>();
+    // Gravity (0, 0, −9.81) turned by θ about +y (the margin's sense).
+    const auto stands_at = [&](double deg) {
+      const double t = deg * M_PI / 180;
+      const CliRun c = Cairn("check " + model + " --gravity " + Number(9.81 * std::sin(t)) + ",0," +
+                             Number(-9.81 * std::cos(t)) + " --json");
+      EXPECT_TRUE(c.exit_code == 0 || c.exit_code == 1) << c.err;
+      return c.exit_code == 0;
+    };
+    for (int s = 0; s < 2; ++s) {
+      SCOPED_TRACE(file + (s ? " positive" : " negative"));
+      // (type-a's equilibrium holds all the way round: its critical_deg is
+      // null, and the verdict's threshold is the check's alone.)
+      const nlohmann::json& v = m["verdict_critical_deg"][s];
+      const nlohmann::json& eq = m["critical_deg"][s];
+      ASSERT_FALSE(v.is_null());
+      const double deg = v.get<double>();
+      if (!eq.is_null()) EXPECT_LE(std::abs(deg), std::abs(eq.get<double>()) * (1 + 1e-9));
+      for (int k = 0; k <= 4; ++k) EXPECT_TRUE(stands_at(deg * k / 4)) << deg * k / 4 << "°";
+      const double past = deg + (s ? 1 : -1) * (tolerance + 0.5);
+      EXPECT_FALSE(stands_at(past)) << past << "°";
+    }
+  }
+}
 
 // The Armadillo vault (399 stones, 5031 contacts): 20 s in Release, but 56 s
 // of CPU in the sanitized build (over 3 minutes on a loaded 2-core machine),

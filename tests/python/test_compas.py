@@ -159,3 +159,12 @@ def test_the_rule_decides_what_rigid_bodies_leave_open():
     assert rbe["stable"] and rbe["rule"] == "equilibrium" and rbe["stability"] != "strong"
     with pytest.raises(cairn.InputError, match="rule"):
         cairn.check(m, rule="rbe")
+    # The margin takes the same rule: its verdict at the nominal μ is the
+    # check's, and with the equilibrium rule its threshold is μ* itself.
+    by_loading = cairn.margin(m, friction=True)["margin"]
+    assert by_loading["holds_at_nominal"] and not by_loading["stands_at_nominal"]
+    by_equilibrium = cairn.margin(m, friction=True, rule="equilibrium")["margin"]
+    assert by_equilibrium["stands_at_nominal"] and by_equilibrium["rule"] == "equilibrium"
+    assert by_equilibrium["verdict_critical"] == by_equilibrium["critical"]
+    with pytest.raises(cairn.InputError, match="rule"):
+        cairn.margin(m, friction=True, rule="rbe")

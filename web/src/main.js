@@ -33,6 +33,36 @@ function main() {
   page.start();
 }
 
+// The rigid analysis and the loaded-from-rest result beside it
+// (docs/loaded-from-rest.md), as the check's JSON has them: what is proved
+// about rest, the rigid motion found, and what loading from rest decided.
+function analysisWords(r) {
+  const lines = [];
+  const comps = r.components || [];
+  const rigid = [...new Set(comps.flatMap((c) => c.rigid_motion || []))];
+  const search = comps.map((c) => c.search).filter((s) => s);
+  if (r.static_equilibrium === true) {
+    let rigidLine = 'Rigid analysis: an equilibrium exists';
+    if (r.stability === 'strong') rigidLine += '; every solution of the contact problem is at rest (strongly stable)';
+    else if (rigid.length) rigidLine += '; a rigid motion also exists: ' + rigid.join(', ') + (rigid.length === 1 ? ' moves' : ' move') + ' (weakly stable)';
+    else if (r.stability === 'not certified')
+      rigidLine += '; no rigid motion found' + (search.some((s) => s.outcome === 'budget')
+        ? ' (the search stopped at its budget after ' + search.reduce((n, s) => n + s.nodes, 0) + ' branches)' : '');
+    lines.push(rigidLine + '.');
+  } else if (r.static_equilibrium === false) {
+    lines.push('Rigid analysis: no equilibrium exists.');
+  }
+  if (r.loaded_from_rest === 'stands') lines.push('Loaded from rest on compliant contacts: it stands.');
+  else if (r.loaded_from_rest === 'gives way') {
+    const parts = [...new Set(comps.flatMap((c) => (c.loaded_from_rest && c.loaded_from_rest.gives_way) || []))];
+    lines.push('Loaded from rest on compliant contacts: ' + (parts.length ? parts.join(', ') : 'it') +
+               ' gives way: nothing produces the forces the equilibrium needs.');
+  } else if (r.loaded_from_rest) {
+    lines.push('Loaded from rest: ' + r.loaded_from_rest + '; the equilibrium decides.');
+  }
+  return lines;
+}
+
 class Page {
   constructor(data) {
     this.data = data;
@@ -219,6 +249,7 @@ class Page {
     story.push((r.stable ? 'Stable' : 'Not stable') + (r.stability ? ' (' + r.stability + ')' : '') +
                (absent.length ? ' without ' + absent.map((i) => this.names[i]).join(', ') : '') + '.');
     for (const m of this.motions) story.push(this.names[m.part] + ' ' + motionWords(m) + '.');
+    story.push(...analysisWords(r));
     this.setStory(story);
     this.setSolverNotes(r.diagnostics);
     this.foot.append($('div', { class: 'note' }, (r.contacts || []).length + ' contacts · ' + this.names.length + ' parts'));

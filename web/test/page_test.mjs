@@ -97,6 +97,19 @@ const hostile = {
 writeFileSync(join(out, 'hostile.json'), JSON.stringify(hostile));
 run(['check', join(out, 'hostile.json'), '--html', page('hostile')]);
 
+// A block jammed between two walls (friction 0.5): an equilibrium squeezes
+// it, a rigid motion lets it slide, and loaded from rest it gives way.
+const jammed = {
+  cairn: 1, name: 'jammed', friction: 0.5,
+  parts: [
+    { name: 'left', fixed: true, polygon: [[-1, -2], [0, -2], [0, 2], [-1, 2]] },
+    { name: 'right', fixed: true, polygon: [[1, -2], [2, -2], [2, 2], [1, 2]] },
+    { name: 'block', polygon: [[0, 0], [1, 0], [1, 1], [0, 1]] },
+  ],
+};
+writeFileSync(join(out, 'jammed.json'), JSON.stringify(jammed));
+run(['check', join(out, 'jammed.json'), '--html', page('jammed')]);
+
 const browser = await launch();
 const open = (name, viewport) => openPage(page(name), viewport, browser);
 try {
@@ -122,6 +135,18 @@ try {
     await p.waitForTimeout(100);
     check(await p.evaluate(() => /^B\b[\s\S]*tips about/.test(document.getElementById('tip').textContent)),
           'fig1_check: hovering B shows its name and motion');
+    await o.close();
+  }
+  // Rigid bodies leave it open: the page says what the rigid analysis found
+  // and what loading from rest decided, beside each other.
+  {
+    const o = await open('jammed');
+    await common(o, 'jammed');
+    const story = await o.page.evaluate(() => document.getElementById('story').textContent);
+    check(/Rigid analysis: an equilibrium exists; a rigid motion also exists: block moves/.test(story),
+          'jammed: the page gives the rigid analysis (' + story + ')');
+    check(/Loaded from rest on compliant contacts: block gives way/.test(story),
+          'jammed: the page gives the loaded-from-rest result');
     await o.close();
   }
   {

@@ -221,6 +221,9 @@ class Assembly {
   /// Create would build from the definition so changed, without building it
   /// again (the friction margin probes one scene at many μ).
   Assembly WithFriction(double default_mu, double pair_factor) const;
+  /// This model with gravity `g` (finite; the same magnitude keeps every
+  /// tolerance as it is): the tilt margin's verdict turns gravity, not the parts.
+  Assembly WithGravity(const Vector3& g) const;
   /// The diagonal of the bounding box of all parts (length).
   double scene_size() const { return scene_size_; }
   /// The largest weight of a movable part, m |g| (force units; 0 without

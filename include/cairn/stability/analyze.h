@@ -253,6 +253,14 @@ class StabilityWorkspace {
   std::unique_ptr<Impl> impl_;
 };
 
+/// A force on a movable part, besides gravity: `force` (force units, world
+/// frame) acting at `point` (world frame, in the configuration checked).
+struct PartLoad {
+  int part = -1;
+  Vector3 force{0, 0, 0};
+  Vector3 point{0, 0, 0};
+};
+
 /// Options of AnalyzeConfiguration.
 struct StabilityOptions {
   double dt = 1.0;  ///< Stewart–Trinkle step (s); the verdict does not depend on it from rest
@@ -279,6 +287,8 @@ struct StabilityOptions {
   /// Static checks: the rule where rigid bodies leave the answer open
   /// (stability/solve_component.h).
   VerdictRule rule = VerdictRule::kLoadedFromRest;
+  /// Forces on parts besides gravity (the load margin's verdict).
+  std::vector<PartLoad> loads;
 };
 
 /// The contact LCP of every contact-graph component of `config`: the first

@@ -91,6 +91,12 @@ struct MarginSide {
   /// parametric LP with normal forces only), when computed; empty critical
   /// inside: holds all the way.
   std::optional<std::optional<double>> strong;
+  /// kTilt, kLoad: the threshold of the check's verdict (the request's rule)
+  /// in this sense: the largest angle (degrees, signed) or load (force units)
+  /// up to which the check was found to stand, within the result's
+  /// `verdict_tolerance`; 0 when it does not stand as given; empty: it stands
+  /// at every angle (every load up to `verdict_searched_to`) tried.
+  std::optional<double> verdict_critical;
 };
 
 /// One component's margin.
@@ -134,7 +140,7 @@ struct MarginResult {
   /// kFriction: every component has a frictionless equilibrium (strongly
   /// stable at every μ); false: the certificate holds at no μ.
   std::optional<bool> strong_all;
-  /// kFriction: the threshold of the verdict (`cairn check`, the
+  /// The threshold of the verdict (`cairn check`, the
   /// loaded-from-rest rule: stability/solve_component.h): the least μ (or
   /// factor) at which the check stands, to `verdict_tolerance` (the final
   /// bracket). It is at least the equilibrium's `critical`; empty when the

@@ -12,11 +12,13 @@
 ///  2. If an equilibrium exists: the strong-stability certificate (a
 ///     frictionless equilibrium: every LCP solution is then at rest; the proof
 ///     is in static_equilibrium.h), under a work budget; then Lemke's method as
-///     a probe for a moving solution, under a work budget: it moves, `stability`
-///     "weak" (rest possible, not guaranteed: Pang and Trinkle's weak
-///     stability); it rests, "strong" with the certificate, else "not
-///     certified". With the certificate the component stands. Without it
-///     rigid bodies leave the answer open, and the rule decides
+///     a probe for a moving solution, under a work budget, and where it finds
+///     none the complete search (mechanics/moving_solution.h), under its own:
+///     a motion, `stability` "weak" (rest possible, not guaranteed: Pang and
+///     Trinkle's weak stability); every branch pruned, "strong"; the budget
+///     spent, "not certified". With the certificate or the search's proof the
+///     component stands. Otherwise rigid bodies leave the answer open, and the
+///     rule decides
 ///     (VerdictRule): the component loaded from rest on compliant contacts
 ///     (mechanics/loaded_from_rest.h) stands, and the forces reported are a
 ///     rigid solution at rest (Lemke's, or the equilibrium's); or it gives
