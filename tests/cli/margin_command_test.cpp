@@ -473,7 +473,9 @@ TEST(CliMargin, TiltVerdictThresholdSplitsTheChecksOfTheWedges) {
       const nlohmann::json& eq = m["critical_deg"][s];
       ASSERT_FALSE(v.is_null());
       const double deg = v.get<double>();
-      if (!eq.is_null()) EXPECT_LE(std::abs(deg), std::abs(eq.get<double>()) * (1 + 1e-9));
+      if (!eq.is_null()) {
+        EXPECT_LE(std::abs(deg), std::abs(eq.get<double>()) * (1 + 1e-9));
+      }
       for (int k = 0; k <= 4; ++k) EXPECT_TRUE(stands_at(deg * k / 4)) << deg * k / 4 << "°";
       const double past = deg + (s ? 1 : -1) * (tolerance + 0.5);
       EXPECT_FALSE(stands_at(past)) << past << "°";
