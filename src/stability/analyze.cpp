@@ -659,6 +659,7 @@ class ConfigurationAnalysis {
     ctx.lemke = options_.lemke;
     ctx.static_check = static_check_;
     ctx.rule = options_.rule;
+    ctx.prove_strong = options_.prove_strong;
     // Whether an LCP solution moves a part that must stay put.
     ctx.moves = [this](const ContactLcp& l, const VectorX& z) {
       const ContactSolution sol = RecoverSolution(l, z);

@@ -688,6 +688,7 @@ void VerdictThreshold(const FrictionScaling& scaling, const Assembly& scene,
   if (!side.critical) return;  // no equilibrium at any μ: it never stands
   StabilityOptions options;
   options.rule = rule;
+  options.prove_strong = false;  // only the verdict
   const auto stands = [&](double k) {
     ++r.verdict_checks;
     return AnalyzeConfiguration(scaling.At(scene, k), config, options).stable();
@@ -745,6 +746,7 @@ void VerdictTilt(const Assembly& assembly, const Configuration& config, const Ma
   r.verdict_computed = true;
   StabilityOptions options;
   options.rule = req.rule;
+  options.prove_strong = false;  // only the verdict
   const Vector3 g = assembly.gravity();
   for (int s = 0; s < 2; ++s) {
     MarginSide& side = r.sides[s];
@@ -789,6 +791,7 @@ void VerdictLoad(const Assembly& assembly, const Configuration& config, const Ma
   }
   StabilityOptions options;
   options.rule = req.rule;
+  options.prove_strong = false;  // only the verdict
   const auto stands = [&](double f) {
     ++r.verdict_checks;
     options.loads = {PartLoad{req.part, f * req.direction, req.point}};
@@ -971,12 +974,23 @@ MarginResult ComputeMargin(const AssemblyDef& def, const Assembly& assembly,
       break;
   }
   // 5. The check's verdict as given, and its threshold (tilt, load; the
-  // friction margin found its own above).
+  // friction margin found its own above). The equilibrium rule's verdict is
+  // the equilibrium's: its thresholds are the LPs', with no check.
   StabilityOptions options;
   options.rule = req.rule;
+  options.prove_strong = false;  // only the verdict
   r.stands_at_nominal = r.solved && AnalyzeConfiguration(assembly, config, options).stable();
-  if (r.solved && req.quantity == MarginQuantity::kTilt) VerdictTilt(assembly, config, req, r);
-  if (r.solved && req.quantity == MarginQuantity::kLoad) VerdictLoad(assembly, config, req, r);
+  if (r.solved && req.quantity != MarginQuantity::kFriction) {
+    if (req.rule == VerdictRule::kEquilibrium) {
+      r.verdict_computed = true;
+      for (MarginSide& side : r.sides)
+        side.verdict_critical = r.stands_at_nominal ? side.critical : std::optional(0.0);
+    } else if (req.quantity == MarginQuantity::kTilt) {
+      VerdictTilt(assembly, config, req, r);
+    } else {
+      VerdictLoad(assembly, config, req, r);
+    }
+  }
   r.holds_at_nominal = true;
   for (const ComponentMargin& cm : r.components) {
     r.lps += cm.lps;

@@ -323,7 +323,7 @@ void DecideOpenCase(const ContactLcp& lcp, const SolveContext& ctx, const Vector
     stand(rest ? DecidedBy::kLemke : DecidedBy::kEquilibrium);
     return;
   }
-  out.loaded = LoadFromRest(lcp);
+  if (!out.loaded) out.loaded = LoadFromRest(lcp);  // (DecideWeakOrStrong may have loaded it)
   const LoadedFromRest& loaded = *out.loaded;
   switch (loaded.outcome) {
     case LoadedFromRest::Outcome::kStands:
@@ -373,6 +373,22 @@ void DecideWeakOrStrong(const ContactLcp& lcp, const SolveContext& ctx, bool lem
     out.rigid_motion = MovingBodies(lcp, out.lemke.z);
     DecideOpenCase(lcp, ctx, rest, &out.lemke.z, out);
     return;
+  }
+  // Only the verdict wanted: the search can change it only where the rule
+  // would let it fall (loading from rest gives way: a proof of strong
+  // stability makes it stand), so elsewhere the rule decides at once.
+  if (!ctx.prove_strong) {
+    bool stands = ctx.rule == VerdictRule::kEquilibrium;
+    if (!stands) {
+      out.loaded = LoadFromRest(lcp);
+      stands = out.loaded->outcome != LoadedFromRest::Outcome::kGivesWay;
+    }
+    if (stands) {
+      out.stability = StabilityProof::kNotCertified;
+      out.notes.push_back("strong stability not sought (only the verdict)");
+      DecideOpenCase(lcp, ctx, rest, nullptr, out);
+      return;
+    }
   }
   MovingSearchOptions o;
   o.check_tolerance = CheckTolerance(lcp, ctx.lemke);

@@ -289,6 +289,9 @@ struct StabilityOptions {
   VerdictRule rule = VerdictRule::kLoadedFromRest;
   /// Forces on parts besides gravity (the load margin's verdict).
   std::vector<PartLoad> loads;
+  /// Static checks: decide `stability` as far as the search's budget allows
+  /// (SolveContext::prove_strong); off, only the verdict is sought.
+  bool prove_strong = true;
 };
 
 /// The contact LCP of every contact-graph component of `config`: the first

@@ -114,6 +114,11 @@ struct SolveContext {
   bool static_check = true;
   /// The static policy's rule where rigid bodies leave the answer open.
   VerdictRule rule = VerdictRule::kLoadedFromRest;
+  /// Whether `stability` must be decided as far as the search's budget allows
+  /// (check, --require strong). When not (the margins' bisections), the
+  /// complete search runs only where its proof could change the verdict:
+  /// where loading from rest gives way. The verdict is the same either way.
+  bool prove_strong = true;
   /// Along paths: try the rest hypothesis LP first (3-D, friction, a driven
   /// part, no carried one).
   bool rest_first = false;
