@@ -43,9 +43,10 @@
 /// them, was not found in 3 000 with them.)
 ///
 /// **Budget.** A work count, not a clock: the simplex iterations of every
-/// node times the LP's rows (about the arithmetic a dual simplex iteration
-/// does). When it runs out the answer is kBudget with how far the search got:
-/// the nodes solved and the nodes still open.
+/// node, plus a fixed overhead per node, times the LP's rows (about the
+/// arithmetic a dual simplex iteration does). When it runs out the answer is
+/// kBudget with how far the search got: the nodes solved and the nodes still
+/// open.
 
 #include <string>
 
@@ -86,7 +87,7 @@ struct MovingSolution {
   enum class Outcome {
     kFound,   ///< a verified LCP solution in which something moves (weak, if rest is possible)
     kNone,    ///< proved: no solution moves (strongly stable, if rest is possible)
-    kBudget,  ///< the node budget ran out first (how far: nodes, open)
+    kBudget,  ///< the work budget ran out first (how far: nodes, open)
     kNotRun,  ///< not a rest-state Stewart–Trinkle LCP (moving bodies, or frictionless)
     kFailed,  ///< an LP failed numerically: the search is not complete (message)
   };
