@@ -52,9 +52,8 @@ using SparseRow = std::vector<std::pair<int, double>>;
 // x_j = (physical value) / col_unit[j]; row r is (Σ a x) / row_unit[r].
 struct SearchLp {
   int n = 0;                  // LCP size: pairs
-  int xi0 = 0, z0 = 0;        // first ξ column, first z column
+  int z0 = 0;                 // first z column (the ξ columns come first)
   int w0 = 0;                 // first w row (pair i ↔ z0 + i, w0 + i)
-  std::vector<int> xi_body;   // (ξ columns) body of each
   std::vector<int> xi_first;  // (nb) first ξ column of body k, -1 if none
   std::vector<MatrixX> H;     // (nb) BᵀMB
   std::vector<Eigen::Matrix<double, 6, Eigen::Dynamic>> B;  // (nb)
@@ -62,9 +61,8 @@ struct SearchLp {
   std::vector<double> col_upper;                            // (columns) base upper bounds
   std::vector<double> row_lower;                            // (rows) base bounds
   std::vector<double> row_upper;
-  std::vector<double> power;  // (ξ columns) Fᵀ B per scaled column
-  double R = 0;               // Δt ‖F‖_{M⁻¹}
-  double power_scale = 0;     // R² / Δt
+  double R = 0;            // Δt ‖F‖_{M⁻¹}
+  double power_scale = 0;  // R² / Δt
 };
 
 // A row of J on the scaled ξ columns.
@@ -122,13 +120,11 @@ bool BuildSearchLp(const ContactLcp& lcp, SearchLp& s, ClpSimplex& lp) {
     const VectorX f = s.B[k].transpose() * b.F_ext;
     R2 += dt * dt * f.dot(Hinv[k] * f);
     s.xi_first[k] = ncols;
-    for (int j = 0; j < s.B[k].cols(); ++j) s.xi_body.push_back(k);
     ncols += static_cast<int>(s.B[k].cols());
   }
   s.R = std::sqrt(R2);
   if (!(s.R > 0)) return false;
   s.power_scale = R2 / dt;
-  s.xi0 = 0;
   s.z0 = ncols;
   ncols += s.n;
 
@@ -224,14 +220,12 @@ bool BuildSearchLp(const ContactLcp& lcp, SearchLp& s, ClpSimplex& lp) {
                      static_cast<CoinBigIndex>(vi.size()));
   m.setDimensions(static_cast<int>(rows.size()), ncols);
   std::vector<double> cost(ncols, 0.0);
-  s.power.assign(s.z0, 0.0);
   for (int k = 0; k < nb; ++k) {
     if (s.xi_first[k] < 0) continue;
     const VectorX f = s.B[k].transpose() * lcp.bodies[k].F_ext;
     for (int j = 0; j < f.size(); ++j) {
       const int col = s.xi_first[k] + j;
-      s.power[col] = f(j) * s.col_unit[col];
-      cost[col] = -s.power[col] / s.power_scale;
+      cost[col] = -f(j) * s.col_unit[col] / s.power_scale;
     }
   }
   s.row_lower.clear();
