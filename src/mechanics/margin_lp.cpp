@@ -132,14 +132,18 @@ bool ReadOptimum(const ContactLcp& lcp, const std::vector<Vector6>& load, bool f
 // steps doubling outward until an LP finds no equilibrium, then bisected to
 // a relative width kEndBisectionTolerance. Each probe is a verified
 // FindStaticEquilibrium, so the end returned is proved: an equilibrium at
-// `value`, none just past it. False (out unchanged) when no feasible s is
-// found near the claim or S shows no end within kEndMaxDoublings steps.
+// `value`, none just past it. kNoPoint (out unchanged) when no feasible s is
+// found near the claim nor at 0, kNoEnd when S shows no end within
+// kEndMaxDoublings steps.
 constexpr double kEndProbeSteps[] = {0, 1e-12, 1e-9, 1e-7, 1e-5, 1e-3};
 constexpr double kEndBisectionTolerance = 1e-9;
 constexpr int kEndMaxDoublings = 60;
 
-bool BracketEnd(const ContactLcp& lcp, const std::vector<Vector6>& load, bool maximize,
-                double lower_bound, bool frictionless, double claimed, LoadParameterResult& out) {
+enum class Bracket { kFound, kNoPoint, kNoEnd };
+
+Bracket BracketEnd(const ContactLcp& lcp, const std::vector<Vector6>& load, bool maximize,
+                   double lower_bound, bool frictionless, double claimed,
+                   LoadParameterResult& out) {
   EquilibriumOptions options;
   options.frictionless = frictionless;
   int lps = 0;
@@ -168,7 +172,7 @@ bool BracketEnd(const ContactLcp& lcp, const std::vector<Vector6>& load, bool ma
     StaticEquilibrium eq = at(0);
     if (eq.exists) inside = 0.0, inside_eq = std::move(eq);
   }
-  if (!inside) return false;
+  if (!inside) return Bracket::kNoPoint;
   // Outward from the feasible point until an LP finds no equilibrium.
   double lo = *inside, width = kEndBisectionTolerance * unit, hi = lo;
   bool bracketed = false;
@@ -182,7 +186,7 @@ bool BracketEnd(const ContactLcp& lcp, const std::vector<Vector6>& load, bool ma
       bracketed = true;
     }
   }
-  if (!bracketed) return false;
+  if (!bracketed) return Bracket::kNoEnd;
   while (std::abs(hi - lo) > kEndBisectionTolerance * std::max(1.0, std::abs(lo))) {
     const double mid = 0.5 * (lo + hi);
     StaticEquilibrium eq = at(mid);
@@ -197,7 +201,7 @@ bool BracketEnd(const ContactLcp& lcp, const std::vector<Vector6>& load, bool ma
   out.equilibrium = std::move(inside_eq);
   out.method = "equilibrium LPs bracketing the end";
   out.iterations += lps;
-  return true;
+  return Bracket::kFound;
 }
 
 }  // namespace
@@ -254,7 +258,21 @@ LoadParameterResult OptimizeLoadParameter(const ContactLcp& lcp, const std::vect
   if (clp::StatusOf(lp) == clp::Status::kOptimal &&
       ReadOptimum(lcp, load, frictionless, e, lp, ng, out))
     return out;
-  if (BracketEnd(lcp, load, maximize, col_lo[ng], frictionless, claimed, out)) return out;
+  switch (BracketEnd(lcp, load, maximize, col_lo[ng], frictionless, claimed, out)) {
+    case Bracket::kFound:
+      return out;
+    case Bracket::kNoPoint:
+      // No load at, near (to 1e-3 of it) or below the LP's claim has a
+      // verified equilibrium, nor has s = 0: S is at most a point the
+      // contacts hold only exactly (the H frame's bar without friction,
+      // pushed up by its own weight at an offset), empty to the re-check's
+      // tolerance.
+      out.status = LoadParameterResult::Status::kInfeasible;
+      out.method = "equilibrium LPs: none verified near the margin LP's claim";
+      return out;
+    case Bracket::kNoEnd:
+      break;
+  }
   out.status = LoadParameterResult::Status::kFailed;
   out.message = first_message;
   return out;

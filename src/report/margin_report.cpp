@@ -273,7 +273,9 @@ std::string MarginToText(const Assembly& assembly, const MarginRequest& req, con
       os << "critical tilt about [" << Num(r.axis.x()) << ", " << Num(r.axis.y()) << ", "
          << Num(r.axis.z()) << "]: " << Deg(r.sides[0].critical, "negative") << " / "
          << Deg(r.sides[1].critical, "positive") << '\n';
-      if (r.verdict_computed)
+      if (r.verdict_computed && !r.stands_at_nominal)
+        os << "  the check (--rule " << to_string(req.rule) << ") falls even untilted\n";
+      else if (r.verdict_computed)
         os << "  the check stands (--rule " << to_string(req.rule) << ") up to "
            << Deg(r.sides[0].verdict_critical, "negative") << " / "
            << Deg(r.sides[1].verdict_critical, "positive") << " (within "
@@ -291,12 +293,19 @@ std::string MarginToText(const Assembly& assembly, const MarginRequest& req, con
            << " has no weight: "
            << (assembly.gravity().norm() > 0 ? "its mass is zero" : "gravity is zero") << ")";
       os << '\n';
-      if (r.verdict_computed && side)
-        os << "  the check stands (--rule " << to_string(req.rule) << ") under "
-           << (side->verdict_critical ? "up to " + Num(*side->verdict_critical) + " (within " +
-                                            Num(r.verdict_tolerance) + ")"
-                                      : "every load up to " + Num(r.verdict_searched_to))
-           << '\n';
+      if (r.verdict_computed && side) {
+        os << "  the check (--rule " << to_string(req.rule) << ") ";
+        if (!r.stands_at_nominal)
+          os << "falls even without the load";
+        else if (side->verdict_critical)
+          os << "stands under up to " << Num(*side->verdict_critical) << " (within "
+             << Num(r.verdict_tolerance) << ")";
+        else if (r.verdict_searched_to > 0)
+          os << "stands under every load up to " << Num(r.verdict_searched_to);
+        else
+          os << "stands under any load";
+        os << '\n';
+      }
       break;
   }
   if (!r.holds_at_nominal)

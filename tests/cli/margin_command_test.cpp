@@ -337,6 +337,21 @@ TEST(CliMargin, TheExitCodeIsTheChecksVerdictUnderTheSameRule) {
     EXPECT_EQ(j["rule"], rule);
   }
   EXPECT_EQ(Cairn("check " + model + " --json").exit_code, 1);
+  // A load on the bar, up or down at an offset: the squeeze carries any load
+  // (critical null), and without friction nothing holds the bar's weight,
+  // although one upward load at that point balances it exactly (the
+  // frictionless LP's claim, which no equilibrium verifies: once an internal
+  // error). The verdict is still the check's.
+  for (const std::string direction : {"0,0,1", "0,0,-1"})
+    for (const std::string rule : {"loaded-from-rest", "equilibrium"}) {
+      SCOPED_TRACE(direction + " " + rule);
+      const CliRun m = Cairn("margin " + model + " --load 2 --point 0,0,0 --direction " +
+                             direction + " --rule " + rule + " --json");
+      ASSERT_EQ(m.exit_code, rule == "equilibrium" ? 0 : 1) << m.err;
+      const nlohmann::json j = nlohmann::json::parse(m.out)["margin"];
+      EXPECT_TRUE(j["critical"].is_null());
+      EXPECT_EQ(j["strong"]["certified_up_to"], 0.0);
+    }
 }
 
 // The friction margin over every shared COMPAS file, with the supports and

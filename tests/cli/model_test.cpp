@@ -1208,6 +1208,7 @@ TEST(CompasCheck, TheCraOutcomesLoadedFromRest) {
     int exit_code;
     const char* loaded;  // loaded_from_rest
   };
+  SHARED_OR_SKIP(shelf_file, "compas_cra/shelf.json");
   for (const Case& c : {Case{"compas_cra/H.json", "0,1", 0.84, 1, "gives way"},
                         Case{"compas_cra/A.json", "0,1", 0.84, 1, "gives way"},
                         Case{"compas_cra/snake.json", "0", 0.7, 0, "stands"},
@@ -1232,6 +1233,29 @@ TEST(CompasCheck, TheCraOutcomesLoadedFromRest) {
     EXPECT_EQ(Doc(rbe)["rule"], "equilibrium");
     EXPECT_EQ(CheckCompas(file, c.mu, supports + " --rule equilibrium --require strong").exit_code,
               3);
+  }
+  // Why the shelf falls, computed another way: strut 9 stands on strut 5's
+  // face, inclined more steeply than the friction angle (|n_x|/|n_z| > μ), so
+  // on that face alone it slides; the only other contact is the frame's top
+  // beam above it, whose push down an equilibrium needs. Sliding down the face
+  // moves its top down and away from the beam (velocity z < 0), so loading
+  // from rest never produces that push.
+  {
+    const json doc = Doc(CheckCompas(shelf_file, 0.9, "--supports 0"));
+    bool on_five = false;
+    for (const json& k : doc["contacts"]) {
+      const std::set<std::string> pair = {k["parts"][0], k["parts"][1]};
+      if (pair != std::set<std::string>{"5", "9"}) continue;
+      on_five = true;
+      const double nx = k["normal"][0].get<double>(), nz = k["normal"][2].get<double>();
+      EXPECT_GT(std::abs(nx) / std::abs(nz), 0.9) << k.dump();
+    }
+    EXPECT_TRUE(on_five);
+    for (const json& p : doc["parts"])
+      if (p["name"] == "9") {
+        ASSERT_TRUE(p["moving"].get<bool>());
+        EXPECT_LT(p["velocity"]["linear"][2].get<double>(), 0);
+      }
   }
   // Strut 9 alone, every other part held: it gives way. (At μ 0.9 Lemke's
   // method fails on this one's loaded-from-rest LCP in both forms, and the
@@ -1265,6 +1289,40 @@ TEST(CompasCheck, TheCraOutcomesLoadedFromRest) {
   // A model that is strongly stable passes --require strong.
   SHARED_OR_SKIP(cubes, "compas_cra/cubes.json");
   EXPECT_EQ(CheckCompas(cubes, 0.84, "--supports 0 --require strong").exit_code, 0);
+}
+
+// `--require strong` on `simulate` and `plan`: a block wedged between two
+// walls stands by the equilibrium rule (the walls can squeeze it) but can also
+// slide down, so strong stability is not proved: `check` and `simulate` exit
+// 3, and `plan` counts no state that holds it as stable. Loaded from rest,
+// nothing squeezes it and it falls (exit 1).
+TEST(RequireStrong, SimulateExitsThreeAndPlanFindsNoStableState) {
+  const std::string scene = WriteFile("wedged.json", R"({"cairn": 1, "friction": 0.5, "parts": [
+    {"name": "ground", "fixed": true, "box": {"min": [-4, -1], "max": [6, 0]}},
+    {"name": "left wall", "fixed": true, "box": {"min": [-1, 0], "max": [0, 3]}},
+    {"name": "right wall", "fixed": true, "box": {"min": [1, 0], "max": [2, 3]}},
+    {"name": "wedged", "box": {"min": [0, 1], "max": [1, 2]}},
+    {"name": "loose", "box": {"min": [3, 0], "max": [4, 1]}}]})");
+  const std::string plan = WriteFile("lift_loose.plan.json", R"({"cairn_plan": 1, "dt": 0.25,
+    "steps": [{"remove": ["loose"], "direction": [0, 1], "distance": 2, "support": "none"}]})");
+  const std::string rbe = " --rule equilibrium";
+  EXPECT_EQ(Cairn("check " + scene + rbe).exit_code, 0);
+  EXPECT_EQ(Cairn("check " + scene + rbe + " --require strong").exit_code, 3);
+  EXPECT_EQ(Cairn("check " + scene).exit_code, 1);
+
+  const CliRun sim = Cairn("simulate " + scene + " " + plan + rbe + " --json");
+  ASSERT_EQ(sim.exit_code, 0) << sim.err;
+  EXPECT_EQ(Doc(sim)["strong_at_rest"], false);
+  EXPECT_EQ(Cairn("simulate " + scene + " " + plan + rbe + " --require strong").exit_code, 3);
+  EXPECT_EQ(Cairn("simulate " + scene + " " + plan).exit_code, 1);
+
+  const CliRun planned = Cairn("plan " + scene + rbe + " --json");
+  ASSERT_EQ(planned.exit_code, 0) << planned.err;
+  EXPECT_FALSE(Doc(planned)["sequences"].empty());
+  const CliRun strong = Cairn("plan " + scene + rbe + " --require strong --json");
+  ASSERT_EQ(strong.exit_code, 1) << strong.err;
+  EXPECT_TRUE(Doc(strong)["sequences"].empty());
+  EXPECT_NE(Doc(strong)["message"].get<std::string>().find("not stable"), std::string::npos);
 }
 
 }  // namespace
