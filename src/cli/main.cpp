@@ -19,6 +19,7 @@
 #include "cli/margin_command.h"
 #include "cli/mpi.h"
 #include "cli/plan_command.h"
+#include "cli/sequence_command.h"
 #include "cli/simulate_command.h"
 
 namespace {
@@ -330,6 +331,36 @@ CLI::App* AddPlan(CLI::App& app, cairn::cli::PlanArgs& plan) {
   return cmd;
 }
 
+// ---- cairn sequence (docs/sequence.md) ------------------------------------------
+
+CLI::App* AddSequence(CLI::App& app, cairn::cli::SequenceArgs& sequence) {
+  CLI::App* cmd = AddSceneCommand(
+      app, "sequence",
+      "Find a build order, one part a step, in which every state stands, with the fewest "
+      "temporary supports",
+      sequence.scene, sequence.json);
+  cmd->add_option("--temporary", sequence.temporary,
+                  "The temporary supports allowed: hold (a placed part held where it is, as a "
+                  "robot or a crane holds a block)")
+      ->check(CLI::IsMember({"hold"}));
+  cmd->add_option("--max-temporary", sequence.max_temporary,
+                  "The most supports in place at once (default: no bound; 0: none)")
+      ->check(kNonNegativeInteger);
+  AddNumberList(cmd, "--direction", sequence.direction,
+                "The removal direction (a part arrives along its reverse): X,Y in a 2-D scene, "
+                "X,Y,Z in a 3-D one; default: against gravity",
+                "X,Y[,Z]");
+  cmd->add_option("--directions", sequence.directions,
+                  "Removal directions tried in turn: up (against gravity, default) or axes (up, "
+                  "then +-x, +-y (, +-z))")
+      ->check(CLI::IsMember({"up", "axes"}));
+  cmd->add_option("--beam", sequence.beam, "States kept per step (default 4; 1: greedy)")
+      ->check(CLI::Range(1, 1000));
+  AddRuleOptions(cmd, sequence.rule, sequence.require);
+  AddModelOptions(cmd, sequence.model);
+  return cmd;
+}
+
 // ---- cairn batch (docs/batch.md) ----------------------------------------------
 
 CLI::App* AddMargin(CLI::App& app, cairn::cli::MarginArgs& margin);
@@ -613,11 +644,13 @@ int Run(int argc, char** argv) {
   cli::ConvertArgs convert;
   cli::BlockingArgs blocking;
   cli::PlanArgs plan;
+  cli::SequenceArgs sequence;
   const CLI::App* check_cmd = AddCheck(app, check);
   const CLI::App* sim_cmd = AddSimulate(app, sim);
   const CLI::App* convert_cmd = AddConvert(app, convert);
   const CLI::App* blocking_cmd = AddBlocking(app, blocking);
   const CLI::App* plan_cmd = AddPlan(app, plan);
+  const CLI::App* sequence_cmd = AddSequence(app, sequence);
   cli::BatchArgs batch;
   const CLI::App* batch_cmd = AddBatch(app, batch);
   cli::MarginArgs margin;
@@ -646,6 +679,7 @@ int Run(int argc, char** argv) {
   if (*sim_cmd) return cli::RunSimulate(sim, std::cout, std::cerr);
   if (*convert_cmd) return cli::RunConvert(convert, std::cout, std::cerr);
   if (*blocking_cmd) return cli::RunBlocking(blocking, std::cout, std::cerr);
+  if (*sequence_cmd) return cli::RunSequence(sequence, std::cout, std::cerr);
   // Under mpirun, rank 0 alone speaks: the others' streams go nowhere.
   std::ostringstream quiet_out, quiet_err;
   std::ostream& out = cli::MpiRank() == 0 ? std::cout : quiet_out;

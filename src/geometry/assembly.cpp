@@ -812,6 +812,15 @@ Assembly Assembly::WithGravity(const Vector3& g) const {
   return out;
 }
 
+Assembly Assembly::WithHeld(const std::vector<int>& held) const {
+  Assembly out = *this;
+  for (const int p : held) {
+    CAIRN_CHECK(p >= 0 && p < num_parts());
+    out.parts_[p].fixed = true;
+  }
+  return out;
+}
+
 std::optional<std::string> Assembly::FixtureFault(const FixtureDef& f) const {
   const int part = FindPart(f.part);
   if (part < 0) return "no part named '" + EscapedName(f.part) + "'";

@@ -224,6 +224,11 @@ class Assembly {
   /// This model with gravity `g` (finite; the same magnitude keeps every
   /// tolerance as it is): the tilt margin's verdict turns gravity, not the parts.
   Assembly WithGravity(const Vector3& g) const;
+  /// This model with the parts `held` (indices) fixed where they are, as a
+  /// robot or a crane holds a block (`cairn sequence`'s holds). The scene's
+  /// force scale (max_weight) and tolerances stay those of this model, so a
+  /// state's check is judged on the scene's scale whatever is held.
+  Assembly WithHeld(const std::vector<int>& held) const;
   /// The diagonal of the bounding box of all parts (length).
   double scene_size() const { return scene_size_; }
   /// The largest weight of a movable part, m |g| (force units; 0 without

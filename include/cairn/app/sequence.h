@@ -1,0 +1,33 @@
+#pragma once
+/// @file
+/// `cairn sequence`: a build order with the fewest temporary supports
+/// (docs/sequence.md, planning/sequence.h).
+
+#include <string>
+#include <vector>
+
+#include "cairn/app/command.h"
+#include "cairn/app/model.h"
+#include "cairn/core/types.h"
+#include "cairn/stability/solve_component.h"
+
+namespace cairn::app {
+
+struct SequenceQuery {
+  std::string temporary = "hold";  ///< --temporary: the kinds of support (hold)
+  int max_temporary = -1;          ///< --max-temporary K; -1: no bound
+  /// --direction X,Y(,Z): the one removal direction (a part arrives along
+  /// its reverse); empty: `directions`.
+  std::vector<double> direction;
+  std::string directions = "up";  ///< --directions up|axes: against gravity, or ±x, ±y (, ±z)
+  int beam_width = 4;             ///< --beam W: states kept per step
+  VerdictRule rule = VerdictRule::kLoadedFromRest;  ///< --rule
+  bool require_strong = false;                      ///< --require strong
+};
+
+/// The build order of `model`: exit 0 when a complete order was found within
+/// the bound, 1 when none. @throws InputError on a bad option's value.
+CommandResult SequenceDocument(const Model& model, const SequenceQuery& query,
+                               const Monitor& monitor = {});
+
+}  // namespace cairn::app

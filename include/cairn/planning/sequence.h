@@ -1,0 +1,116 @@
+#pragma once
+/// @file
+/// Build orders with temporary supports (`cairn sequence`, docs/sequence.md):
+/// the parts placed one a step from the fixed parts up, each arriving along a
+/// direction free past the parts already placed, every state (the parts
+/// placed so far with the supports in place) standing, with the fewest
+/// supports in place at once, then the fewest placed in all; and a lower
+/// bound that proves how far the order can be from the fewest.
+///
+/// A **hold** keeps a placed part where it is, as a robot or a crane holds a
+/// block: all its freedoms fixed, pulling as well as pushing. A state with
+/// held parts is checked as the same assembly with those parts fixed
+/// (Assembly::WithHeld). A hold goes in at the step whose state needs it and
+/// comes out as soon as the state stands without it.
+///
+/// The search, a beam over states (placed set, held set):
+///   1. Candidates: the unplaced parts that touch a placed or fixed part and
+///      whose arrival is free (no placed or fixed part blocks their removal
+///      to infinity along the direction: planning/blocking.h).
+///   2. Each candidate p placed: the state stands as it is, or with p held,
+///      or with a part the check says moves held (the first that makes it
+///      stand); then every hold the new state does without comes out (the
+///      oldest first).
+///   3. The children ranked by (most supports in place so far, supports now,
+///      placements so far, the placed parts' height against gravity,
+///      names), the best `beam_width` kept.
+/// Every state the returned order passes through is checked by
+/// AnalyzeConfiguration with the caller's rule (the verdict of `cairn check`).
+///
+/// The lower bound: every order passes through a state of one part (its
+/// first) and one of all parts but one (before its last). When no single
+/// part stands on the fixed parts alone, and no assembly missing one part
+/// stands, every order needs at least one support in place at some step.
+///
+/// Deterministic: the same document for the parts given in any order, up to
+/// ties broken by name.
+
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "cairn/geometry/assembly.h"
+#include "cairn/stability/analyze.h"
+
+namespace cairn {
+
+/// The kinds of temporary support the search may use.
+enum class TemporaryKind { kHold };
+const char* to_string(TemporaryKind kind);
+
+/// Options of FindBuildSequence.
+struct SequenceOptions {
+  /// The most supports in place at once; the search gives up beyond (-1: no
+  /// bound).
+  int max_temporary = -1;
+  /// No supports at all (`--max-temporary 0`) is max_temporary = 0.
+  /// Removal directions (unit, world); a part arrives along the reverse of
+  /// the first that is free. Empty: against gravity only (arrive from above).
+  std::vector<Vector3> directions;
+  /// States kept per step (1: greedy).
+  int beam_width = 4;
+  /// The check of a state (rule, require-strong is the caller's).
+  StabilityOptions stability;
+  /// Also require strong stability of every state (`--require strong`).
+  bool require_strong = false;
+  /// Called before each state check; may throw to abandon the search.
+  std::function<void()> checkpoint;
+  /// Told the parts placed, the best so far and the bound.
+  std::function<void(const std::string&)> status;
+};
+
+/// One support in place.
+struct TemporarySupport {
+  TemporaryKind kind = TemporaryKind::kHold;
+  int part = -1;
+  /// What the hold carries: the force and torque (about the part's centroid)
+  /// it exerts on the part (force units, world), so that the part's weight
+  /// and the pushes of the free parts on it balance. Contacts with fixed or
+  /// other held parts are not counted (both are held).
+  Vector3 force{0, 0, 0};
+  Vector3 torque{0, 0, 0};
+};
+
+/// One step: a part placed, and the supports in place after it.
+struct SequenceStep {
+  int part = -1;
+  Vector3 direction{0, 0, 0};  ///< the arrival direction (unit, world)
+  std::vector<TemporarySupport> in_place;
+  std::vector<int> added, removed;  ///< holds put in and taken out at this step
+  /// The state's check (the caller's rule): stands, and the proof.
+  bool stands = false;
+  StabilityProof stability = StabilityProof::kNone;
+};
+
+/// What FindBuildSequence found.
+struct BuildSequence {
+  bool complete = false;  ///< every movable part placed, every state standing
+  std::vector<SequenceStep> steps;
+  int max_in_place = 0;  ///< the most supports in place at once
+  int placements = 0;    ///< supports put in, in all
+  int lower_bound = 0;   ///< no order needs fewer at once (proved)
+  std::string lower_bound_reason;
+  bool optimal() const { return complete && max_in_place == lower_bound; }
+  std::string message;  ///< why not complete
+  int states_checked = 0;
+  int cache_hits = 0;
+  int warm_starts = 0;
+};
+
+/// The build order of the movable parts of `assembly`, from its fixed parts
+/// up (see the file comment). @throws std::invalid_argument on a bad option
+/// (a zero direction, beam_width < 1).
+BuildSequence FindBuildSequence(const Assembly& assembly, const SequenceOptions& options = {});
+
+}  // namespace cairn

@@ -1,0 +1,67 @@
+#include "cairn/app/sequence.h"
+
+#include <chrono>
+#include <vector>
+
+#include "cairn/app/blocking.h"
+#include "cairn/core/error.h"
+#include "cairn/planning/sequence.h"
+#include "cairn/report/sequence_report.h"
+
+namespace cairn::app {
+
+namespace {
+
+// The removal directions the query asks for (a part arrives along the
+// reverse of the first that is free past the parts placed).
+std::vector<Vector3> DirectionsOf(const Model& model, const SequenceQuery& query) {
+  const Assembly& assembly = model.assembly;
+  if (!query.direction.empty())
+    return {BlockingDirection(query.direction, assembly, "--direction")};
+  const Vector3& g = assembly.gravity();
+  const Vector3 up = g.norm() > 0 ? Vector3(-g / g.norm())
+                                  : (assembly.is_3d() ? Vector3(0, 0, 1) : Vector3(0, 1, 0));
+  if (query.directions == "up") return {up};
+  if (query.directions != "axes")
+    throw InputError(model.file, "--directions", "must be up or axes, not " + query.directions);
+  // Up first, then the other axis directions in a fixed order.
+  std::vector<Vector3> out = {up};
+  const int dim = assembly.dimension();
+  for (int axis = 0; axis < dim; ++axis)
+    for (const double sign : {1.0, -1.0}) {
+      Vector3 d = Vector3::Zero();
+      d[axis] = sign;
+      if ((d - up).norm() > 1e-12) out.push_back(d);
+    }
+  return out;
+}
+
+}  // namespace
+
+CommandResult SequenceDocument(const Model& model, const SequenceQuery& query,
+                               const Monitor& monitor) {
+  if (query.temporary != "hold")
+    throw InputError(model.file, "--temporary", "must be hold, not " + query.temporary);
+  SequenceOptions options;
+  options.max_temporary = query.max_temporary;
+  options.directions = DirectionsOf(model, query);
+  options.beam_width = query.beam_width;
+  options.stability.rule = query.rule;
+  options.stability.prove_strong = query.require_strong;
+  options.require_strong = query.require_strong;
+  options.checkpoint = monitor.checkpoint;
+  options.status = monitor.status;
+  const auto start = std::chrono::steady_clock::now();
+  const BuildSequence sequence = FindBuildSequence(model.assembly, options);
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  ReportOptions report;
+  report.scene_file = model.file;
+  CommandResult out;
+  out.document = SequenceToJson(model.assembly, sequence, seconds, report);
+  out.exit = sequence.complete ? kExitStable : kExitUnstable;
+  out.text = SequenceToText(model.assembly, sequence, report);
+  return out;
+}
+
+}  // namespace cairn::app

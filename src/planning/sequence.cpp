@@ -1,0 +1,448 @@
+// Build orders with temporary holds (planning/sequence.h, docs/sequence.md).
+
+#include "cairn/planning/sequence.h"
+
+#include <algorithm>
+#include <map>
+#include <stdexcept>
+#include <string>
+#include <unordered_map>
+#include <utility>
+#include <vector>
+
+#include "cairn/planning/blocking.h"
+
+namespace cairn {
+
+const char* to_string(TemporaryKind kind) {
+  switch (kind) {
+    case TemporaryKind::kHold:
+      return "hold";
+  }
+  return "?";
+}
+
+namespace {
+
+// The most assemblies with parts held kept at once (Assembly::WithHeld): each
+// is a copy of the scene's parts, and a beam meets a few hold sets per step.
+constexpr size_t kMaxHeldAssemblies = 64;
+
+// The most parts the check says move that are tried as the hold that makes a
+// new state stand (after the part just placed).
+constexpr int kMaxMovingTried = 3;
+
+// One state of the beam: the parts placed, the holds in place (oldest
+// first), and how it got there.
+struct State {
+  std::vector<bool> placed;
+  std::vector<int> held;
+  std::vector<SequenceStep> steps;
+  int max_in_place = 0;
+  int placements = 0;
+  double height = 0;  // Σ of the placed parts' centroid heights against gravity (length)
+  std::string names;  // the order's names, for ties
+};
+
+// A state's check, as the search needs it.
+struct Check {
+  bool stands = false;
+  StabilityProof proof = StabilityProof::kNone;
+  std::vector<int> moving;
+};
+
+class Search {
+ public:
+  Search(const Assembly& assembly, const SequenceOptions& options);
+  BuildSequence Run();
+
+ private:
+  // Stages of Run, in order.
+  bool CheckAssembled();
+  void ComputeAdjacencyAndBlocking();
+  void RunBeam();
+  void ComputeLowerBound();
+  void ConfirmAndMeasureHolds();
+
+  std::vector<State> Expand(const State& s);
+  std::optional<State> Place(const State& s, int part, const Vector3& arrival);
+  std::optional<Vector3> Arrival(const std::vector<bool>& placed, int part) const;
+  const Check& Stands(const std::vector<bool>& placed, std::vector<int> held);
+  StabilityResult Analyze(const std::vector<bool>& placed, std::vector<int> held);
+  const Assembly& HeldAssembly(const std::vector<int>& held_sorted);
+  bool Better(const State& a, const State& b) const;
+
+  const Assembly& assembly_;
+  const SequenceOptions& options_;
+  Vector3 up_;
+  std::vector<int> movable_;
+  std::vector<std::vector<int>> touching_;  // per part: the parts it touches assembled
+  std::vector<Vector3> directions_;         // removal directions
+  std::vector<BlockingGraph> graphs_;       // per direction, to infinity
+  std::unordered_map<std::string, Check> memo_;
+  std::map<std::vector<int>, Assembly> held_assemblies_;
+  StabilityWorkspace workspace_;
+  BuildSequence out_;
+  State best_;
+};
+
+Search::Search(const Assembly& assembly, const SequenceOptions& options)
+    : assembly_(assembly), options_(options) {
+  const Vector3& g = assembly.gravity();
+  up_ = g.norm() > 0 ? Vector3(-g / g.norm())
+                     : (assembly.is_3d() ? Vector3(0, 0, 1) : Vector3(0, 1, 0));
+  for (int p = 0; p < assembly.num_parts(); ++p)
+    if (!assembly.part(p).fixed && !assembly.part(p).tool) movable_.push_back(p);
+  directions_ = options.directions;
+  if (directions_.empty()) directions_.push_back(up_);
+  for (Vector3& d : directions_) {
+    if (!d.allFinite() || d.norm() == 0)
+      throw std::invalid_argument("a removal direction is zero or not finite");
+    d.normalize();
+    if (!assembly.is_3d()) d.z() = 0;
+  }
+  if (options.beam_width < 1) throw std::invalid_argument("beam_width must be at least 1");
+}
+
+// ---- The state check, cached ---------------------------------------------
+
+const Assembly& Search::HeldAssembly(const std::vector<int>& held_sorted) {
+  if (held_sorted.empty()) return assembly_;
+  auto it = held_assemblies_.find(held_sorted);
+  if (it != held_assemblies_.end()) return it->second;
+  if (held_assemblies_.size() >= kMaxHeldAssemblies) held_assemblies_.clear();
+  return held_assemblies_.emplace(held_sorted, assembly_.WithHeld(held_sorted)).first->second;
+}
+
+StabilityResult Search::Analyze(const std::vector<bool>& placed, std::vector<int> held) {
+  std::sort(held.begin(), held.end());
+  Configuration config = Configuration::Assembled(assembly_);
+  for (int p = 0; p < assembly_.num_parts(); ++p)
+    config.present[p] = assembly_.part(p).tool ? false : (assembly_.part(p).fixed || placed[p]);
+  return AnalyzeConfiguration(HeldAssembly(held), config, options_.stability, nullptr, &workspace_);
+}
+
+const Check& Search::Stands(const std::vector<bool>& placed, std::vector<int> held) {
+  std::sort(held.begin(), held.end());
+  std::string key(placed.size(), '0');
+  for (size_t p = 0; p < placed.size(); ++p)
+    if (placed[p]) key[p] = '1';
+  for (int h : held) key += "," + std::to_string(h);
+  const auto it = memo_.find(key);
+  if (it != memo_.end()) {
+    ++out_.cache_hits;
+    return it->second;
+  }
+  if (options_.checkpoint) options_.checkpoint();
+  const StabilityResult r = Analyze(placed, held);
+  ++out_.states_checked;
+  Check c;
+  c.proof = r.stability;
+  c.stands = r.stable() && (!options_.require_strong || r.stability == StabilityProof::kStrong);
+  c.moving = r.moving;
+  return memo_.emplace(std::move(key), std::move(c)).first->second;
+}
+
+// ---- Stages ----------------------------------------------------------------
+
+// The assembly as designed must stand: the last state of every order.
+bool Search::CheckAssembled() {
+  std::vector<bool> all(assembly_.num_parts(), false);
+  for (int p : movable_) all[p] = true;
+  if (Stands(all, {}).stands) return true;
+  out_.message = "the assembly itself does not stand" +
+                 std::string(options_.require_strong ? " with strong stability proved" : "") +
+                 ": no build order ends in a standing state";
+  return false;
+}
+
+// Which parts touch (the contacts of the assembled configuration) and, per
+// removal direction, which parts block which to infinity.
+void Search::ComputeAdjacencyAndBlocking() {
+  Configuration config = Configuration::Assembled(assembly_);
+  touching_.assign(assembly_.num_parts(), {});
+  const StabilityResult r = AnalyzeConfiguration(assembly_, config, options_.stability);
+  for (const ContactReport& c : r.contacts) {
+    const int a = c.contact.part_a, b = c.contact.part_b;
+    if (a < 0 || b < 0) continue;
+    touching_[a].push_back(b);
+    touching_[b].push_back(a);
+  }
+  for (auto& t : touching_) {
+    std::sort(t.begin(), t.end());
+    t.erase(std::unique(t.begin(), t.end()), t.end());
+  }
+  for (const Vector3& d : directions_)
+    graphs_.push_back(ComputeBlockingGraph(assembly_, config, d, BlockingKind::kInfinity));
+}
+
+// The arrival direction of `part` past the placed and fixed parts: the
+// reverse of the first removal direction no such part blocks.
+std::optional<Vector3> Search::Arrival(const std::vector<bool>& placed, int part) const {
+  for (size_t k = 0; k < graphs_.size(); ++k) {
+    bool free = true;
+    for (int q : graphs_[k].blockers[part]) free = free && !(assembly_.part(q).fixed || placed[q]);
+    if (free) return Vector3(-directions_[k]);
+  }
+  return std::nullopt;
+}
+
+// `s` with `part` placed: the holds it needs (none, the part itself, or a
+// part the check says moves), then every hold it does without taken out,
+// oldest first. Empty when no hold within the bound makes it stand.
+std::optional<State> Search::Place(const State& s, int part, const Vector3& arrival) {
+  std::vector<bool> placed = s.placed;
+  placed[part] = true;
+  const int bound = options_.max_temporary;
+  const auto allowed = [&](size_t n) { return bound < 0 || static_cast<int>(n) <= bound; };
+  std::optional<std::vector<int>> held;
+  const Check& as_is = Stands(placed, s.held);
+  if (as_is.stands) {
+    held = s.held;
+  } else if (allowed(s.held.size() + 1)) {
+    std::vector<int> tries = {part};
+    for (int q : as_is.moving)
+      if (q != part && static_cast<int>(tries.size()) <= kMaxMovingTried) tries.push_back(q);
+    for (int q : tries) {
+      std::vector<int> h = s.held;
+      h.push_back(q);
+      if (Stands(placed, h).stands) {
+        held = h;
+        break;
+      }
+    }
+  }
+  if (!held) return std::nullopt;
+  // Take out what the state does without, oldest first.
+  for (size_t i = 0; i < held->size();) {
+    std::vector<int> without = *held;
+    without.erase(without.begin() + static_cast<long>(i));
+    if (Stands(placed, without).stands) {
+      held = without;
+    } else {
+      ++i;
+    }
+  }
+  State child;
+  child.placed = std::move(placed);
+  child.held = *held;
+  child.steps = s.steps;
+  SequenceStep step;
+  step.part = part;
+  step.direction = arrival;
+  for (int h : child.held)
+    if (std::find(s.held.begin(), s.held.end(), h) == s.held.end()) step.added.push_back(h);
+  for (int h : s.held)
+    if (std::find(child.held.begin(), child.held.end(), h) == child.held.end())
+      step.removed.push_back(h);
+  child.placements = s.placements + static_cast<int>(step.added.size());
+  child.max_in_place = std::max(s.max_in_place, static_cast<int>(child.held.size()));
+  child.steps.push_back(std::move(step));
+  child.height = s.height + up_.dot(assembly_.part(part).centroid);
+  child.names = s.names + assembly_.part(part).name + '\n';
+  return child;
+}
+
+std::vector<State> Search::Expand(const State& s) {
+  std::vector<State> children;
+  std::vector<int> candidates, loose;
+  for (int p : movable_) {
+    if (s.placed[p]) continue;
+    bool touches = false;
+    for (int q : touching_[p]) touches = touches || assembly_.part(q).fixed || s.placed[q];
+    (touches ? candidates : loose).push_back(p);
+  }
+  // A part that touches nothing placed arrives held (only when no other can).
+  if (candidates.empty()) candidates = loose;
+  // Lower parts first (then names): the order Better ranks children of one
+  // state in when they need the same supports. A child that needs nothing
+  // new is as good as a child of `s` gets, so once beam_width of them are
+  // found, the candidates after them cannot enter the beam.
+  const double tol = assembly_.length_tolerance();
+  std::sort(candidates.begin(), candidates.end(), [&](int a, int b) {
+    const double ha = up_.dot(assembly_.part(a).centroid), hb = up_.dot(assembly_.part(b).centroid);
+    if (std::abs(ha - hb) > tol) return ha < hb;
+    return assembly_.part(a).name < assembly_.part(b).name;
+  });
+  int unimprovable = 0;
+  for (int p : candidates) {
+    const std::optional<Vector3> arrival = Arrival(s.placed, p);
+    if (!arrival) continue;
+    std::optional<State> child = Place(s, p, *arrival);
+    if (!child) continue;
+    if (child->held.empty() && child->placements == s.placements) ++unimprovable;
+    children.push_back(std::move(*child));
+    if (unimprovable >= options_.beam_width) break;
+  }
+  return children;
+}
+
+// Fewer supports at once so far, fewer now, fewer placements, lower parts
+// first, then names.
+bool Search::Better(const State& a, const State& b) const {
+  if (a.max_in_place != b.max_in_place) return a.max_in_place < b.max_in_place;
+  if (a.held.size() != b.held.size()) return a.held.size() < b.held.size();
+  if (a.placements != b.placements) return a.placements < b.placements;
+  const double tol = assembly_.length_tolerance();
+  if (std::abs(a.height - b.height) > tol) return a.height < b.height;
+  return a.names < b.names;
+}
+
+void Search::RunBeam() {
+  State start;
+  start.placed.assign(assembly_.num_parts(), false);
+  std::vector<State> beam = {start};
+  const size_t n = movable_.size();
+  for (size_t depth = 0; depth < n; ++depth) {
+    std::map<std::string, State> unique;  // by (placed, held): the better kept
+    for (const State& s : beam)
+      for (State& c : Expand(s)) {
+        std::string key(c.placed.begin(), c.placed.end());
+        for (int h : c.held) key += "," + std::to_string(h);
+        auto it = unique.find(key);
+        if (it == unique.end())
+          unique.emplace(std::move(key), std::move(c));
+        else if (Better(c, it->second))
+          it->second = std::move(c);
+      }
+    if (unique.empty()) {
+      best_ = beam.front();
+      out_.message =
+          "no part can be placed next within " +
+          (options_.max_temporary < 0
+               ? std::string("the holds tried")
+               : "at most " + std::to_string(options_.max_temporary) + " support(s) in place") +
+          " after " + std::to_string(depth) + " of " + std::to_string(n) + " parts";
+      return;
+    }
+    beam.clear();
+    for (auto& [key, state] : unique) beam.push_back(std::move(state));
+    std::sort(beam.begin(), beam.end(),
+              [&](const State& a, const State& b) { return Better(a, b); });
+    if (beam.size() > static_cast<size_t>(options_.beam_width))
+      beam.resize(static_cast<size_t>(options_.beam_width));
+    if (options_.status)
+      options_.status(std::to_string(depth + 1) + "/" + std::to_string(n) +
+                      " parts placed, supports at once " +
+                      std::to_string(beam.front().max_in_place) + ", " +
+                      std::to_string(out_.states_checked) + " states checked");
+  }
+  best_ = beam.front();
+  if (!best_.held.empty()) {
+    out_.message = "the last state still needs its holds";
+    return;
+  }
+  out_.complete = true;
+}
+
+// Every order passes through a state of one part and one of all parts but
+// one: when none of either stands without support, every order needs one.
+void Search::ComputeLowerBound() {
+  out_.lower_bound = 0;
+  if (movable_.empty()) return;
+  std::vector<bool> placed(assembly_.num_parts(), false);
+  bool one_stands = false;
+  for (int p : movable_) {
+    if (!Arrival(placed, p)) continue;
+    placed[p] = true;
+    one_stands = one_stands || Stands(placed, {}).stands;
+    placed[p] = false;
+    if (one_stands) break;
+  }
+  if (!one_stands) {
+    out_.lower_bound = 1;
+    out_.lower_bound_reason =
+        "no part stands alone on the fixed parts: every order's first state needs a support";
+    return;
+  }
+  if (!out_.complete || out_.max_in_place == 0) {
+    out_.lower_bound_reason = "a part stands alone on the fixed parts";
+    return;
+  }
+  for (int p : movable_) placed[p] = true;
+  bool all_but_one_stands = false;
+  for (int p : movable_) {
+    placed[p] = false;
+    if (Arrival(placed, p)) all_but_one_stands = all_but_one_stands || Stands(placed, {}).stands;
+    placed[p] = true;
+    if (all_but_one_stands) break;
+  }
+  if (all_but_one_stands) {
+    out_.lower_bound_reason =
+        "a part stands alone on the fixed parts, and the assembly stands without a part that can "
+        "go last";
+    return;
+  }
+  out_.lower_bound = 1;
+  out_.lower_bound_reason =
+      "the assembly without any one part that can go last does not stand: every order's last "
+      "state but one needs a support";
+}
+
+// Every state of the order checked again, afresh (no cache, no warm start),
+// with what each hold carries.
+void Search::ConfirmAndMeasureHolds() {
+  std::vector<bool> placed(assembly_.num_parts(), false);
+  std::vector<int> held;
+  for (SequenceStep& step : best_.steps) {
+    if (options_.checkpoint) options_.checkpoint();
+    placed[step.part] = true;
+    for (int h : step.added) held.push_back(h);
+    for (int h : step.removed) held.erase(std::find(held.begin(), held.end(), h));
+    std::vector<int> sorted = held;
+    std::sort(sorted.begin(), sorted.end());
+    Configuration config = Configuration::Assembled(assembly_);
+    for (int p = 0; p < assembly_.num_parts(); ++p)
+      config.present[p] = !assembly_.part(p).tool && (assembly_.part(p).fixed || placed[p]);
+    const StabilityResult r =
+        AnalyzeConfiguration(HeldAssembly(sorted), config, options_.stability);
+    step.stability = r.stability;
+    step.stands =
+        r.stable() && (!options_.require_strong || r.stability == StabilityProof::kStrong);
+    for (int h : held) {
+      TemporarySupport t;
+      t.part = h;
+      const Part& part = assembly_.part(h);
+      Vector3 force = part.mass * assembly_.gravity(), torque = Vector3::Zero();
+      for (const ContactReport& c : r.contacts) {
+        const Vector3 f = c.normal_force * c.contact.n_W + c.friction_force;  // on a
+        const double sign = c.contact.part_a == h ? 1.0 : c.contact.part_b == h ? -1.0 : 0.0;
+        if (sign == 0) continue;
+        force += sign * f;
+        torque += (c.contact.p_WC - part.centroid).cross(sign * f);
+      }
+      t.force = -force;
+      t.torque = -torque;
+      step.in_place.push_back(t);
+    }
+    if (!step.stands && out_.complete) {
+      out_.complete = false;
+      out_.message = "the fresh check of the state after placing '" +
+                     assembly_.part(step.part).name + "' does not stand";
+    }
+  }
+}
+
+BuildSequence Search::Run() {
+  if (!CheckAssembled()) {
+    ComputeLowerBound();
+    return out_;
+  }
+  ComputeAdjacencyAndBlocking();
+  RunBeam();
+  out_.max_in_place = best_.max_in_place;
+  out_.placements = best_.placements;
+  ComputeLowerBound();
+  ConfirmAndMeasureHolds();
+  out_.steps = std::move(best_.steps);
+  out_.warm_starts = workspace_.warm_starts();
+  return out_;
+}
+
+}  // namespace
+
+BuildSequence FindBuildSequence(const Assembly& assembly, const SequenceOptions& options) {
+  return Search(assembly, options).Run();
+}
+
+}  // namespace cairn
