@@ -1,0 +1,47 @@
+// app/sequence.h: `cairn sequence` as the CLI runs it.
+#include "cairn/app/sequence.h"
+
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "cairn/core/error.h"
+#include "test_paths.h"
+
+namespace cairn::app {
+namespace {
+
+using testing::ExamplePath;
+
+TEST(SequenceDocument, StackDocumentAndWords) {
+  const Model m = LoadModel(ExamplePath("stack3.json"), {});
+  const CommandResult r = SequenceDocument(m, {});
+  EXPECT_EQ(r.exit, kExitStable);
+  EXPECT_EQ(r.document["order"], nlohmann::json({"A", "B", "C"}));
+  EXPECT_EQ(r.document["temporary"]["optimal"], true);
+  EXPECT_NE(r.text.find("place A"), std::string::npos);
+}
+
+TEST(SequenceDocument, BadOptionsNameTheFlag) {
+  const Model m = LoadModel(ExamplePath("stack3.json"), {});
+  const auto refused = [&](const SequenceQuery& q) {
+    try {
+      SequenceDocument(m, q);
+    } catch (const InputError& e) {
+      return e.json_path();
+    }
+    return std::string("accepted");
+  };
+  SequenceQuery q;
+  q.temporary = "prop";
+  EXPECT_EQ(refused(q), "--temporary");
+  q = {};
+  q.direction = {0, 0};
+  EXPECT_EQ(refused(q), "--direction");
+  q = {};
+  q.directions = "ndbg";
+  EXPECT_EQ(refused(q), "--directions");
+}
+
+}  // namespace
+}  // namespace cairn::app
