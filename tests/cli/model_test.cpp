@@ -15,10 +15,13 @@
 #include <map>
 #include <nlohmann/json.hpp>
 #include <set>
+#include <sstream>
 #include <string>
 #include <vector>
 
+#include "cairn/app/model.h"
 #include "cairn/io/compas_reader.h"
+#include "cairn/mechanics/static_equilibrium.h"
 #include "cairn/stability/analyze.h"
 #include "cli/cli_run.h"
 #include "test_paths.h"
@@ -1110,6 +1113,74 @@ INSTANTIATE_TEST_SUITE_P(
         MonotoneCase{"peg_in_slot.json", "", true}, MonotoneCase{"pyramid10.json", "", true},
         MonotoneCase{"stack3.json", "", true}, MonotoneCase{"wall.json", "", true},
         MonotoneCase{"jenga.json", "", true}),
+    FileParamName<MonotoneCase>);
+
+// The shared files whose 20 checks take a minute or more under the sanitizers
+// (the shelves, the bridge, the cross vault, the curved files, the Armadillo
+// vault): the same sweep through the check's verdict function
+// (AnalyzeConfiguration, the rule loaded from rest; where no static
+// equilibrium exists, the equilibrium LPs alone) with the strong proof
+// left out (StabilityOptions::prove_strong: the verdict is the same, the
+// search then runs only where loading from rest gives way), the model read
+// once and its friction changed (Assembly::WithFriction). Tied to `cairn
+// check` at the grid's first standing μ and the one before it.
+class FrictionMonotoneVerdict : public ::testing::TestWithParam<MonotoneCase> {};
+
+TEST_P(FrictionMonotoneVerdict, OnceItStandsItStandsAtEveryLargerMu) {
+  const MonotoneCase& c = GetParam();
+  SHARED_OR_SKIP(file, c.file);
+  app::ModelArgs args;
+  args.format = "compas";
+  args.friction = 1.0;
+  std::istringstream options(c.model);
+  for (std::string flag, value; options >> flag >> value;) {
+    if (flag == "--supports") {
+      std::istringstream list(value);
+      for (std::string key; std::getline(list, key, ',');) args.supports.push_back(key);
+    } else if (flag == "--interfaces") {
+      args.interfaces = value;
+    }
+  }
+  const app::Model model = app::LoadModel(file, args);
+  StabilityOptions verdict_only;
+  verdict_only.prove_strong = false;
+  const Configuration config = Configuration::Assembled(model.assembly);
+  std::string verdicts;
+  double stands_from = -1, last_falling = -1;
+  for (const double mu : kFrictionGrid) {
+    const Assembly at = model.assembly.WithFriction(mu, 1.0);
+    // No static equilibrium, no standing (the check's first stage, whose
+    // "falls" then only adds which parts move): the LPs alone decide there.
+    bool equilibrium = true;
+    for (const ContactLcp& lcp : BuildComponentLcps(at, config, verdict_only))
+      equilibrium = equilibrium && FindStaticEquilibrium(lcp).exists;
+    const bool stands = equilibrium && AnalyzeConfiguration(at, config, verdict_only).stable();
+    verdicts += stands ? 'S' : 'F';
+    if (stands && stands_from < 0) stands_from = mu;
+    if (!stands && stands_from < 0) last_falling = mu;
+    if (!stands) {
+      EXPECT_LT(stands_from, 0) << "falls at mu " << mu << " after standing at " << stands_from
+                                << ": " << verdicts;
+    }
+  }
+  RecordProperty("verdicts", verdicts);
+  if (stands_from > 0) EXPECT_EQ(CheckCompas(file, stands_from, c.model).exit_code, 0);
+  if (last_falling > 0) EXPECT_EQ(CheckCompas(file, last_falling, c.model).exit_code, 1);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Shared, FrictionMonotoneVerdict,
+    ::testing::Values(MonotoneCase{"compas_assembly/crossvault_assembly.json", ""},
+                      MonotoneCase{"compas_cra/cube-curve-tall.json",
+                                   "--supports 0 --interfaces stored"},
+                      MonotoneCase{"compas_cra/curve-3-blocks.json",
+                                   "--supports 0 --interfaces stored"},
+                      MonotoneCase{"compas_cra/shelf.json", "--supports 0"},
+                      MonotoneCase{"compas_cra/shelf-s1.json", "--supports 0"},
+                      MonotoneCase{"compas_cra/shelf-s2.json", "--supports 0"},
+                      MonotoneCase{"compas_cra/shelf-s3.json", "--supports 0"},
+                      MonotoneCase{"compas_cra/bridge.json", "--supports 0,1"},
+                      MonotoneCase{"compas_cra/armadillo_cra.json", "--interfaces stored"}),
     FileParamName<MonotoneCase>);
 
 // `cairn margin --friction` gives the threshold of the check's verdict: the
