@@ -1164,8 +1164,12 @@ TEST_P(FrictionMonotoneVerdict, OnceItStandsItStandsAtEveryLargerMu) {
     }
   }
   RecordProperty("verdicts", verdicts);
-  if (stands_from > 0) EXPECT_EQ(CheckCompas(file, stands_from, c.model).exit_code, 0);
-  if (last_falling > 0) EXPECT_EQ(CheckCompas(file, last_falling, c.model).exit_code, 1);
+  if (stands_from > 0) {
+    EXPECT_EQ(CheckCompas(file, stands_from, c.model).exit_code, 0);
+  }
+  if (last_falling > 0) {
+    EXPECT_EQ(CheckCompas(file, last_falling, c.model).exit_code, 1);
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(

@@ -41,7 +41,9 @@ TEST(FindBuildSequence, NoHoldAllowedMeansNone) {
   options.max_temporary = 0;
   const BuildSequence s = FindBuildSequence(a, options);
   for (const SequenceStep& step : s.steps) EXPECT_TRUE(step.in_place.empty());
-  if (!s.complete) EXPECT_FALSE(s.message.empty());
+  if (!s.complete) {
+    EXPECT_FALSE(s.message.empty());
+  }
 }
 
 TEST(FindBuildSequence, RefusesBadOptions) {
