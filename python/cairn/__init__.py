@@ -35,6 +35,7 @@ __all__ = [
     "check",
     "simulate",
     "plan",
+    "sequence",
     "blocking",
     "margin",
     "compas_forces",
@@ -424,6 +425,27 @@ def plan(m, max=None, single_parts=False, paths=None, allow_fixtures=0, keep=Non
         outputs += [(os.path.join(folder, name), text, "emit_plans") for name, text in plans]
     _write_outputs(m, outputs, [] if paths is None or isinstance(paths, dict) else [paths])
     return json.loads(doc)
+
+
+def sequence(m, temporary="hold", max_temporary=None, direction=None, directions="up", beam=4,
+             rule="loaded-from-rest", require=None):
+    """``cairn sequence --json``: an order to build the model in, one part a
+    step from its fixed parts up, every state standing, with the fewest
+    temporary holds in place at once and a lower bound that proves how far
+    that is from the fewest (docs/sequence.md). ``max_temporary``: the most
+    holds at once (None: no bound); ``direction``: the one removal direction
+    (2 or 3 numbers; a part arrives along its reverse); ``directions``: "up"
+    (against gravity) or "axes"; ``beam``: states kept per step; ``rule``
+    and ``require`` as ``check``'s. The dict has the CLI's keys."""
+    _check_model(m)
+    d = _numbers(direction, "direction")
+    options = dict(
+        temporary=str(temporary),
+        max_temporary=-1 if max_temporary is None else _whole(max_temporary, "max_temporary",
+                                                              _NON_NEGATIVE),
+        direction=d, directions=str(directions), beam=_whole(beam, "beam", (1, 1000)),
+        rule=str(rule), require="" if require is None else str(require))
+    return json.loads(_cairn.sequence(m, options)[0])
 
 
 def blocking(m, direction=None, without=None):

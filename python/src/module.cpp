@@ -26,6 +26,7 @@
 #include "cairn/app/margin.h"
 #include "cairn/app/model.h"
 #include "cairn/app/plan.h"
+#include "cairn/app/sequence.h"
 #include "cairn/app/simulate.h"
 #include "cairn/core/error.h"
 #include "cairn/geometry/plan.h"
@@ -184,6 +185,24 @@ Answer PlanSequences(const py::object& model, const py::dict& o) {
   return AnswerOf(app::PlanDocument(m, q));
 }
 
+// `cairn sequence --json`: a build order with the fewest holds.
+Answer Sequence(const py::object& model, const py::dict& o) {
+  const PyModel& m = ModelOf(model);
+  app::SequenceQuery q;
+  q.temporary = o["temporary"].cast<std::string>();
+  q.max_temporary = o["max_temporary"].cast<int>();
+  q.direction = o["direction"].cast<std::vector<double>>();
+  q.directions = o["directions"].cast<std::string>();
+  q.beam_width = o["beam"].cast<int>();
+  q.rule = RuleOf(o["rule"].cast<std::string>());
+  const std::string require = o["require"].cast<std::string>();
+  if (!require.empty() && require != "strong")
+    throw InputError("", "require", "must be \"strong\" or None, not \"" + require + "\"");
+  q.require_strong = require == "strong";
+  py::gil_scoped_release release;
+  return AnswerOf(app::SequenceDocument(m, q));
+}
+
 // `cairn blocking --json` (with a direction, `--direction`).
 Answer Blocking(const py::object& model, const std::vector<std::string>& without,
                 const std::vector<double>& direction) {
@@ -309,6 +328,7 @@ PYBIND11_MODULE(_cairn, m) {
         py::arg("continue_after_failure"), py::arg("normalize"), py::arg("suggest_fixtures"),
         py::arg("max_fixels"), py::arg("max_ticks"), py::arg("margin"), py::arg("page"));
   m.def("plan", &PlanSequences, py::arg("model"), py::arg("options"));
+  m.def("sequence", &Sequence, py::arg("model"), py::arg("options"));
   m.def("blocking", &Blocking, py::arg("model"), py::arg("without"), py::arg("direction"));
   m.def("margin", &Margin, py::arg("model"), py::arg("friction"), py::arg("tilt"), py::arg("load"),
         py::arg("point"), py::arg("direction"), py::arg("without"),

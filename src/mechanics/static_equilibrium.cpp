@@ -373,8 +373,12 @@ void CheckMechanism(const ContactLcp& lcp, const EquilibriumLp& e,
   out.least_generator_power = least;
   // Gravity's power is a load (force units) times a motion of at most 1:
   // its slack scales with the loads, so that light parts' mechanisms count.
-  const double slack = kMechanismSlack * std::max(1.0, wrench_scale);
+  // A generator's power may fall short of 0 by that fraction of the largest
+  // of its wrench scale and gravity's power: a contact that resists the
+  // motion by 1e-6 of the work gravity does along it does not hold it (the
+  // interior-point duals of a 180-block vault leave 1e-6 there).
   const double power_slack = kMechanismSlack * e.load_scale;
+  const double slack = kMechanismSlack * std::max({1.0, wrench_scale, out.power});
   out.found = out.power > power_slack && least >= -slack;
   if (!out.found)
     out.message = out.power <= power_slack

@@ -435,7 +435,11 @@ void SolveFromRest(const ContactLcp& lcp, const SolveContext& ctx, ComponentSolu
         return;
       }
     }
-    RunLemke(lcp, ctx, ProbePivots(lcp), out);
+    // Only the verdict wanted and no certificate: the probe's answer cannot
+    // change it (a motion it finds or not, the rule decides, and the search
+    // runs where the rule lets it fall: DecideWeakOrStrong), so it is not
+    // run (a large jammed component's probe can take its whole budget).
+    if (strong || ctx.prove_strong) RunLemke(lcp, ctx, ProbePivots(lcp), out);
     const bool lemke = Solved(out.lemke);
     const bool moves = lemke && ctx.moves && ctx.moves(lcp, out.lemke.z);
     if (strong) {

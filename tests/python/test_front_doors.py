@@ -218,3 +218,28 @@ def test_asap_beams_overlap_depth(cli, tmp_path):
                                              "--overlap-depth", "1e-4")
     with pytest.raises(cairn.InputError, match="overlap-depth: must be a length"):
         cairn.load(folder, format="asap", overlap_depth=-1)
+
+
+@pytest.mark.parametrize("name", ["stack3.json", "pyramid10.json", "paper_fig1.json"])
+def test_sequence_through_both_doors(cli, name):
+    """`cairn sequence --json` and `cairn.sequence`: the same build order, the
+    same holds and bound (but the wall-clock seconds)."""
+    scene = os.path.join("examples", name)
+    m = cairn.load(scene)
+
+    def no_clock(doc):
+        doc = strip(doc)
+        doc["stats"] = {k: v for k, v in doc["stats"].items() if k != "seconds"}
+        return doc
+
+    for args, kwargs in (((), {}), (("--directions", "axes", "--beam", "1"),
+                                    dict(directions="axes", beam=1))):
+        py = no_clock(cairn.sequence(m, **kwargs))
+        assert py == no_clock(cli_json(cli, "sequence", scene, *args))
+        assert py["complete"] == (len(py["order"]) == sum(
+            1 for p in json.load(open(example(name), encoding="utf-8"))["parts"]
+            if not p.get("fixed", False)))
+    with pytest.raises(cairn.InputError):
+        cairn.sequence(m, temporary="prop")
+    with pytest.raises(cairn.InputError):
+        cairn.sequence(m, rule="none")
