@@ -160,7 +160,7 @@ std::string JobFile(const json& job, const char* key, const std::string& what) {
   return it->get<std::string>();
 }
 
-constexpr const char* kCommands = "check, simulate, plan, blocking or margin";
+constexpr const char* kCommands = "check, simulate, plan, blocking, margin or sequence";
 
 // The job's command line, as the user would type it after `cairn`.
 std::vector<std::string> JobCommandLine(const json& job) {
@@ -175,7 +175,7 @@ std::vector<std::string> JobCommandLine(const json& job) {
                      std::string("must be ") + kCommands + " (a string), not " + Article(*command));
   const std::string name = command->get<std::string>();
   if (name != "check" && name != "simulate" && name != "plan" && name != "blocking" &&
-      name != "margin")
+      name != "margin" && name != "sequence")
     throw InputError("", "command",
                      std::string("must be ") + kCommands + " (got " + EscapedName(name) + ")");
   const std::string model = JobFile(job, "model", "the model file (a path)");

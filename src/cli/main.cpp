@@ -367,7 +367,8 @@ CLI::App* AddMargin(CLI::App& app, cairn::cli::MarginArgs& margin);
 
 CLI::App* AddBatch(CLI::App& app, cairn::cli::BatchArgs& batch) {
   CLI::App* cmd = app.add_subcommand(
-      "batch", "Run many jobs (check, simulate, plan, blocking, margin) from a JSON-lines file");
+      "batch",
+      "Run many jobs (check, simulate, plan, blocking, margin, sequence) from a JSON-lines file");
   cmd->add_option("jobs", batch.jobs, "Jobs file (JSON lines: id, command, model, plan, options)")
       ->required();
   cmd->add_option("-o", batch.output, "Results file (JSON lines), appended job by job")
@@ -400,17 +401,19 @@ cairn::cli::JobCommand ParseJob(const std::vector<std::string>& args) {
     cli::BlockingArgs blocking;
     cli::PlanArgs plan;
     cli::MarginArgs margin;
+    cli::SequenceArgs sequence;
   };
   struct Parser {
     Parsed values;  // bound to the options below: reset, never moved
     CLI::App app{"cairn"};
-    CLI::App *check, *sim, *blocking, *plan, *margin;
+    CLI::App *check, *sim, *blocking, *plan, *margin, *sequence;
     Parser()
         : check(AddCheck(app, values.check)),
           sim(AddSimulate(app, values.sim)),
           blocking(AddBlocking(app, values.blocking)),
           plan(AddPlan(app, values.plan)),
-          margin(AddMargin(app, values.margin)) {
+          margin(AddMargin(app, values.margin)),
+          sequence(AddSequence(app, values.sequence)) {
       app.require_subcommand(1);
     }
   };
@@ -421,7 +424,7 @@ cairn::cli::JobCommand ParseJob(const std::vector<std::string>& args) {
   // next argument (`--` or the model) as its value instead.
   const CLI::App* command = nullptr;
   for (const CLI::App* sub :
-       {parser.check, parser.sim, parser.blocking, parser.plan, parser.margin})
+       {parser.check, parser.sim, parser.blocking, parser.plan, parser.margin, parser.sequence})
     if (!args.empty() && sub->get_name() == args[0]) command = sub;
   if (command != nullptr) {
     for (const std::string& arg : args) {
@@ -452,7 +455,10 @@ cairn::cli::JobCommand ParseJob(const std::vector<std::string>& args) {
   if (*parser.plan) return [p](const cli::Checkpoint& c) { return cli::PlanDocument(p->plan, c); };
   if (*parser.margin)
     return [p](const cli::Checkpoint& c) { return cli::MarginDocument(p->margin, c); };
-  throw cairn::InputError("", "command", "must be check, simulate, plan, blocking or margin");
+  if (*parser.sequence)
+    return [p](const cli::Checkpoint& c) { return cli::SequenceDocument(p->sequence, c); };
+  throw cairn::InputError("", "command",
+                          "must be check, simulate, plan, blocking, margin or sequence");
 }
 
 // `--friction [MU]` replaces the model option of the same name: alone it asks

@@ -454,8 +454,8 @@ TEST(BatchCli, BadJobOptionsAndKeys_SaySo) {
        "options.\"\": not an option name"},
       {"\"command\":\"check\",\"model\":5", "model: must be a file name (a string), not a number"},
       {"\"command\":7,\"model\":" + stack,
-       "command: must be check, simulate, plan, blocking or "
-       "margin (a string), not a number"},
+       "command: must be check, simulate, plan, blocking, margin or sequence (a string), not a "
+       "number"},
   };
   std::string text;
   for (size_t k = 0; k < cases.size(); ++k)
@@ -525,6 +525,42 @@ TEST(BatchCli, MarginJobs_ResultIsTheMarginDocument) {
   EXPECT_NE(load.value("error", std::string()).find("--load: no part named 'Nope'"),
             std::string::npos)
       << lines[3];
+  std::filesystem::remove_all(dir);
+}
+
+// A sequence job's result is the document of `cairn sequence ... --json`, but
+// for its wall-clock seconds.
+TEST(BatchCli, SequenceJobs_ResultIsTheSequenceDocument) {
+  const std::string dir = TempDir("cairn_batch_sequence");
+  std::filesystem::create_directories(dir);
+  const std::string stack = ExamplePath("stack3.json");
+  WriteText(dir + "/jobs.jsonl", "{\"id\":\"up\",\"command\":\"sequence\",\"model\":\"" + stack +
+                                     "\"}\n"
+                                     "{\"id\":\"axes\",\"command\":\"sequence\",\"model\":\"" +
+                                     stack +
+                                     "\",\"options\":{\"directions\":\"axes\",\"beam\":1}}\n"
+                                     "{\"id\":\"bad\",\"command\":\"sequence\",\"model\":\"" +
+                                     stack + "\",\"options\":{\"temporary\":\"crane\"}}\n");
+  const CliRun r = Cairn("batch " + dir + "/jobs.jsonl -o " + dir + "/out.jsonl --threads 2");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::vector<std::string> lines = Lines(Slurp(dir + "/out.jsonl"));
+  ASSERT_EQ(lines.size(), 3u);
+  const auto without_clock = [](json doc) {
+    doc["stats"].erase("seconds");
+    return doc;
+  };
+  const auto cli = [&](const std::string& args) {
+    const CliRun c = Cairn(args + " --json");
+    EXPECT_EQ(c.exit_code, 0) << args << c.err;
+    return without_clock(json::parse(c.out));
+  };
+  const json up = json::parse(lines[0]), axes = json::parse(lines[1]), bad = json::parse(lines[2]);
+  EXPECT_EQ(up["exit"], 0) << lines[0].substr(0, 300);
+  EXPECT_EQ(without_clock(up["result"]), cli("sequence " + stack));
+  EXPECT_EQ(axes["exit"], 0) << lines[1].substr(0, 300);
+  EXPECT_EQ(without_clock(axes["result"]),
+            cli("sequence " + stack + " --directions axes --beam 1"));
+  EXPECT_EQ(bad["exit"], 2) << lines[2];
   std::filesystem::remove_all(dir);
 }
 
