@@ -428,7 +428,7 @@ def plan(m, max=None, single_parts=False, paths=None, allow_fixtures=0, keep=Non
 
 
 def sequence(m, temporary="hold", max_temporary=None, direction=None, directions="up", beam=4,
-             rule="loaded-from-rest", require=None):
+             rule="loaded-from-rest", require=None, time_limit=None):
     """``cairn sequence --json``: an order to build the model in, one part a
     step from its fixed parts up, every state standing, with the fewest
     temporary holds in place at once and a lower bound that proves how far
@@ -436,15 +436,20 @@ def sequence(m, temporary="hold", max_temporary=None, direction=None, directions
     holds at once (None: no bound); ``direction``: the one removal direction
     (2 or 3 numbers; a part arrives along its reverse); ``directions``: "up"
     (against gravity) or "axes"; ``beam``: states kept per step; ``rule``
-    and ``require`` as ``check``'s. The dict has the CLI's keys."""
+    and ``require`` as ``check``'s; ``time_limit``: seconds, then the best
+    order so far (``stopped``). The dict has the CLI's keys."""
     _check_model(m)
     d = _numbers(direction, "direction")
+    limit = 0.0 if time_limit is None else _number(time_limit, "time_limit")
+    if time_limit is not None and not 0 < limit < float("inf"):
+        raise _input_error("time_limit", f"must be a positive number of seconds (or None), "
+                                         f"not {time_limit!r}")
     options = dict(
         temporary=str(temporary),
         max_temporary=-1 if max_temporary is None else _whole(max_temporary, "max_temporary",
                                                               _NON_NEGATIVE),
         direction=d, directions=str(directions), beam=_whole(beam, "beam", (1, 1000)),
-        rule=str(rule), require="" if require is None else str(require))
+        rule=str(rule), require="" if require is None else str(require), time_limit=limit)
     return json.loads(_cairn.sequence(m, options)[0])
 
 

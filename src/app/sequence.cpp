@@ -1,6 +1,7 @@
 #include "cairn/app/sequence.h"
 
 #include <chrono>
+#include <cmath>
 #include <vector>
 
 #include "cairn/app/blocking.h"
@@ -46,6 +47,10 @@ CommandResult SequenceDocument(const Model& model, const SequenceQuery& query,
   options.max_temporary = query.max_temporary;
   options.directions = DirectionsOf(model, query);
   options.beam_width = query.beam_width;
+  if (!(query.time_limit >= 0) || !std::isfinite(query.time_limit))
+    throw InputError(model.file, "--time-limit", "must be a finite number of seconds, at least 0");
+  options.time_limit = query.time_limit;
+  options.stop = query.stop;
   options.stability.rule = query.rule;
   options.stability.prove_strong = query.require_strong;
   options.require_strong = query.require_strong;

@@ -356,6 +356,10 @@ CLI::App* AddSequence(CLI::App& app, cairn::cli::SequenceArgs& sequence) {
       ->check(CLI::IsMember({"up", "axes"}));
   cmd->add_option("--beam", sequence.beam, "States kept per step (default 4; 1: greedy)")
       ->check(CLI::Range(1, 1000));
+  cmd->add_option("--time-limit", sequence.time_limit,
+                  "Seconds the search may take; then (or on Ctrl-C) the best order so far, with "
+                  "its bound")
+      ->check(kPositive);
   AddRuleOptions(cmd, sequence.rule, sequence.require);
   AddModelOptions(cmd, sequence.model);
   return cmd;

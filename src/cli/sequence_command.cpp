@@ -3,6 +3,7 @@
 
 #include "cli/sequence_command.h"
 
+#include <csignal>
 #include <ostream>
 
 #include "cairn/app/sequence.h"
@@ -20,6 +21,7 @@ app::SequenceQuery QueryOf(const SequenceArgs& args) {
   q.direction = args.direction;
   q.directions = args.directions;
   q.beam_width = args.beam;
+  q.time_limit = args.time_limit;
   q.rule = args.rule == "equilibrium" ? VerdictRule::kEquilibrium : VerdictRule::kLoadedFromRest;
   q.require_strong = args.require == "strong";
   return q;
@@ -33,12 +35,36 @@ CommandDocument SequenceDocument(const SequenceArgs& args, const Checkpoint& che
   return {r.document, r.exit};
 }
 
+namespace {
+
+// SIGINT during the search: it ends with the best order so far, which is
+// printed as a finished run's is (a second SIGINT ends the process).
+volatile std::sig_atomic_t interrupted = 0;
+
+void OnInterrupt(int) {
+  interrupted = 1;
+  std::signal(SIGINT, SIG_DFL);
+}
+
+}  // namespace
+
 int RunSequence(const SequenceArgs& args, std::ostream& out, std::ostream& err) {
   return RunGuarded(err, [&]() -> int {
     Progress progress("cairn sequence");
-    const app::CommandResult r =
-        app::SequenceDocument(LoadModel(args.scene, args.model, &err), QueryOf(args),
-                              {{}, [&](const std::string& status) { progress.Show(status); }});
+    app::SequenceQuery q = QueryOf(args);
+    interrupted = 0;
+    q.stop = [] { return interrupted != 0; };
+    const app::Model model = LoadModel(args.scene, args.model, &err);
+    const auto previous = std::signal(SIGINT, OnInterrupt);
+    app::CommandResult r;
+    try {
+      r = app::SequenceDocument(model, q,
+                                {{}, [&](const std::string& status) { progress.Show(status); }});
+    } catch (...) {
+      std::signal(SIGINT, previous);
+      throw;
+    }
+    std::signal(SIGINT, previous);
     progress.Done();
     out << (args.json ? r.document.dump(2) + "\n" : r.text);
     return r.exit;

@@ -3,6 +3,8 @@
 #include "cairn/planning/sequence.h"
 
 #include <algorithm>
+#include <chrono>
+#include <cmath>
 #include <map>
 #include <stdexcept>
 #include <string>
@@ -10,6 +12,7 @@
 #include <utility>
 #include <vector>
 
+#include "cairn/mechanics/static_equilibrium.h"
 #include "cairn/planning/blocking.h"
 
 namespace cairn {
@@ -44,10 +47,11 @@ struct State {
   std::string names;  // the order's names, for ties
 };
 
-// A state's check, as the search needs it.
+// A state's check, as the search needs it: whether it stands and, when it
+// does not, the parts that cannot (those of the components without an
+// equilibrium, or those the verdict says move).
 struct Check {
   bool stands = false;
-  StabilityProof proof = StabilityProof::kNone;
   std::vector<int> moving;
 };
 
@@ -68,9 +72,10 @@ class Search {
   std::optional<State> Place(const State& s, int part, const Vector3& arrival);
   std::optional<Vector3> Arrival(const std::vector<bool>& placed, int part) const;
   const Check& Stands(const std::vector<bool>& placed, std::vector<int> held);
-  StabilityResult Analyze(const std::vector<bool>& placed, std::vector<int> held);
+  Configuration ConfigOf(const std::vector<bool>& placed) const;
   const Assembly& HeldAssembly(const std::vector<int>& held_sorted);
   bool Better(const State& a, const State& b) const;
+  bool Stopped();
 
   const Assembly& assembly_;
   const SequenceOptions& options_;
@@ -84,6 +89,7 @@ class Search {
   StabilityWorkspace workspace_;
   BuildSequence out_;
   State best_;
+  std::chrono::steady_clock::time_point deadline_ = std::chrono::steady_clock::time_point::max();
 };
 
 Search::Search(const Assembly& assembly, const SequenceOptions& options)
@@ -102,6 +108,20 @@ Search::Search(const Assembly& assembly, const SequenceOptions& options)
     if (!assembly.is_3d()) d.z() = 0;
   }
   if (options.beam_width < 1) throw std::invalid_argument("beam_width must be at least 1");
+  if (!(options.time_limit >= 0) || !std::isfinite(options.time_limit))
+    throw std::invalid_argument("time_limit must be finite and at least 0");
+  if (options.time_limit > 0)
+    deadline_ = std::chrono::steady_clock::now() +
+                std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                    std::chrono::duration<double>(options.time_limit));
+}
+
+// The time limit passed, or a stop was asked for (once true, true for good).
+bool Search::Stopped() {
+  if (out_.stopped) return true;
+  out_.stopped =
+      std::chrono::steady_clock::now() >= deadline_ || (options_.stop && options_.stop());
+  return out_.stopped;
 }
 
 // ---- The state check, cached ---------------------------------------------
@@ -114,12 +134,11 @@ const Assembly& Search::HeldAssembly(const std::vector<int>& held_sorted) {
   return held_assemblies_.emplace(held_sorted, assembly_.WithHeld(held_sorted)).first->second;
 }
 
-StabilityResult Search::Analyze(const std::vector<bool>& placed, std::vector<int> held) {
-  std::sort(held.begin(), held.end());
+Configuration Search::ConfigOf(const std::vector<bool>& placed) const {
   Configuration config = Configuration::Assembled(assembly_);
   for (int p = 0; p < assembly_.num_parts(); ++p)
-    config.present[p] = assembly_.part(p).tool ? false : (assembly_.part(p).fixed || placed[p]);
-  return AnalyzeConfiguration(HeldAssembly(held), config, options_.stability, nullptr, &workspace_);
+    config.present[p] = !assembly_.part(p).tool && (assembly_.part(p).fixed || placed[p]);
+  return config;
 }
 
 const Check& Search::Stands(const std::vector<bool>& placed, std::vector<int> held) {
@@ -134,12 +153,24 @@ const Check& Search::Stands(const std::vector<bool>& placed, std::vector<int> he
     return it->second;
   }
   if (options_.checkpoint) options_.checkpoint();
-  const StabilityResult r = Analyze(placed, held);
   ++out_.states_checked;
   Check c;
-  c.proof = r.stability;
-  c.stands = r.stable() && (!options_.require_strong || r.stability == StabilityProof::kStrong);
-  c.moving = r.moving;
+  // The filter: a component without a static equilibrium cannot stand (the
+  // verdict's first stage, without the explanation of how it falls, which
+  // on a large component costs ten times the LP).
+  std::sort(held.begin(), held.end());
+  const Assembly& a = HeldAssembly(held);
+  const Configuration config = ConfigOf(placed);
+  for (const ContactLcp& lcp : BuildComponentLcps(a, config, options_.stability))
+    if (!FindStaticEquilibrium(lcp).exists)
+      for (const BodyDynamics& body : lcp.bodies) c.moving.push_back(body.part);
+  if (c.moving.empty()) {
+    const StabilityResult r =
+        AnalyzeConfiguration(a, config, options_.stability, nullptr, &workspace_);
+    c.stands = r.stable() && (!options_.require_strong || r.stability == StabilityProof::kStrong);
+    c.moving = r.moving;
+  }
+  std::sort(c.moving.begin(), c.moving.end());
   return memo_.emplace(std::move(key), std::move(c)).first->second;
 }
 
@@ -200,9 +231,16 @@ std::optional<State> Search::Place(const State& s, int part, const Vector3& arri
   if (as_is.stands) {
     held = s.held;
   } else if (allowed(s.held.size() + 1)) {
+    // The part itself, then the parts that cannot stand, the most recently
+    // placed first (the end of a growing cantilever).
     std::vector<int> tries = {part};
-    for (int q : as_is.moving)
-      if (q != part && static_cast<int>(tries.size()) <= kMaxMovingTried) tries.push_back(q);
+    for (auto step = s.steps.rbegin(); step != s.steps.rend(); ++step) {
+      if (static_cast<int>(tries.size()) > kMaxMovingTried) break;
+      const int q = step->part;
+      if (std::binary_search(as_is.moving.begin(), as_is.moving.end(), q) &&
+          std::find(s.held.begin(), s.held.end(), q) == s.held.end())
+        tries.push_back(q);
+    }
     for (int q : tries) {
       std::vector<int> h = s.held;
       h.push_back(q);
@@ -266,6 +304,7 @@ std::vector<State> Search::Expand(const State& s) {
   });
   int unimprovable = 0;
   for (int p : candidates) {
+    if (Stopped()) break;
     const std::optional<Vector3> arrival = Arrival(s.placed, p);
     if (!arrival) continue;
     std::optional<State> child = Place(s, p, *arrival);
@@ -305,6 +344,13 @@ void Search::RunBeam() {
         else if (Better(c, it->second))
           it->second = std::move(c);
       }
+    if (Stopped()) {
+      best_ = beam.front();
+      out_.message = std::string(options_.stop && options_.stop() ? "stopped" : "time limit") +
+                     " after " + std::to_string(depth) + " of " + std::to_string(n) +
+                     " parts: the best order so far";
+      return;
+    }
     if (unique.empty()) {
       best_ = beam.front();
       out_.message =
@@ -355,7 +401,7 @@ void Search::ComputeLowerBound() {
         "no part stands alone on the fixed parts: every order's first state needs a support";
     return;
   }
-  if (!out_.complete || out_.max_in_place == 0) {
+  if (!out_.complete || out_.max_in_place == 0 || Stopped()) {
     out_.lower_bound_reason = "a part stands alone on the fixed parts";
     return;
   }
@@ -391,9 +437,7 @@ void Search::ConfirmAndMeasureHolds() {
     for (int h : step.removed) held.erase(std::find(held.begin(), held.end(), h));
     std::vector<int> sorted = held;
     std::sort(sorted.begin(), sorted.end());
-    Configuration config = Configuration::Assembled(assembly_);
-    for (int p = 0; p < assembly_.num_parts(); ++p)
-      config.present[p] = !assembly_.part(p).tool && (assembly_.part(p).fixed || placed[p]);
+    const Configuration config = ConfigOf(placed);
     const StabilityResult r =
         AnalyzeConfiguration(HeldAssembly(sorted), config, options_.stability);
     step.stability = r.stability;

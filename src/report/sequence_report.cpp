@@ -28,6 +28,7 @@ nlohmann::json SequenceToJson(const Assembly& assembly, const BuildSequence& s, 
   if (!options.scene_file.empty()) doc["scene_file"] = options.scene_file;
   doc["dimension"] = dim;
   doc["complete"] = s.complete;
+  doc["stopped"] = s.stopped;
   doc["message"] = s.message;
   doc["force_unit"] = force_unit;
   nlohmann::json order = nlohmann::json::array(), steps = nlohmann::json::array();

@@ -181,6 +181,33 @@ TEST(Sequence, BadInputExitsTwo) {
   }
 }
 
+// Anytime: at --time-limit the best order so far, its states checked, with
+// its bound, --json included (a millisecond ends the search before its first
+// placement: the assembled wall's own check takes longer).
+TEST(Sequence, TimeLimitGivesTheBestOrderSoFar) {
+  const json s = Sequence(ExamplePath("wall.json") + " --time-limit 0.001", 1);
+  EXPECT_EQ(s["complete"], false);
+  EXPECT_EQ(s["stopped"], true);
+  EXPECT_NE(s["message"].get<std::string>().find("time limit"), std::string::npos);
+  EXPECT_LT(s["order"].size(), 105u);
+  for (const json& step : s["steps"]) EXPECT_EQ(step["verdict"], "stands");
+  EXPECT_TRUE(s["temporary"].contains("lower_bound"));
+}
+
+// Ctrl-C (SIGINT) ends the search with the best order so far, printed whole.
+TEST(Sequence, InterruptGivesTheBestOrderSoFar) {
+  if (SharedDir().empty()) GTEST_SKIP() << "../shared (the COMPAS datasets) is absent";
+  const CliRun r = testing::RunCommand(
+      "timeout --preserve-status -s INT 6 " + testing::CliPath() + " sequence " + SharedDir() +
+      "/datasets/compas_assembly/crossvault_assembly.json --format compas --friction 0.84 "
+      "--json");
+  ASSERT_EQ(r.exit_code, 1) << r.err;
+  const json s = json::parse(r.out);
+  EXPECT_EQ(s["stopped"], true);
+  EXPECT_EQ(s["complete"], false);
+  EXPECT_NE(s["message"].get<std::string>().find("stopped"), std::string::npos);
+}
+
 // The 30-block arch of compas_assembly: one hold at once, proved optimal by
 // the bound, every state checked again.
 TEST(Sequence, CompasArchNeedsOneHold) {

@@ -3,6 +3,7 @@
 /// `cairn sequence`: a build order with the fewest temporary supports
 /// (docs/sequence.md, planning/sequence.h).
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -21,6 +22,10 @@ struct SequenceQuery {
   std::vector<double> direction;
   std::string directions = "up";  ///< --directions up|axes: against gravity, or ±x, ±y (, ±z)
   int beam_width = 4;             ///< --beam W: states kept per step
+  double time_limit = 0;          ///< --time-limit S (seconds; 0: none)
+  /// Polled during the search: true ends it with the best order so far (the
+  /// CLI's SIGINT). Empty: never.
+  std::function<bool()> stop;
   VerdictRule rule = VerdictRule::kLoadedFromRest;  ///< --rule
   bool require_strong = false;                      ///< --require strong
 };

@@ -35,6 +35,7 @@
 /// Deterministic: the same document for the parts given in any order, up to
 /// ties broken by name.
 
+#include <chrono>
 #include <functional>
 #include <optional>
 #include <string>
@@ -66,6 +67,11 @@ struct SequenceOptions {
   bool require_strong = false;
   /// Called before each state check; may throw to abandon the search.
   std::function<void()> checkpoint;
+  /// Seconds the search may take (0: no limit). At the limit, or when
+  /// `stop` says so (a SIGINT), the search ends with the best order so far
+  /// (BuildSequence::stopped), its states checked again and its bound.
+  double time_limit = 0;
+  std::function<bool()> stop;
   /// Told the parts placed, the best so far and the bound.
   std::function<void(const std::string&)> status;
 };
@@ -103,6 +109,9 @@ struct BuildSequence {
   std::string lower_bound_reason;
   bool optimal() const { return complete && max_in_place == lower_bound; }
   std::string message;  ///< why not complete
+  /// The search ended at its time limit or when asked to stop: the order is
+  /// the best so far (complete only if it got to the end first).
+  bool stopped = false;
   int states_checked = 0;
   int cache_hits = 0;
   int warm_starts = 0;
