@@ -12,7 +12,7 @@
 #include <utility>
 #include <vector>
 
-#include "cairn/mechanics/static_equilibrium.h"
+#include "cairn/mechanics/subset_equilibrium.h"
 #include "cairn/planning/blocking.h"
 
 namespace cairn {
@@ -64,9 +64,10 @@ class Search {
   // Stages of Run, in order.
   bool CheckAssembled();
   void ComputeAdjacencyAndBlocking();
-  void RunBeam();
+  void RunBeam(const State& start);
   void ComputeLowerBound();
-  void ConfirmAndMeasureHolds();
+  int ConfirmAndMeasureHolds();
+  State Prefix(int steps) const;
 
   std::vector<State> Expand(const State& s);
   std::optional<State> Place(const State& s, int part, const Vector3& arrival);
@@ -85,11 +86,20 @@ class Search {
   std::vector<Vector3> directions_;         // removal directions
   std::vector<BlockingGraph> graphs_;       // per direction, to infinity
   std::unordered_map<std::string, Check> memo_;
+  // The filter: the assembled configuration's equilibrium LP per contact
+  // component, kept between states (mechanics/subset_equilibrium.h), and
+  // where each movable part is in it.
+  std::vector<SubsetEquilibrium> subsets_;
+  std::vector<std::vector<int>> subset_parts_;  // per component: its bodies' parts
+  std::vector<int> subset_solves_;              // per component: its LP's solves so far
   std::map<std::vector<int>, Assembly> held_assemblies_;
   StabilityWorkspace workspace_;
   BuildSequence out_;
   State best_;
   std::chrono::steady_clock::time_point deadline_ = std::chrono::steady_clock::time_point::max();
+  // False: a state stands when the LP finds an equilibrium (the filter);
+  // true: by the check's verdict (after a confirmation rejected a state).
+  bool full_ = false;
 };
 
 Search::Search(const Assembly& assembly, const SequenceOptions& options)
@@ -147,6 +157,7 @@ const Check& Search::Stands(const std::vector<bool>& placed, std::vector<int> he
   for (size_t p = 0; p < placed.size(); ++p)
     if (placed[p]) key[p] = '1';
   for (int h : held) key += "," + std::to_string(h);
+  key += full_ ? "|full" : "|lp";
   const auto it = memo_.find(key);
   if (it != memo_.end()) {
     ++out_.cache_hits;
@@ -157,14 +168,33 @@ const Check& Search::Stands(const std::vector<bool>& placed, std::vector<int> he
   Check c;
   // The filter: a component without a static equilibrium cannot stand (the
   // verdict's first stage, without the explanation of how it falls, which
-  // on a large component costs ten times the LP).
+  // on a large component costs ten times the LP), by the warm LPs.
+  for (size_t k = 0; k < subsets_.size(); ++k) {
+    const std::vector<int>& parts = subset_parts_[k];
+    std::vector<bool> present(parts.size()), free(parts.size());
+    bool any_free = false;
+    for (size_t b = 0; b < parts.size(); ++b) {
+      present[b] = placed[parts[b]];
+      free[b] = present[b] && std::find(held.begin(), held.end(), parts[b]) == held.end();
+      any_free = any_free || free[b];
+    }
+    if (!any_free) continue;
+    const SubsetEquilibrium::Answer answer = subsets_[k].Solve(present, free);
+    if (subset_solves_[k]++ > 0) ++out_.warm_starts;  // from the last solve's basis
+    if (!answer.solved || answer.exists) continue;
+    if (answer.unbalanced.empty()) {
+      for (size_t b = 0; b < parts.size(); ++b)
+        if (free[b]) c.moving.push_back(parts[b]);
+    } else {
+      for (int b : answer.unbalanced) c.moving.push_back(parts[b]);
+    }
+  }
   std::sort(held.begin(), held.end());
   const Assembly& a = HeldAssembly(held);
   const Configuration config = ConfigOf(placed);
-  for (const ContactLcp& lcp : BuildComponentLcps(a, config, options_.stability))
-    if (!FindStaticEquilibrium(lcp).exists)
-      for (const BodyDynamics& body : lcp.bodies) c.moving.push_back(body.part);
-  if (c.moving.empty()) {
+  if (c.moving.empty() && !full_ && !subsets_.empty()) {
+    c.stands = true;  // the filter's answer; the order's states are confirmed
+  } else if (c.moving.empty()) {
     const StabilityResult r =
         AnalyzeConfiguration(a, config, options_.stability, nullptr, &workspace_);
     c.stands = r.stable() && (!options_.require_strong || r.stability == StabilityProof::kStrong);
@@ -205,6 +235,13 @@ void Search::ComputeAdjacencyAndBlocking() {
   }
   for (const Vector3& d : directions_)
     graphs_.push_back(ComputeBlockingGraph(assembly_, config, d, BlockingKind::kInfinity));
+  for (const ContactLcp& lcp : BuildComponentLcps(assembly_, config, options_.stability)) {
+    std::vector<int> parts;
+    for (const BodyDynamics& body : lcp.bodies) parts.push_back(body.part);
+    subsets_.emplace_back(lcp);
+    subset_parts_.push_back(std::move(parts));
+    subset_solves_.push_back(0);
+  }
 }
 
 // The arrival direction of `part` past the placed and fixed parts: the
@@ -327,12 +364,13 @@ bool Search::Better(const State& a, const State& b) const {
   return a.names < b.names;
 }
 
-void Search::RunBeam() {
-  State start;
-  start.placed.assign(assembly_.num_parts(), false);
+// The beam from `start` (its steps kept) to the last part, or as far as it
+// gets: best_ is its best state.
+void Search::RunBeam(const State& start) {
   std::vector<State> beam = {start};
   const size_t n = movable_.size();
-  for (size_t depth = 0; depth < n; ++depth) {
+  out_.complete = false;
+  for (size_t depth = start.steps.size(); depth < n; ++depth) {
     std::map<std::string, State> unique;  // by (placed, held): the better kept
     for (const State& s : beam)
       for (State& c : Expand(s)) {
@@ -381,6 +419,24 @@ void Search::RunBeam() {
   out_.complete = true;
 }
 
+// The state after the first `steps` steps of best_.
+State Search::Prefix(int steps) const {
+  State s;
+  s.placed.assign(assembly_.num_parts(), false);
+  for (int i = 0; i < steps; ++i) {
+    const SequenceStep& step = best_.steps[i];
+    s.placed[step.part] = true;
+    for (int h : step.added) s.held.push_back(h);
+    for (int h : step.removed) s.held.erase(std::find(s.held.begin(), s.held.end(), h));
+    s.placements += static_cast<int>(step.added.size());
+    s.max_in_place = std::max(s.max_in_place, static_cast<int>(s.held.size()));
+    s.height += up_.dot(assembly_.part(step.part).centroid);
+    s.names += assembly_.part(step.part).name + '\n';
+    s.steps.push_back(step);
+  }
+  return s;
+}
+
 // Every order passes through a state of one part and one of all parts but
 // one: when none of either stands without support, every order needs one.
 void Search::ComputeLowerBound() {
@@ -426,11 +482,14 @@ void Search::ComputeLowerBound() {
 }
 
 // Every state of the order checked again, afresh (no cache, no warm start),
-// with what each hold carries.
-void Search::ConfirmAndMeasureHolds() {
+// by the check's verdict, with what each hold carries. Returns the first
+// step whose state does not stand (-1: none).
+int Search::ConfirmAndMeasureHolds() {
+  int first_failing = -1;
   std::vector<bool> placed(assembly_.num_parts(), false);
   std::vector<int> held;
-  for (SequenceStep& step : best_.steps) {
+  for (size_t i = 0; i < best_.steps.size(); ++i) {
+    SequenceStep& step = best_.steps[i];
     if (options_.checkpoint) options_.checkpoint();
     placed[step.part] = true;
     for (int h : step.added) held.push_back(h);
@@ -443,6 +502,7 @@ void Search::ConfirmAndMeasureHolds() {
     step.stability = r.stability;
     step.stands =
         r.stable() && (!options_.require_strong || r.stability == StabilityProof::kStrong);
+    step.in_place.clear();
     for (int h : held) {
       TemporarySupport t;
       t.part = h;
@@ -459,12 +519,9 @@ void Search::ConfirmAndMeasureHolds() {
       t.torque = -torque;
       step.in_place.push_back(t);
     }
-    if (!step.stands && out_.complete) {
-      out_.complete = false;
-      out_.message = "the fresh check of the state after placing '" +
-                     assembly_.part(step.part).name + "' does not stand";
-    }
+    if (!step.stands && first_failing < 0) first_failing = static_cast<int>(i);
   }
+  return first_failing;
 }
 
 BuildSequence Search::Run() {
@@ -473,13 +530,32 @@ BuildSequence Search::Run() {
     return out_;
   }
   ComputeAdjacencyAndBlocking();
-  RunBeam();
+  // The search on the equilibrium LP, then its order confirmed state by
+  // state by the check's verdict; where a state is rejected, the search
+  // goes on from the state before it with the verdict itself (the repair).
+  State start;
+  start.placed.assign(assembly_.num_parts(), false);
+  RunBeam(start);
+  for (int bad = ConfirmAndMeasureHolds(); bad >= 0; bad = ConfirmAndMeasureHolds()) {
+    if (full_ || Stopped()) {
+      // The order so far up to the state rejected: every state listed stands.
+      const std::string rejected = "the fresh check of the state after placing '" +
+                                   assembly_.part(best_.steps[bad].part).name +
+                                   "' does not stand";
+      out_.message = out_.message.empty() ? rejected : out_.message + "; " + rejected;
+      out_.complete = false;
+      best_ = Prefix(bad);
+      break;
+    }
+    full_ = true;
+    ++out_.repairs;
+    RunBeam(Prefix(bad));
+  }
   out_.max_in_place = best_.max_in_place;
   out_.placements = best_.placements;
   ComputeLowerBound();
-  ConfirmAndMeasureHolds();
   out_.steps = std::move(best_.steps);
-  out_.warm_starts = workspace_.warm_starts();
+  out_.warm_starts += workspace_.warm_starts();
   return out_;
 }
 

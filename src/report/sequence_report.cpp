@@ -64,6 +64,7 @@ nlohmann::json SequenceToJson(const Assembly& assembly, const BuildSequence& s, 
                       {"optimal", s.optimal()}};
   doc["stats"] = {{"states_checked", s.states_checked},
                   {"cache_hits", s.cache_hits},
+                  {"repairs", s.repairs},
                   {"lp_warm_starts", s.warm_starts},
                   {"seconds", seconds}};
   return doc;

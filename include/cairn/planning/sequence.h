@@ -113,6 +113,9 @@ struct BuildSequence {
   /// the best so far (complete only if it got to the end first).
   bool stopped = false;
   int states_checked = 0;
+  /// Times the confirmation rejected a state of the order the equilibrium
+  /// LP had let through, and the search went on from there with the verdict.
+  int repairs = 0;
   int cache_hits = 0;
   int warm_starts = 0;
 };
