@@ -17,7 +17,7 @@ app::CheckQuery QueryOf(const CheckArgs& args) {
                : args.contacts == "none" ? ContactListing::kNone
                                          : ContactListing::kSummary;
   q.page = !args.html.empty();
-  q.rule = args.rule == "equilibrium" ? VerdictRule::kEquilibrium : VerdictRule::kLoadedFromRest;
+  q.rule = RuleOf(args.rule);
   q.require_strong = args.require == "strong";
   return q;
 }

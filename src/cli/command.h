@@ -8,6 +8,7 @@
 
 #include "cairn/app/command.h"
 #include "cairn/app/model.h"
+#include "cairn/stability/solve_component.h"
 
 namespace cairn::cli {
 
@@ -40,5 +41,10 @@ struct CommandDocument {
 /// time step of a simulation); it may throw to abandon the work (`cairn
 /// batch --job-timeout`: a cooperative deadline). Empty: never called.
 using Checkpoint = std::function<void()>;
+
+/// `--rule`'s value (CLI11 has checked it is one of the two) as the rule.
+inline VerdictRule RuleOf(const std::string& rule) {
+  return rule == "equilibrium" ? VerdictRule::kEquilibrium : VerdictRule::kLoadedFromRest;
+}
 
 }  // namespace cairn::cli

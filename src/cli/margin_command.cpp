@@ -17,8 +17,7 @@ std::pair<app::ModelArgs, app::MarginQuery> Resolve(const MarginArgs& args) {
   app::ModelArgs model = args.model;
   app::MarginQuery query = args.query;
   query.without = args.without;
-  query.rule =
-      args.rule == "equilibrium" ? VerdictRule::kEquilibrium : VerdictRule::kLoadedFromRest;
+  query.rule = RuleOf(args.rule);
   if (args.friction_given && !args.friction_value.empty()) {
     double mu = 0;
     size_t used = 0;

@@ -16,7 +16,7 @@ namespace {
 
 app::PlanQuery QueryOf(const PlanArgs& args) {
   app::PlanQuery q;
-  q.rule = args.rule == "equilibrium" ? VerdictRule::kEquilibrium : VerdictRule::kLoadedFromRest;
+  q.rule = RuleOf(args.rule);
   q.require_strong = args.require == "strong";
   q.max = args.max;
   q.threads = args.threads;

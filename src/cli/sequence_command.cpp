@@ -22,7 +22,7 @@ app::SequenceQuery QueryOf(const SequenceArgs& args) {
   q.directions = args.directions;
   q.beam_width = args.beam;
   q.time_limit = args.time_limit;
-  q.rule = args.rule == "equilibrium" ? VerdictRule::kEquilibrium : VerdictRule::kLoadedFromRest;
+  q.rule = RuleOf(args.rule);
   q.require_strong = args.require == "strong";
   return q;
 }

@@ -12,7 +12,7 @@ namespace {
 
 app::SimulateQuery QueryOf(const SimulateArgs& args) {
   app::SimulateQuery q;
-  q.rule = args.rule == "equilibrium" ? VerdictRule::kEquilibrium : VerdictRule::kLoadedFromRest;
+  q.rule = RuleOf(args.rule);
   q.require_strong = args.require == "strong";
   q.plan_file = args.plan;
   q.normalize = args.normalize;
