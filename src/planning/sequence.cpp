@@ -189,14 +189,11 @@ const Check& Search::Stands(const std::vector<bool>& placed, std::vector<int> he
       for (int b : answer.unbalanced) c.moving.push_back(parts[b]);
     }
   }
-  std::sort(held.begin(), held.end());
-  const Assembly& a = HeldAssembly(held);
-  const Configuration config = ConfigOf(placed);
   if (c.moving.empty() && !full_ && !subsets_.empty()) {
     c.stands = true;  // the filter's answer; the order's states are confirmed
   } else if (c.moving.empty()) {
-    const StabilityResult r =
-        AnalyzeConfiguration(a, config, options_.stability, nullptr, &workspace_);
+    const StabilityResult r = AnalyzeConfiguration(HeldAssembly(held), ConfigOf(placed),
+                                                   options_.stability, nullptr, &workspace_);
     c.stands = r.stable() && (!options_.require_strong || r.stability == StabilityProof::kStrong);
     c.moving = r.moving;
   }
@@ -540,8 +537,7 @@ BuildSequence Search::Run() {
     if (full_ || Stopped()) {
       // The order so far up to the state rejected: every state listed stands.
       const std::string rejected = "the fresh check of the state after placing '" +
-                                   assembly_.part(best_.steps[bad].part).name +
-                                   "' does not stand";
+                                   assembly_.part(best_.steps[bad].part).name + "' does not stand";
       out_.message = out_.message.empty() ? rejected : out_.message + "; " + rejected;
       out_.complete = false;
       best_ = Prefix(bad);
