@@ -46,25 +46,32 @@ void OnInterrupt(int) {
   std::signal(SIGINT, SIG_DFL);
 }
 
+// OnInterrupt handles SIGINT while it lives; the previous handler after.
+class InterruptScope {
+ public:
+  InterruptScope() : previous_(std::signal(SIGINT, OnInterrupt)) { interrupted = 0; }
+  ~InterruptScope() { std::signal(SIGINT, previous_); }
+  InterruptScope(const InterruptScope&) = delete;
+  InterruptScope& operator=(const InterruptScope&) = delete;
+
+ private:
+  void (*previous_)(int);
+};
+
 }  // namespace
 
 int RunSequence(const SequenceArgs& args, std::ostream& out, std::ostream& err) {
   return RunGuarded(err, [&]() -> int {
     Progress progress("cairn sequence");
     app::SequenceQuery q = QueryOf(args);
-    interrupted = 0;
     q.stop = [] { return interrupted != 0; };
     const app::Model model = LoadModel(args.scene, args.model, &err);
-    const auto previous = std::signal(SIGINT, OnInterrupt);
     app::CommandResult r;
-    try {
+    {
+      const InterruptScope scope;
       r = app::SequenceDocument(model, q,
                                 {{}, [&](const std::string& status) { progress.Show(status); }});
-    } catch (...) {
-      std::signal(SIGINT, previous);
-      throw;
     }
-    std::signal(SIGINT, previous);
     progress.Done();
     out << (args.json ? r.document.dump(2) + "\n" : r.text);
     return r.exit;

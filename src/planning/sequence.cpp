@@ -214,17 +214,23 @@ bool Search::CheckAssembled() {
   return false;
 }
 
-// Which parts touch (the contacts of the assembled configuration) and, per
-// removal direction, which parts block which to infinity.
+// The assembled configuration's contact components (one warm LP each),
+// which parts touch, and, per removal direction, which parts block which to
+// infinity.
 void Search::ComputeAdjacencyAndBlocking() {
-  Configuration config = Configuration::Assembled(assembly_);
+  const Configuration config = Configuration::Assembled(assembly_);
   touching_.assign(assembly_.num_parts(), {});
-  const StabilityResult r = AnalyzeConfiguration(assembly_, config, options_.stability);
-  for (const ContactReport& c : r.contacts) {
-    const int a = c.contact.part_a, b = c.contact.part_b;
-    if (a < 0 || b < 0) continue;
-    touching_[a].push_back(b);
-    touching_[b].push_back(a);
+  for (const ContactLcp& lcp : BuildComponentLcps(assembly_, config, options_.stability)) {
+    for (const Contact& c : lcp.contacts) {
+      if (c.part_a < 0 || c.part_b < 0) continue;  // a fixture
+      touching_[c.part_a].push_back(c.part_b);
+      touching_[c.part_b].push_back(c.part_a);
+    }
+    std::vector<int> parts;
+    for (const BodyDynamics& body : lcp.bodies) parts.push_back(body.part);
+    subsets_.emplace_back(lcp);
+    subset_parts_.push_back(std::move(parts));
+    subset_solves_.push_back(0);
   }
   for (auto& t : touching_) {
     std::sort(t.begin(), t.end());
@@ -232,13 +238,6 @@ void Search::ComputeAdjacencyAndBlocking() {
   }
   for (const Vector3& d : directions_)
     graphs_.push_back(ComputeBlockingGraph(assembly_, config, d, BlockingKind::kInfinity));
-  for (const ContactLcp& lcp : BuildComponentLcps(assembly_, config, options_.stability)) {
-    std::vector<int> parts;
-    for (const BodyDynamics& body : lcp.bodies) parts.push_back(body.part);
-    subsets_.emplace_back(lcp);
-    subset_parts_.push_back(std::move(parts));
-    subset_solves_.push_back(0);
-  }
 }
 
 // The arrival direction of `part` past the placed and fixed parts: the
