@@ -65,10 +65,12 @@ int RunSequence(const SequenceArgs& args, std::ostream& out, std::ostream& err) 
     Progress progress("cairn sequence");
     app::SequenceQuery q = QueryOf(args);
     q.stop = [] { return interrupted != 0; };
-    const app::Model model = LoadModel(args.scene, args.model, &err);
     app::CommandResult r;
     {
+      // From before the model is read: a Ctrl-C while a large model loads
+      // (seconds under the sanitizers) still ends with a document.
       const InterruptScope scope;
+      const app::Model model = LoadModel(args.scene, args.model, &err);
       r = app::SequenceDocument(model, q,
                                 {{}, [&](const std::string& status) { progress.Show(status); }});
     }
