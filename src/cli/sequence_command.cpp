@@ -4,6 +4,7 @@
 #include "cli/sequence_command.h"
 
 #include <csignal>
+#include <ctime>
 #include <ostream>
 
 #include "cairn/app/sequence.h"
@@ -38,19 +39,41 @@ CommandDocument SequenceDocument(const SequenceArgs& args, const Checkpoint& che
 namespace {
 
 // SIGINT during the search: it ends with the best order so far, which is
-// printed as a finished run's is (a second SIGINT ends the process).
+// printed as a finished run's is. A second SIGINT ends the process, unless it
+// comes within kSameInterrupt of the first: `timeout -s INT` sends the signal
+// to the process and then to its group, and those two are one request.
 volatile std::sig_atomic_t interrupted = 0;
+volatile std::sig_atomic_t first_interrupt_ms = 0;  // CLOCK_MONOTONIC, ms (mod 2^31)
+constexpr long kSameInterrupt = 500;                // ms
 
-void OnInterrupt(int) {
-  interrupted = 1;
-  std::signal(SIGINT, SIG_DFL);
+long MonotonicMs() {  // async-signal-safe (clock_gettime is)
+  timespec t{};
+  ::clock_gettime(CLOCK_MONOTONIC, &t);
+  return static_cast<long>((t.tv_sec * 1000 + t.tv_nsec / 1000000) & 0x7fffffff);
 }
 
-// OnInterrupt handles SIGINT while it lives; the previous handler after.
+void OnInterrupt(int sig) {
+  const long now = MonotonicMs();
+  if (interrupted == 0) {
+    first_interrupt_ms = static_cast<std::sig_atomic_t>(now);
+    interrupted = 1;
+    return;
+  }
+  const long since = (now - first_interrupt_ms) & 0x7fffffff;
+  if (since < kSameInterrupt) return;
+  std::signal(sig, SIG_DFL);
+  std::raise(sig);
+}
+
+// OnInterrupt handles SIGINT while it lives; the previous handler after,
+// unless an interrupt came (then OnInterrupt stays, so that its twin, a
+// moment late, does not end the process after the document is written).
 class InterruptScope {
  public:
   InterruptScope() : previous_(std::signal(SIGINT, OnInterrupt)) { interrupted = 0; }
-  ~InterruptScope() { std::signal(SIGINT, previous_); }
+  ~InterruptScope() {
+    if (interrupted == 0) std::signal(SIGINT, previous_);
+  }
   InterruptScope(const InterruptScope&) = delete;
   InterruptScope& operator=(const InterruptScope&) = delete;
 
@@ -73,9 +96,9 @@ int RunSequence(const SequenceArgs& args, std::ostream& out, std::ostream& err) 
       const app::Model model = LoadModel(args.scene, args.model, &err);
       r = app::SequenceDocument(model, q,
                                 {{}, [&](const std::string& status) { progress.Show(status); }});
+      progress.Done();
+      out << (args.json ? r.document.dump(2) + "\n" : r.text) << std::flush;
     }
-    progress.Done();
-    out << (args.json ? r.document.dump(2) + "\n" : r.text);
     return r.exit;
   });
 }

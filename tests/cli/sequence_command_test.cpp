@@ -210,6 +210,20 @@ TEST(Sequence, InterruptGivesTheBestOrderSoFar) {
   EXPECT_NE(s["message"].get<std::string>().find("stopped"), std::string::npos);
 }
 
+// Two SIGINTs a moment apart (what `timeout -s INT` sends: to the process,
+// then to its group) are one request: the document, not a killed process.
+TEST(Sequence, TwoInterruptsAMomentApartAreOneRequest) {
+  if (SharedDir().empty()) GTEST_SKIP() << "../shared (the COMPAS datasets) is absent";
+  const CliRun r = testing::RunCommand(
+      "sh -c '" + testing::CliPath() + " sequence " + SharedDir() +
+      "/datasets/compas_assembly/crossvault_assembly.json --format compas --friction 0.84 "
+      "--rule equilibrium --json & p=$!; sleep 5; kill -INT $p; kill -INT $p; wait $p'");
+  ASSERT_EQ(r.exit_code, 1) << r.err;
+  const json s = json::parse(r.out);
+  EXPECT_EQ(s["stopped"], true);
+  EXPECT_EQ(s["complete"], false);
+}
+
 // The 30-block arch of compas_assembly: one hold at once, proved optimal by
 // the bound, every state checked again.
 TEST(Sequence, CompasArchNeedsOneHold) {
