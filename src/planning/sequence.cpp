@@ -70,7 +70,7 @@ class Search {
   State Prefix(int steps) const;
 
   std::vector<State> Expand(const State& s);
-  std::optional<State> Place(const State& s, int part, const Vector3& arrival);
+  std::optional<State> Place(const State& s, int part, const Vector3& arrival, bool with_new_hold);
   std::optional<Vector3> Arrival(const std::vector<bool>& placed, int part) const;
   const Check& Stands(const std::vector<bool>& placed, std::vector<int> held);
   Configuration ConfigOf(const std::vector<bool>& placed) const;
@@ -169,6 +169,7 @@ const Check& Search::Stands(const std::vector<bool>& placed, std::vector<int> he
   // The filter: a component without a static equilibrium cannot stand (the
   // verdict's first stage, without the explanation of how it falls, which
   // on a large component costs ten times the LP), by the warm LPs.
+  bool unsure = false;
   for (size_t k = 0; k < subsets_.size(); ++k) {
     const std::vector<int>& parts = subset_parts_[k];
     std::vector<bool> present(parts.size()), free(parts.size());
@@ -181,6 +182,7 @@ const Check& Search::Stands(const std::vector<bool>& placed, std::vector<int> he
     if (!any_free) continue;
     const SubsetEquilibrium::Answer answer = subsets_[k].Solve(present, free);
     if (subset_solves_[k]++ > 0) ++out_.warm_starts;  // from the last solve's basis
+    if (!answer.solved) unsure = true;                // no LP verdict: the check decides this state
     if (!answer.solved || answer.exists) continue;
     if (answer.unbalanced.empty()) {
       for (size_t b = 0; b < parts.size(); ++b)
@@ -189,7 +191,7 @@ const Check& Search::Stands(const std::vector<bool>& placed, std::vector<int> he
       for (int b : answer.unbalanced) c.moving.push_back(parts[b]);
     }
   }
-  if (c.moving.empty() && !full_ && !subsets_.empty()) {
+  if (c.moving.empty() && !full_ && !unsure && !subsets_.empty()) {
     c.stands = true;  // the filter's answer; the order's states are confirmed
   } else if (c.moving.empty()) {
     const StabilityResult r = AnalyzeConfiguration(HeldAssembly(held), ConfigOf(placed),
@@ -251,19 +253,19 @@ std::optional<Vector3> Search::Arrival(const std::vector<bool>& placed, int part
   return std::nullopt;
 }
 
-// `s` with `part` placed: the holds it needs (none, the part itself, or a
-// part the check says moves), then every hold it does without taken out,
-// oldest first. Empty when no hold within the bound makes it stand.
-std::optional<State> Search::Place(const State& s, int part, const Vector3& arrival) {
+// `s` with `part` placed under the holds in place (`with_new_hold` false),
+// or with one more (true: the part itself, or a part the check says moves);
+// then every hold it does without taken out, oldest first. Empty when that
+// does not stand.
+std::optional<State> Search::Place(const State& s, int part, const Vector3& arrival,
+                                   bool with_new_hold) {
   std::vector<bool> placed = s.placed;
   placed[part] = true;
-  const int bound = options_.max_temporary;
-  const auto allowed = [&](size_t n) { return bound < 0 || static_cast<int>(n) <= bound; };
   std::optional<std::vector<int>> held;
   const Check& as_is = Stands(placed, s.held);
-  if (as_is.stands) {
-    held = s.held;
-  } else if (allowed(s.held.size() + 1)) {
+  if (!with_new_hold) {
+    if (as_is.stands) held = s.held;
+  } else if (!as_is.stands) {
     // The part itself, then the parts that cannot stand, the most recently
     // placed first (the end of a growing cantilever).
     std::vector<int> tries = {part};
@@ -314,6 +316,13 @@ std::optional<State> Search::Place(const State& s, int part, const Vector3& arri
   return child;
 }
 
+// The children of `s`, in two passes over the parts that can arrive:
+//   1. each placed under the holds in place (none added);
+//   2. only when pass 1 gave fewer than beam_width children: each that did
+//      not stand, with one hold more (within --max-temporary).
+// A child of pass 2 has a placement more than any of pass 1 and, since a
+// hold only ever adds support, never fewer holds than the same part placed
+// in pass 1 would keep: pass 1's children are the ones the beam wants.
 std::vector<State> Search::Expand(const State& s) {
   std::vector<State> children;
   std::vector<int> candidates, loose;
@@ -335,16 +344,29 @@ std::vector<State> Search::Expand(const State& s) {
     if (std::abs(ha - hb) > tol) return ha < hb;
     return assembly_.part(a).name < assembly_.part(b).name;
   });
+  std::vector<std::pair<int, Vector3>> arriving, fell;
+  for (int p : candidates)
+    if (const std::optional<Vector3> arrival = Arrival(s.placed, p))
+      arriving.emplace_back(p, *arrival);
   int unimprovable = 0;
-  for (int p : candidates) {
-    if (Stopped()) break;
-    const std::optional<Vector3> arrival = Arrival(s.placed, p);
-    if (!arrival) continue;
-    std::optional<State> child = Place(s, p, *arrival);
-    if (!child) continue;
-    if (child->held.empty() && child->placements == s.placements) ++unimprovable;
+  for (const auto& [p, arrival] : arriving) {
+    if (Stopped() || unimprovable >= options_.beam_width) break;
+    std::optional<State> child = Place(s, p, arrival, /*with_new_hold=*/false);
+    if (!child) {
+      fell.emplace_back(p, arrival);
+      continue;
+    }
+    if (child->held.empty()) ++unimprovable;
     children.push_back(std::move(*child));
-    if (unimprovable >= options_.beam_width) break;
+  }
+  const int bound = options_.max_temporary;
+  if (static_cast<int>(children.size()) >= options_.beam_width ||
+      (bound >= 0 && static_cast<int>(s.held.size()) + 1 > bound))
+    return children;
+  for (const auto& [p, arrival] : fell) {
+    if (Stopped()) break;
+    if (std::optional<State> child = Place(s, p, arrival, /*with_new_hold=*/true))
+      children.push_back(std::move(*child));
   }
   return children;
 }

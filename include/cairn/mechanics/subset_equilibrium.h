@@ -15,10 +15,10 @@
 ///     bodies that are not free, fixed at 0.
 /// Successive states differ by a part or a hold, so each solve starts from
 /// the last one's basis (Clp's dual simplex, warm), a few pivots where a
-/// fresh LP takes hundreds (a claim of infeasibility is checked from the
-/// slack basis). When no equilibrium exists, the dual simplex's
-/// infeasibility ray is a virtual motion ν = −P y (the Farkas certificate
-/// of the mechanism LP): the bodies it moves are the ones that cannot stand.
+/// fresh LP takes hundreds (a claim of infeasibility is believed when the
+/// ray is a Farkas certificate, and checked from the slack basis when not). When no equilibrium
+/// exists, the dual simplex's infeasibility ray is a virtual motion ν = −P y (the Farkas
+/// certificate of the mechanism LP): the bodies it moves are the ones that cannot stand.
 
 #include <memory>
 #include <vector>
@@ -46,8 +46,8 @@ class SubsetEquilibrium {
     /// indices); empty when Clp gave no ray.
     std::vector<int> unbalanced;
     int iterations = 0;  ///< dual simplex pivots of this solve
-    /// Solved again from the slack basis: a warm claim of infeasibility is
-    /// always checked so.
+    /// Solved again from the slack basis: a warm claim of infeasibility
+    /// whose ray is not a Farkas certificate is checked so.
     bool cold = false;
   };
 
@@ -58,6 +58,13 @@ class SubsetEquilibrium {
   int num_bodies() const;
 
  private:
+  // After a "primal infeasible": whether Clp's ray is a Farkas certificate
+  // of it (then no cold solve is needed to believe it).
+  bool RayProvesInfeasible() const;
+  // After an "optimal": whether its forces are an equilibrium (≥ 0, off
+  // where the contact is, balancing every free body's rows).
+  bool SolutionBalances() const;
+
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
