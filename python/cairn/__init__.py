@@ -435,7 +435,7 @@ def sequence(m, temporary="hold", max_temporary=None, direction=None, directions
     that is from the fewest (docs/sequence.md). ``max_temporary``: the most
     holds at once (None: no bound); ``direction``: the one removal direction
     (2 or 3 numbers; a part arrives along its reverse); ``directions``: "up"
-    (against gravity) or "axes"; ``beam``: states kept per step; ``rule``
+    (against gravity), "axes" or "ndbg"; ``beam``: states kept per step; ``rule``
     and ``require`` as ``check``'s; ``time_limit``: seconds, then the best
     order so far (``stopped``). The dict has the CLI's keys."""
     _check_model(m)

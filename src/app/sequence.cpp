@@ -23,8 +23,10 @@ std::vector<Vector3> DirectionsOf(const Model& model, const SequenceQuery& query
   const Vector3 up = g.norm() > 0 ? Vector3(-g / g.norm())
                                   : (assembly.is_3d() ? Vector3(0, 0, 1) : Vector3(0, 1, 0));
   if (query.directions == "up") return {up};
+  if (query.directions == "ndbg") return {};  // SequenceOptions::ndbg
   if (query.directions != "axes")
-    throw InputError(model.file, "--directions", "must be up or axes, not " + query.directions);
+    throw InputError(model.file, "--directions",
+                     "must be up, axes or ndbg, not " + query.directions);
   // Up first, then the other axis directions in a fixed order.
   std::vector<Vector3> out = {up};
   const int dim = assembly.dimension();
@@ -46,6 +48,7 @@ CommandResult SequenceDocument(const Model& model, const SequenceQuery& query,
   SequenceOptions options;
   options.max_temporary = query.max_temporary;
   options.directions = DirectionsOf(model, query);
+  options.ndbg = query.direction.empty() && query.directions == "ndbg";
   options.beam_width = query.beam_width;
   if (!(query.time_limit >= 0) || !std::isfinite(query.time_limit))
     throw InputError(model.file, "--time-limit", "must be a finite number of seconds, at least 0");

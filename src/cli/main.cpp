@@ -351,9 +351,9 @@ CLI::App* AddSequence(CLI::App& app, cairn::cli::SequenceArgs& sequence) {
                 "X,Y,Z in a 3-D one; default: against gravity",
                 "X,Y[,Z]");
   cmd->add_option("--directions", sequence.directions,
-                  "Removal directions tried in turn: up (against gravity, default) or axes (up, "
-                  "then +-x, +-y (, +-z))")
-      ->check(CLI::IsMember({"up", "axes"}));
+                  "Removal directions tried in turn: up (against gravity, default), axes (up, "
+                  "then +-x, +-y (, +-z)) or ndbg (the NDBG's cells, closest to up first)")
+      ->check(CLI::IsMember({"up", "axes", "ndbg"}));
   cmd->add_option("--beam", sequence.beam, "States kept per step (default 4; 1: greedy)")
       ->check(CLI::Range(1, 1000));
   cmd->add_option("--time-limit", sequence.time_limit,

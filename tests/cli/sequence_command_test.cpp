@@ -3,7 +3,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <numbers>
@@ -88,6 +90,103 @@ void EveryStateStands(const json& scene, const json& sequence) {
     const std::string file = TempFile("state.json", state.dump());
     const CliRun r = Cairn("check " + file);
     EXPECT_EQ(r.exit_code, 0) << "after placing " << step["place"] << ": " << r.out;
+  }
+}
+
+// A prism of `section` ((y, z) points counter-clockwise seen from +x) from
+// x0 to x1 along its channel, the channel turned by theta about z.
+json Prism(const std::string& name, const std::vector<std::pair<double, double>>& section,
+           double x0, double x1, double theta, bool fixed) {
+  const double c = std::cos(theta), s = std::sin(theta);
+  json vertices = json::array(), faces = json::array();
+  const int n = static_cast<int>(section.size());
+  for (const double x : {x0, x1})
+    for (const auto& [y, z] : section) vertices.push_back({c * x - s * y, s * x + c * y, z});
+  json cap0 = json::array(), cap1 = json::array();
+  for (int i = n - 1; i >= 0; --i) cap0.push_back(i);
+  for (int i = 0; i < n; ++i) cap1.push_back(n + i);
+  faces.push_back(cap0);
+  faces.push_back(cap1);
+  for (int i = 0; i < n; ++i) faces.push_back({i, (i + 1) % n, n + (i + 1) % n, n + i});
+  json part = {{"name", name}, {"polyhedron", {{"vertices", vertices}, {"faces", faces}}}};
+  if (fixed) part["fixed"] = true;
+  return part;
+}
+
+// An interlocking puzzle of 24 parts: 12 dovetail channels in a fixed base,
+// at 15 + 30 k degrees (none along an axis), each with an inner and an outer
+// slider. A slider is wider at the bottom than between its rails' overhangs
+// and rests against the end stop at the hub: its only free direction is
+// straight out along its channel; the outer slider blocks the inner one.
+constexpr int kChannels = 12;
+double ChannelAngle(int k) { return (15.0 + 30.0 * k) * std::numbers::pi / 180; }
+
+std::string Puzzle() {
+  const std::vector<std::pair<double, double>>
+      slider = {{-0.5, 0}, {0.5, 0}, {0.3, 0.4}, {-0.3, 0.4}},
+      left = {{-0.9, 0}, {-0.5, 0}, {-0.3, 0.4}, {-0.9, 0.4}},
+      right = {{0.5, 0}, {0.9, 0}, {0.9, 0.4}, {0.3, 0.4}},
+      stop = {{-0.9, 0}, {0.9, 0}, {0.9, 0.4}, {-0.9, 0.4}};
+  json parts = json::array();
+  parts.push_back({{"name", "ground"},
+                   {"fixed", true},
+                   {"box", {{"min", {-10, -10, -1}}, {"max", {10, 10, 0}}}}});
+  for (int k = 0; k < kChannels; ++k) {
+    const double th = ChannelAngle(k);
+    const std::string K = std::to_string(k);
+    parts.push_back(Prism("rail" + K + "L", left, 5, 7, th, true));
+    parts.push_back(Prism("rail" + K + "R", right, 5, 7, th, true));
+    parts.push_back(Prism("stop" + K, stop, 4.7, 5, th, true));
+    parts.push_back(Prism("in" + K, slider, 5, 6, th, false));
+    parts.push_back(Prism("out" + K, slider, 6, 7, th, false));
+  }
+  const json scene = {{"cairn", 1},
+                      {"name", "radial dovetail puzzle"},
+                      {"friction", 0.3},
+                      {"gravity", {0, 0, -9.81}},
+                      {"parts", parts}};
+  return TempFile("puzzle.json", scene.dump());
+}
+
+// From above or along the axes nothing can go in; along the NDBG's cells
+// every slider comes in along its own channel, the inner one before the
+// outer one, with no support. Each arrival is checked again by `cairn
+// blocking` at that direction with the parts not yet placed taken away: the
+// part can leave along its reverse (the NDBG computed afresh for the state).
+TEST(Sequence, InterlockingPuzzleArrivesAlongTheNdbgsCells) {
+  const std::string puzzle = Puzzle();
+  for (const char* directions : {"up", "axes"}) {
+    const json s = Sequence(puzzle + " --directions " + directions, 1);
+    EXPECT_EQ(s["complete"], false) << directions;
+    EXPECT_EQ(s["order"].size(), 0u) << directions;
+  }
+  const json s = Sequence(puzzle + " --directions ndbg");
+  ASSERT_EQ(s["complete"], true);
+  ASSERT_EQ(s["order"].size(), 2u * kChannels);
+  EXPECT_EQ(s["temporary"]["max_in_place"], 0);
+  EXPECT_EQ(s["temporary"]["optimal"], true);
+  std::set<std::string> unplaced;
+  for (const json& p : s["order"]) unplaced.insert(p.get<std::string>());
+  for (const json& step : s["steps"]) {
+    const std::string part = step["place"];
+    unplaced.erase(part);
+    const int k = std::stoi(part.substr(part[0] == 'i' ? 2 : 3));
+    if (part[0] == 'o') EXPECT_FALSE(unplaced.count("in" + std::to_string(k))) << part;
+    // Inward along its channel.
+    const std::vector<double> d = step["direction"];
+    EXPECT_NEAR(d[0], -std::cos(ChannelAngle(k)), 1e-9) << part;
+    EXPECT_NEAR(d[1], -std::sin(ChannelAngle(k)), 1e-9) << part;
+    EXPECT_NEAR(d[2], 0, 1e-9) << part;
+    std::string without;
+    for (const std::string& u : unplaced) without += (without.empty() ? "" : ",") + u;
+    char away[96];
+    std::snprintf(away, sizeof away, "%.17g,%.17g,%.17g", -d[0], -d[1], -d[2]);
+    const CliRun b = Cairn("blocking " + puzzle + " --direction " + away + " --json" +
+                           (without.empty() ? "" : " --without " + without));
+    ASSERT_EQ(b.exit_code, 0) << b.err;
+    const json removable = json::parse(b.out)["cells"][0]["removable"];
+    EXPECT_NE(std::find(removable.begin(), removable.end(), part), removable.end())
+        << part << " cannot leave along " << away;
   }
 }
 

@@ -20,9 +20,11 @@ struct SequenceQuery {
   /// --direction X,Y(,Z): the one removal direction (a part arrives along
   /// its reverse); empty: `directions`.
   std::vector<double> direction;
-  std::string directions = "up";  ///< --directions up|axes: against gravity, or ±x, ±y (, ±z)
-  int beam_width = 4;             ///< --beam W: states kept per step
-  double time_limit = 0;          ///< --time-limit S (seconds; 0: none)
+  /// --directions up|axes|ndbg: against gravity, ±x, ±y (, ±z) after up, or
+  /// the NDBG's cells (closest to up first)
+  std::string directions = "up";
+  int beam_width = 4;     ///< --beam W: states kept per step
+  double time_limit = 0;  ///< --time-limit S (seconds; 0: none)
   /// Polled during the search: true ends it with the best order so far (the
   /// CLI's SIGINT). Empty: never.
   std::function<bool()> stop;

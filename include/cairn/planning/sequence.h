@@ -59,6 +59,10 @@ struct SequenceOptions {
   /// Removal directions (unit, world); a part arrives along the reverse of
   /// the first that is free. Empty: against gravity only (arrive from above).
   std::vector<Vector3> directions;
+  /// Instead of `directions`: the NDBG's cells of the assembled configuration
+  /// (planning/blocking.h), the closest to straight up first, each at its
+  /// cell's direction (`--directions ndbg`).
+  bool ndbg = false;
   /// States kept per step (1: greedy).
   int beam_width = 4;
   /// The check of a state (rule, require-strong is the caller's).
