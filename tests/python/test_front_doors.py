@@ -233,7 +233,8 @@ def test_sequence_through_both_doors(cli, name):
         return doc
 
     for args, kwargs in (((), {}), (("--directions", "axes", "--beam", "1"),
-                                    dict(directions="axes", beam=1))):
+                                    dict(directions="axes", beam=1)),
+                         (("--directions", "ndbg"), dict(directions="ndbg"))):
         py = no_clock(cairn.sequence(m, **kwargs))
         assert py == no_clock(cli_json(cli, "sequence", scene, *args))
         assert py["complete"] == (len(py["order"]) == sum(
@@ -243,3 +244,5 @@ def test_sequence_through_both_doors(cli, name):
         cairn.sequence(m, temporary="prop")
     with pytest.raises(cairn.InputError):
         cairn.sequence(m, rule="none")
+    with pytest.raises(cairn.InputError):
+        cairn.sequence(m, directions="sideways")
