@@ -165,6 +165,8 @@ const Check& Search::Stands(const std::vector<bool>& placed, std::vector<int> he
   }
   if (options_.checkpoint) options_.checkpoint();
   ++out_.states_checked;
+  if (memo_.size() >= options_.max_cached_states)
+    memo_.clear();  // no reference into it outlives a call
   Check c;
   // The filter: a component without a static equilibrium cannot stand (the
   // verdict's first stage, without the explanation of how it falls, which
@@ -280,7 +282,7 @@ std::optional<State> Search::Place(const State& s, int part, const Vector3& arri
   std::vector<bool> placed = s.placed;
   placed[part] = true;
   std::optional<std::vector<int>> held;
-  const Check& as_is = Stands(placed, s.held);
+  const Check as_is = Stands(placed, s.held);  // a copy: the cache may start afresh
   if (!with_new_hold) {
     if (as_is.stands) held = s.held;
   } else if (!as_is.stands) {

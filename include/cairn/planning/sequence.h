@@ -65,6 +65,11 @@ struct SequenceOptions {
   bool ndbg = false;
   /// States kept per step (1: greedy).
   int beam_width = 4;
+  /// The most state checks cached (a key of a byte per part and the parts
+  /// that move: about 600 bytes each on the 399-block Armadillo, so ≈ 120 MB
+  /// at the default); when full the cache starts afresh. No answer depends
+  /// on it, only the time.
+  size_t max_cached_states = 200000;
   /// The check of a state (rule, require-strong is the caller's).
   StabilityOptions stability;
   /// Also require strong stability of every state (`--require strong`).
