@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <functional>
 #include <map>
 #include <stdexcept>
 #include <string>
@@ -30,6 +31,11 @@ namespace {
 // The most assemblies with parts held kept at once (Assembly::WithHeld): each
 // is a copy of the scene's parts, and a beam meets a few hold sets per step.
 constexpr size_t kMaxHeldAssemblies = 64;
+
+// The lower bound by exhaustion: on models of at most this many movable
+// parts (2ⁿ sets of parts), and up to this many supports at once.
+constexpr int kExhaustiveParts = 10;
+constexpr int kExhaustiveHolds = 3;
 
 // The most parts the check says move that are tried as the hold that makes a
 // new state stand (after the part just placed).
@@ -66,6 +72,8 @@ class Search {
   void ComputeAdjacencyAndBlocking();
   void RunBeam(const State& start);
   void ComputeLowerBound();
+  void ArgueLowerBound();
+  void ExhaustiveLowerBound();
   int ConfirmAndMeasureHolds();
   State Prefix(int steps) const;
 
@@ -478,6 +486,11 @@ State Search::Prefix(int steps) const {
 // Every order passes through a state of one part and one of all parts but
 // one: when none of either stands without support, every order needs one.
 void Search::ComputeLowerBound() {
+  ArgueLowerBound();
+  ExhaustiveLowerBound();
+}
+
+void Search::ArgueLowerBound() {
   out_.lower_bound = 0;
   if (movable_.empty()) return;
   std::vector<bool> placed(assembly_.num_parts(), false);
@@ -517,6 +530,67 @@ void Search::ComputeLowerBound() {
   out_.lower_bound_reason =
       "the assembly without any one part that can go last does not stand: every order's last "
       "state but one needs a support";
+}
+
+// Where the model is small (kExhaustiveParts movable parts at most) and the
+// argued bound is below the order's: every set of parts an order can pass
+// through, in turn (a set is reachable when it stands with at most b parts
+// held, whichever, and a reachable set without one of its parts lets that
+// part arrive last). The least b that reaches every part is the fewest any
+// order needs: a proof by exhaustion, on the same check as the search's.
+void Search::ExhaustiveLowerBound() {
+  const int n = static_cast<int>(movable_.size());
+  if (n == 0 || n > kExhaustiveParts || Stopped()) return;
+  const int target = out_.complete ? out_.max_in_place : kExhaustiveHolds + 1;
+  const auto placed_of = [&](unsigned mask) {
+    std::vector<bool> placed(assembly_.num_parts(), false);
+    for (int i = 0; i < n; ++i)
+      if (mask & (1u << i)) placed[movable_[i]] = true;
+    return placed;
+  };
+  // Whether the parts of `mask` stand with some b of them held (b ≤ holds).
+  const auto stands_with = [&](unsigned mask, int holds) {
+    const std::vector<bool> placed = placed_of(mask);
+    std::vector<int> in;
+    for (int i = 0; i < n; ++i)
+      if (mask & (1u << i)) in.push_back(movable_[i]);
+    std::vector<int> held;
+    const std::function<bool(size_t, int)> choose = [&](size_t from, int left) {
+      if (Stands(placed, held).stands) return true;
+      if (left == 0) return false;
+      for (size_t k = from; k < in.size(); ++k) {
+        held.push_back(in[k]);
+        const bool ok = choose(k + 1, left - 1);
+        held.pop_back();
+        if (ok) return true;
+      }
+      return false;
+    };
+    return choose(0, holds);
+  };
+  const unsigned all = (1u << n) - 1;
+  for (int b = out_.lower_bound; b < target && b <= kExhaustiveHolds; ++b) {
+    std::vector<char> reachable(all + 1, 0);
+    reachable[0] = 1;
+    for (unsigned mask = 1; mask <= all; ++mask) {
+      if (Stopped()) return;
+      bool from = false;
+      for (int i = 0; i < n && !from; ++i) {
+        const unsigned before = mask & ~(1u << i);
+        from = (mask & (1u << i)) && reachable[before] && Arrival(placed_of(before), movable_[i]);
+      }
+      reachable[mask] = from && stands_with(mask, b);
+    }
+    if (reachable[all]) {
+      out_.lower_bound = b;
+      out_.lower_bound_reason = "every order of the " + std::to_string(n) +
+                                " parts tried: the fewest supports at once any order needs";
+      return;
+    }
+    out_.lower_bound = b + 1;
+    out_.lower_bound_reason = "every order of the " + std::to_string(n) +
+                              " parts tried: none does with fewer supports at once";
+  }
 }
 
 // Every state of the order checked again, afresh (no cache, no warm start),

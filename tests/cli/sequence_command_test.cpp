@@ -213,7 +213,9 @@ void EveryStateStandsByCheck(const std::string& model_args, const json& sequence
 // inward past its joint's inner edge), so every order needs a hold from its
 // first step: the lower bound 1. Arriving from above only, the keystone v2
 // must come last (it locks v1 and v3 in: their joints with it face up), so
-// both halves stand held: 2 at once. With the axes, v3 can come in
+// both halves stand held: 2 at once, and trying every order of the three
+// (the exhaustive bound) proves no order from above does with fewer. With
+// the axes, v3 can come in
 // sideways after v2: v1 held, v2 held and v1 released (v1 between its
 // springer and v2 stands), v3 from the side closes the arch: 1, optimal.
 TEST(Sequence, ArchOfThreeVoussoirsNeedsOneHoldAndTheBoundProvesIt) {
@@ -221,8 +223,10 @@ TEST(Sequence, ArchOfThreeVoussoirsNeedsOneHoldAndTheBoundProvesIt) {
   const json up = Sequence(file);
   EXPECT_EQ(up["complete"], true);
   EXPECT_EQ(up["temporary"]["max_in_place"], 2);
-  EXPECT_EQ(up["temporary"]["lower_bound"], 1);
-  EXPECT_EQ(up["temporary"]["optimal"], false);
+  EXPECT_EQ(up["temporary"]["lower_bound"], 2);
+  EXPECT_EQ(up["temporary"]["optimal"], true);
+  EXPECT_NE(up["temporary"]["lower_bound_reason"].get<std::string>().find("every order"),
+            std::string::npos);
   EXPECT_EQ(up["order"].back(), "v2");
 
   const json axes = Sequence(file + " --directions axes");
@@ -256,6 +260,15 @@ TEST(Sequence, ArchOfSevenVoussoirsNeedsOneHold) {
   EXPECT_EQ(axes["temporary"]["lower_bound"], 1);
   EXPECT_EQ(axes["temporary"]["optimal"], true);
   EveryStateStands(Arch(7), axes);
+  // From above only, the keystone goes last: each half stands held, 2 at
+  // once, and every order of the 7 tried (the exhaustive bound) proves it.
+  const json up = Sequence(ArchFile(7));
+  EXPECT_EQ(up["complete"], true);
+  EXPECT_EQ(up["temporary"]["max_in_place"], 2);
+  EXPECT_EQ(up["temporary"]["lower_bound"], 2);
+  EXPECT_EQ(up["temporary"]["optimal"], true);
+  EXPECT_EQ(up["order"].back(), "v4");
+  EveryStateStands(Arch(7), up);
 }
 
 // A stack of boxes and the wall of examples/: no support, optimal.
@@ -292,7 +305,7 @@ TEST(Sequence, DeterministicWhateverThePartsOrder) {
 TEST(Sequence, BadInputExitsTwo) {
   const std::string file = ArchFile(3);
   for (const std::string bad : {"--temporary crane", "--direction 0,0", "--direction 1,0,1",
-                                "--max-temporary -1", "--beam 0", "--directions ndbg"}) {
+                                "--max-temporary -1", "--beam 0", "--directions sideways"}) {
     const CliRun r = Cairn("sequence " + file + " " + bad);
     EXPECT_EQ(r.exit_code, 2) << bad << ": " << r.err;
     EXPECT_FALSE(r.err.empty()) << bad;
