@@ -32,6 +32,12 @@ namespace {
 // is a copy of the scene's parts, and a beam meets a few hold sets per step.
 constexpr size_t kMaxHeldAssemblies = 64;
 
+// With a time limit, the share of it the search gets; the confirmation of
+// its order by the check's verdict gets the rest. After a stop (Ctrl-C),
+// the confirmation gets kConfirmAfterStop seconds.
+constexpr double kSearchShare = 0.75;
+constexpr double kConfirmAfterStop = 5.0;
+
 // The lower bound by exhaustion: on models of at most this many movable
 // parts (2ⁿ sets of parts), and up to this many supports at once.
 constexpr int kExhaustiveParts = 10;
@@ -85,6 +91,7 @@ class Search {
   const Assembly& HeldAssembly(const std::vector<int>& held_sorted);
   bool Better(const State& a, const State& b) const;
   bool Stopped();
+  bool ConfirmationOutOfTime();
 
   const Assembly& assembly_;
   const SequenceOptions& options_;
@@ -105,9 +112,13 @@ class Search {
   BuildSequence out_;
   State best_;
   std::chrono::steady_clock::time_point deadline_ = std::chrono::steady_clock::time_point::max();
+  std::chrono::steady_clock::time_point confirm_deadline_ =
+      std::chrono::steady_clock::time_point::max();
   // False: a state stands when the LP finds an equilibrium (the filter);
   // true: by the check's verdict (after a confirmation rejected a state).
   bool full_ = false;
+  bool stop_seen_ = false;     // ConfirmationOutOfTime has seen the stop
+  int unconfirmed_from_ = -1;  // the first step the confirmation had no time for
 };
 
 Search::Search(const Assembly& assembly, const SequenceOptions& options)
@@ -128,13 +139,32 @@ Search::Search(const Assembly& assembly, const SequenceOptions& options)
   if (options.beam_width < 1) throw std::invalid_argument("beam_width must be at least 1");
   if (!(options.time_limit >= 0) || !std::isfinite(options.time_limit))
     throw std::invalid_argument("time_limit must be finite and at least 0");
-  if (options.time_limit > 0)
-    deadline_ = std::chrono::steady_clock::now() +
-                std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-                    std::chrono::duration<double>(options.time_limit));
+  if (options.time_limit > 0) {
+    // The search gets kSearchShare of the time, the confirmation the rest.
+    const auto now = std::chrono::steady_clock::now();
+    const auto after = [&](double seconds) {
+      return now + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                       std::chrono::duration<double>(seconds));
+    };
+    deadline_ = after(kSearchShare * options.time_limit);
+    confirm_deadline_ = after(options.time_limit);
+  }
 }
 
 // The time limit passed, or a stop was asked for (once true, true for good).
+// The confirmation's time is up: the time limit, or kConfirmAfterStop after
+// a stop that was not the time limit's.
+bool Search::ConfirmationOutOfTime() {
+  const auto now = std::chrono::steady_clock::now();
+  if (options_.stop && options_.stop() && !stop_seen_) {
+    stop_seen_ = true;
+    confirm_deadline_ = std::min(
+        confirm_deadline_, now + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                     std::chrono::duration<double>(kConfirmAfterStop)));
+  }
+  return now >= confirm_deadline_;
+}
+
 bool Search::Stopped() {
   if (out_.stopped) return true;
   out_.stopped =
@@ -598,11 +628,16 @@ void Search::ExhaustiveLowerBound() {
 // step whose state does not stand (-1: none).
 int Search::ConfirmAndMeasureHolds() {
   int first_failing = -1;
+  unconfirmed_from_ = -1;
   std::vector<bool> placed(assembly_.num_parts(), false);
   std::vector<int> held;
   for (size_t i = 0; i < best_.steps.size(); ++i) {
     SequenceStep& step = best_.steps[i];
     if (options_.checkpoint) options_.checkpoint();
+    if (ConfirmationOutOfTime()) {
+      unconfirmed_from_ = static_cast<int>(i);
+      return first_failing;
+    }
     placed[step.part] = true;
     for (int h : step.added) held.push_back(h);
     for (int h : step.removed) held.erase(std::find(held.begin(), held.end(), h));
@@ -661,6 +696,16 @@ BuildSequence Search::Run() {
     full_ = true;
     ++out_.repairs;
     RunBeam(Prefix(bad));
+  }
+  if (unconfirmed_from_ >= 0 && unconfirmed_from_ < static_cast<int>(best_.steps.size())) {
+    // The time ran out during the confirmation: the states it confirmed.
+    const std::string cut =
+        "the time ran out while the states were checked again: the order is "
+        "cut after the " +
+        std::to_string(unconfirmed_from_) + " confirmed";
+    out_.message = out_.message.empty() ? cut : out_.message + "; " + cut;
+    out_.complete = false;
+    best_ = Prefix(unconfirmed_from_);
   }
   out_.max_in_place = best_.max_in_place;
   out_.placements = best_.placements;
