@@ -33,12 +33,12 @@ constexpr double kRayMotion = 1e-9;
 // (dimensionless): gravity's power along the motion must exceed the
 // contacts' by far more than rounding.
 constexpr double kFarkasColumnSlack = 1e-9;
+constexpr double kFarkasPower = 1e-7;
 
 // An optimum is an equilibrium when every row balances, and every force is
 // ≥ 0 (0 where the contact is off), to this fraction of the largest load a
 // row balances (dimensionless; the simplex's own tolerance is 1e-10).
 constexpr double kBalanceSlack = 1e-9;
-constexpr double kFarkasPower = 1e-7;
 
 }  // namespace
 
