@@ -171,7 +171,9 @@ TEST(Sequence, InterlockingPuzzleArrivesAlongTheNdbgsCells) {
     const std::string part = step["place"];
     unplaced.erase(part);
     const int k = std::stoi(part.substr(part[0] == 'i' ? 2 : 3));
-    if (part[0] == 'o') EXPECT_FALSE(unplaced.count("in" + std::to_string(k))) << part;
+    if (part[0] == 'o') {
+      EXPECT_FALSE(unplaced.count("in" + std::to_string(k))) << part;  // the inner one first
+    }
     // Inward along its channel.
     const std::vector<double> d = step["direction"];
     EXPECT_NEAR(d[0], -std::cos(ChannelAngle(k)), 1e-9) << part;
