@@ -39,8 +39,10 @@ TEST(SequenceDocument, BadOptionsNameTheFlag) {
   q.direction = {0, 0};
   EXPECT_EQ(refused(q), "--direction");
   q = {};
-  q.directions = "ndbg";
+  q.directions = "sideways";
   EXPECT_EQ(refused(q), "--directions");
+  q.directions = "ndbg";  // built now
+  EXPECT_EQ(refused(q), "accepted");
 }
 
 }  // namespace
