@@ -126,6 +126,20 @@ BlockingGraph Reversed(const BlockingGraph& graph) {
   return out;
 }
 
+std::vector<BlockingGraph> InfinityGraphsUpFirst(std::vector<NdbgCell> cells, const Vector3& up) {
+  std::stable_sort(cells.begin(), cells.end(), [&](const NdbgCell& a, const NdbgCell& b) {
+    return a.direction.dot(up) > b.direction.dot(up) + numeric::kRoundoff;
+  });
+  std::vector<BlockingGraph> graphs;
+  for (NdbgCell& c : cells) {
+    bool duplicate = false;
+    for (const BlockingGraph& g : graphs)
+      duplicate = duplicate || (g.direction - c.direction).norm() < numeric::kRoundoff;
+    if (!duplicate) graphs.push_back(std::move(c.infinity));
+  }
+  return graphs;
+}
+
 bool BlockingGraph::Blocks(int i, int j) const {
   if (i < 0 || i >= static_cast<int>(blockers.size())) return false;
   const std::vector<int>& b = blockers[i];

@@ -303,17 +303,7 @@ void Planner::ComputeDirections() {
       ndbg.cells.push_back(std::move(cell));
     }
   }
-  std::vector<const NdbgCell*> cells;
-  for (const NdbgCell& c : ndbg.cells) cells.push_back(&c);
-  std::stable_sort(cells.begin(), cells.end(), [&](const NdbgCell* a, const NdbgCell* b) {
-    return a->direction.dot(up_) > b->direction.dot(up_) + numeric::kRoundoff;
-  });
-  for (const NdbgCell* c : cells) {
-    bool duplicate = false;
-    for (const BlockingGraph& g : graphs_)
-      duplicate = duplicate || (g.direction - c->direction).norm() < numeric::kRoundoff;
-    if (!duplicate) graphs_.push_back(c->infinity);
-  }
+  graphs_ = InfinityGraphsUpFirst(std::move(ndbg.cells), up_);
 }
 
 std::vector<bool> Planner::PresentOf(const Key& key) const {

@@ -283,21 +283,12 @@ void Search::ComputeAdjacencyAndBlocking() {
       graphs_.push_back(ComputeBlockingGraph(assembly_, config, d, BlockingKind::kInfinity));
     return;
   }
-  // The NDBG's cells, closest to up first (a cell's arcs to infinity hold for
-  // every subset of the parts: a pair blocks or not whoever else is there).
-  Ndbg ndbg = ComputeNdbg(assembly_, config, options_.checkpoint);
-  std::stable_sort(ndbg.cells.begin(), ndbg.cells.end(), [&](const NdbgCell& a, const NdbgCell& b) {
-    return a.direction.dot(up_) > b.direction.dot(up_) + numeric::kRoundoff;
-  });
+  // The NDBG's cells, closest to up first (a cell's arcs to infinity hold
+  // for every subset of the parts: a pair blocks or not whoever else is
+  // there).
+  graphs_ = InfinityGraphsUpFirst(ComputeNdbg(assembly_, config, options_.checkpoint).cells, up_);
   directions_.clear();
-  for (NdbgCell& cell : ndbg.cells) {
-    bool duplicate = false;
-    for (const Vector3& d : directions_)
-      duplicate = duplicate || (d - cell.direction).norm() < numeric::kRoundoff;
-    if (duplicate) continue;
-    directions_.push_back(cell.direction);
-    graphs_.push_back(std::move(cell.infinity));
-  }
+  for (const BlockingGraph& g : graphs_) directions_.push_back(g.direction);
 }
 
 // The arrival direction of `part` past the placed and fixed parts: the

@@ -136,6 +136,13 @@ struct Ndbg {
   std::vector<NdbgCell> cells;
 };
 
+/// The cells' graphs to infinity (each at its cell's `direction`), the
+/// closest to `up` first (stable otherwise), a direction met twice kept once:
+/// the removal directions `cairn plan` and `cairn sequence` try in turn
+/// (paper Corollary 1: motion against gravity never makes a path-dependent
+/// instability).
+std::vector<BlockingGraph> InfinityGraphsUpFirst(std::vector<NdbgCell> cells, const Vector3& up);
+
 /// DBG(d) of `config` (every present part; tools absent unless present).
 /// `direction` need not be unit (it is normalised); in 2-D its z is ignored.
 /// @throws std::invalid_argument when the direction is zero or not finite.
