@@ -184,6 +184,35 @@ std::vector<int> GrippedParts(const PlanStepDef& sd, const std::vector<int>& rem
   return grip;
 }
 
+// Held parts (`key` "hold" or "hold_at_rest"): movable parts of the
+// assembly, each once, present at step i (not removed by an earlier step;
+// of this step's own parts only at rest: the gripper keeps them).
+std::vector<int> HeldParts(const std::vector<std::string>& names, const char* key,
+                           const std::vector<int>& remove, size_t i, const std::string& path,
+                           const Assembly& assembly, const PlanValidator& check,
+                           const RemovedAt& removed_at) {
+  std::vector<int> held;
+  const std::string list = path + "." + key;
+  const bool at_rest = std::string(key) == "hold_at_rest";
+  for (size_t k = 0; k < names.size(); ++k) {
+    const std::string entry = Indexed(list, k);
+    const int part = check.MovablePart(names[k], entry);
+    const std::string quoted = "part '" + EscapedName(names[k]) + "'";
+    if (assembly.part(part).tool)
+      check.Fail(entry, quoted + " is a tool, not part of the assembly: it cannot be held in place");
+    if (std::find(held.begin(), held.end(), part) != held.end())
+      check.Fail(entry, "names " + quoted + " twice");
+    const auto it = removed_at.find(part);
+    if (it != removed_at.end() && it->second.first < i)
+      check.Fail(entry, quoted + " is not there to hold: it is removed by " + it->second.second);
+    if (!at_rest && std::find(remove.begin(), remove.end(), part) != remove.end())
+      check.Fail(entry, quoted + " moves in this step: it cannot be held in place while it moves "
+                                 "(hold_at_rest keeps it in the gripper at rest)");
+    held.push_back(part);
+  }
+  return held;
+}
+
 // The path: from the origin, without repeated points, of nonzero length.
 std::vector<Vector3> StepPath(const PlanStepDef& sd, const std::string& path,
                               const Assembly& assembly, const PlanValidator& check) {
@@ -254,6 +283,12 @@ Plan Plan::Create(const PlanDef& def, const Assembly& assembly, const std::strin
     step.path = StepPath(sd, path, assembly, check);
     StepTicks(step, plan, max_ticks, path, check);
     step.support = sd.support;
+    step.hold = HeldParts(sd.hold, "hold", step.remove, i, path, assembly, check, removed_at);
+    step.hold_at_rest =
+        sd.has_hold_at_rest
+            ? HeldParts(sd.hold_at_rest, "hold_at_rest", step.remove, i, path, assembly, check,
+                        removed_at)
+            : step.hold;
     plan.steps.push_back(std::move(step));
   }
   return plan;

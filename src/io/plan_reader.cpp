@@ -17,8 +17,8 @@ using nlohmann::json;
 // The keys of each level of plan format version 1.
 constexpr std::initializer_list<const char*> kPlanKeys = {"cairn_plan", "mode", "dt", "speed",
                                                           "steps"};
-constexpr std::initializer_list<const char*> kStepKeys = {"remove",    "grip",     "path",
-                                                          "direction", "distance", "support"};
+constexpr std::initializer_list<const char*> kStepKeys = {
+    "remove", "grip", "path", "direction", "distance", "support", "hold", "hold_at_rest"};
 
 // Converts a parsed document to a PlanDef, checking structure and types on
 // the way; the first fault throws an InputError with its JSON path. Values
@@ -114,6 +114,12 @@ class PlanParser : private io_internal::JsonChecker {
       } else {
         Fail(Child(path, "support"), "must be \"full\" or \"none\", not \"" + support + "\"");
       }
+    }
+    // Held parts (an empty list is allowed: hold_at_rest [] lets go of all).
+    if (j.contains("hold")) step.hold = Strings(j["hold"], Child(path, "hold"));
+    if (j.contains("hold_at_rest")) {
+      step.hold_at_rest = Strings(j["hold_at_rest"], Child(path, "hold_at_rest"));
+      step.has_hold_at_rest = true;
     }
     return step;
   }

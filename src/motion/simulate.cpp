@@ -158,6 +158,7 @@ struct StepState {
   int k = -1;  // index into Plan::steps
   const PlanStep* step = nullptr;
   std::vector<bool> gripped, carried, in_group;
+  std::vector<bool> hold, hold_at_rest;  // held in place while the parts move; at rest
   SupportMode support = SupportMode::kFull;  // may become kFull when the gripper carries
   double length = 0;                         // of the path
   int moves = 1;                             // ticks after the start
@@ -174,6 +175,7 @@ struct TickMotion {
   double t_now = 0;      // time of the tick
   Vector3 v_g;           // the gripper's velocity over the interval
   Vector3 guide;         // the direction the gripper holds a guided part along
+  bool release = false;  // assembling: the step's parts, arrived, let go
 };
 
 // The solves of one tick: `r` at the tick; at tick 0 also `moved`, the
@@ -210,8 +212,9 @@ class PlanSimulation {
   SimulationResult Run() {
     for (const int k : StepOrder()) {
       StepState st = EnterStep(k);
-      for (int tick = 0; tick <= st.moves; ++tick)
-        if (!RunTick(st, tick)) break;
+      bool going = true;
+      for (int tick = 0; tick <= st.moves && going; ++tick) going = RunTick(st, tick);
+      if (going && assemble_) RunTick(st, st.moves, /*release=*/true);
       LeaveStep(st);
       if (st.failed && !options_.continue_after_failure) break;
     }
@@ -257,6 +260,10 @@ class PlanSimulation {
     for (int p : st.step->grip) st.gripped[p] = st.in_group[p] = true;
     for (int p : st.step->remove)
       if (!st.gripped[p]) st.carried[p] = st.in_group[p] = true;
+    st.hold.assign(n_, false);
+    st.hold_at_rest.assign(n_, false);
+    for (int p : st.step->hold) st.hold[p] = true;
+    for (int p : st.step->hold_at_rest) st.hold_at_rest[p] = true;
     st.support = st.step->support;
     st.length = st.step->Length();
     const double s_start = assemble_ ? st.length : 0.0;
@@ -272,9 +279,12 @@ class PlanSimulation {
   }
 
   // One tick: place the gripper, analyse, classify, record a failure, move
-  // on. False when the step stops here.
-  bool RunTick(StepState& st, int tick) {
-    const TickMotion tm = GripperAt(st, tick);
+  // on. False when the step stops here. Assembling, a step ends with its
+  // parts let go where they arrived (`release`, at the last tick's place):
+  // the mirror of a disassembly's first tick, which finds them resting there.
+  bool RunTick(StepState& st, int tick, bool release = false) {
+    TickMotion tm = GripperAt(st, tick);
+    tm.release = release;
     for (int p = 0; p < n_; ++p)
       if (st.gripped[p]) config_.poses[p] = Pose::Translation(st.step->At(tm.s));
     StabilityOptions so;
@@ -328,14 +338,24 @@ class PlanSimulation {
   // the gripper has not moved yet, so its parts still rest on the assembly
   // with their weight (the paper's figures show their contact forces until
   // they are lifted).
+  // The step's held parts (PlanStep::hold) are held while its parts move,
+  // its hold_at_rest while they rest in their assembled pose, let go: a
+  // disassembly's first solve, an assembly's release.
   DriveInputs MakeDrive(const StepState& st, const TickMotion& tm, bool at_rest) const {
     DriveInputs d;
     d.role.assign(n_, PartRole::kJudged);
     d.velocity.assign(n_, Vector3::Zero());
     d.guide.assign(n_, tm.guide);
     d.nu_prev = nu_;
+    const bool in_place = at_rest && (assemble_ ? tm.release : tm.tick == 0);
+    const std::vector<bool>& hold = in_place ? st.hold_at_rest : st.hold;
     for (int p = 0; p < n_; ++p) {
-      if (st.gripped[p] && at_rest && !a_.part(p).tool) {
+      if (hold[p]) {
+        d.role[p] = PartRole::kPrescribed;  // held in place: velocity 0
+        d.nu_prev[p].setZero();
+      } else if (tm.release && st.in_group[p] && !a_.part(p).tool) {
+        d.nu_prev[p].setZero();  // let go where it arrived: judged, as every placed part
+      } else if (st.gripped[p] && at_rest && !a_.part(p).tool) {
         d.role[p] = PartRole::kCarried;
         d.nu_prev[p].setZero();
       } else if (st.gripped[p]) {
@@ -358,7 +378,7 @@ class PlanSimulation {
   TickAnalysis Analyze(StepState& st, const TickMotion& tm, const StabilityOptions& so) {
     TickAnalysis an;
     const int k = st.k, tick = tm.tick;
-    const DriveInputs drive = MakeDrive(st, tm, tick == 0);
+    const DriveInputs drive = MakeDrive(st, tm, tick == 0 || tm.release);
     if (options_.on_analysis)
       options_.on_analysis({k, tick, tm.t_now, true, &config_, &drive, &so});
     an.r = AnalyzeConfiguration(a_, config_, so, &drive, &workspace_);
@@ -370,7 +390,7 @@ class PlanSimulation {
     if (options_.record_timeline)
       for (const ContactReport& c : an.r.contacts)
         result_.timeline.push_back({tm.t_now, k, tick, c});
-    if (tick == 0 && tick < st.moves) {
+    if (tick == 0 && tick < st.moves && !tm.release) {
       const DriveInputs go = MakeDrive(st, tm, false);
       if (options_.on_analysis)
         options_.on_analysis({k, tick, tm.t_now, false, &config_, &go, &so});
@@ -399,7 +419,7 @@ class PlanSimulation {
     if (f.verdict == MotionVerdict::kStable && !r.moving.empty()) {
       f.verdict = MotionVerdict::kUnstable;
       f.parts = r.moving;
-      if (tm.tick > 0)  // the gripper moves: some may be pushed
+      if (tm.tick > 0 && !tm.release)  // the gripper moves: some may be pushed
         f.pushed =
             PushedParts(a_, config_, r, st.gripped, st.carried, tm.v_g, tol.force, tol.velocity);
     }
@@ -446,7 +466,7 @@ class PlanSimulation {
                        TickVerdict& v) const {
     std::vector<bool> can_give_way(n_);
     for (int p = 0; p < n_; ++p)
-      can_give_way[p] = !a_.part(p).fixed && !a_.part(p).tool && !held_[p];
+      can_give_way[p] = !a_.part(p).fixed && !a_.part(p).tool && !held_[p] && !st.hold[p];
     const auto hit =
         FindCollision(a_, config_, st.gripped, st.in_group, can_give_way, tol.penetration);
     if (!hit) return;
@@ -479,6 +499,7 @@ class PlanSimulation {
     MotionFailure& f = v.failure;
     f.step = st.k;
     f.tick = tm.tick;
+    f.released = tm.release;
     f.time = v.failure_time;
     if (f.motions.empty())
       for (const PartMotion& m : judged.parts)

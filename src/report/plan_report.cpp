@@ -37,6 +37,8 @@ json StepToJson(const PlanStepDef& s, int dim) {
     j["path"] = path;
   }
   j["support"] = to_string(s.support);
+  if (!s.hold.empty()) j["hold"] = s.hold;
+  if (s.has_hold_at_rest) j["hold_at_rest"] = s.hold_at_rest;
   return j;
 }
 

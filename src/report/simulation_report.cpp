@@ -43,6 +43,7 @@ nlohmann::json SimulationToJson(const Assembly& assembly, const Plan& plan,
     jf["verdict"] = to_string(f.verdict);
     jf["step"] = f.step;
     jf["tick"] = f.tick;
+    jf["released"] = f.released;  // assembling: when let go where they arrived
     jf["time"] = Clean(f.time);
     jf["parts"] = Names(assembly, f.parts);
     jf["pushed"] = Names(assembly, f.pushed);  // the free parts the moving ones push

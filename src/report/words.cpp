@@ -52,7 +52,8 @@ void WriteWhat(const Assembly& a, const MotionFailure& f, std::ostringstream& os
 
 std::string DescribeFailure(const Assembly& a, const MotionFailure& f) {
   std::ostringstream os;
-  os << "t = " << f.time << " s (step " << f.step + 1 << ", tick " << f.tick << "): ";
+  os << "t = " << f.time << " s (step " << f.step + 1 << ", tick " << f.tick
+     << (f.released ? ", let go in place" : "") << "): ";
   WriteWhat(a, f, os);
   for (const ContactReport& c : f.contacts) {
     if (!(c.breaking || c.sliding)) continue;

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <optional>
 
 #include "cairn/io/plan_reader.h"
 #include "cairn/io/scene_reader.h"
@@ -64,6 +65,67 @@ TEST(Simulate, SlidingAPartOnANarrowBaseTipsItWhereEquationEightSays) {
   // C's weight tips B (Proposition 3), C sinking with it; the gripper's
   // motion (along x, tangent to the contact) pushes nothing.
   EXPECT_TRUE(r.failure->pushed.empty()) << testing::Brief(*r.failure);
+}
+
+// A plank O on the pedestal P (x in [-0.5, 0.5]) reaching right, its
+// centroid at x = 0.7 past P's edge: alone it tips clockwise. The block K on
+// its left end brings the pair's centroid to (0.8 · 0.7 + 1 · (-0.8)) / 1.8
+// = -0.13, over P: together they stand.
+Assembly Counterweighted() {
+  AssemblyDef def;
+  def.gravity = Vector3(0, -1, 0);
+  def.parts = {Box("table", -5, -1, 5, 0, true), Box("P", -0.5, 0, 0.5, 1),
+               Box("O", -1.3, 1, 2.7, 1.2), Box("K", -1.3, 1.2, -0.3, 2.2)};
+  return Assembly::Create(def);
+}
+
+PlanStepDef Held(PlanStepDef step, std::vector<std::string> hold,
+                 std::optional<std::vector<std::string>> at_rest = std::nullopt) {
+  step.hold = std::move(hold);
+  if (at_rest) step.hold_at_rest = *at_rest, step.has_hold_at_rest = true;
+  return step;
+}
+
+TEST(Simulate, AssembledPartsAreCheckedWhenLetGoAndHoldsKeepThemInPlace) {
+  const Assembly a = Counterweighted();
+  const int O = a.FindPart("O");
+  // Assembling O then K (the file lists K's step first): O tips when the
+  // gripper lets go of it on P.
+  const SimulationResult bare = SimulatePlan(
+      a, MakePlan(a, {Straight("K", {0, 1}, 2), Straight("O", {0, 1}, 2)}, 1.0,
+                  PlanMode::kAssemble));
+  ASSERT_EQ(bare.verdict, MotionVerdict::kUnstable);
+  EXPECT_EQ(bare.failure->step, 1);
+  EXPECT_TRUE(bare.failure->released) << testing::Brief(*bare.failure);
+  EXPECT_EQ(bare.failure->parts, std::vector<int>{O});
+  ASSERT_FALSE(bare.failure->motions.empty());
+  EXPECT_EQ(bare.failure->motions[0].kind, MotionKind::kTips);
+  EXPECT_LT(bare.failure->motions[0].angular.z(), 0.0) << "O tips clockwise";
+  // O kept in its gripper when it arrives, and held while K comes in; K
+  // let go with O let go too: every state stands.
+  const SimulationResult held = SimulatePlan(
+      a, MakePlan(a, {Held(Straight("K", {0, 1}, 2), {"O"}, std::vector<std::string>{}),
+                      Held(Straight("O", {0, 1}, 2), {}, std::vector<std::string>{"O"})},
+                  1.0, PlanMode::kAssemble));
+  EXPECT_EQ(held.verdict, MotionVerdict::kStable)
+      << (held.failure ? testing::Brief(*held.failure) : std::string());
+  // The hold let go before K arrives: O tips as K's step starts.
+  const SimulationResult early = SimulatePlan(
+      a, MakePlan(a, {Straight("K", {0, 1}, 2),
+                      Held(Straight("O", {0, 1}, 2), {}, std::vector<std::string>{"O"})},
+                  1.0, PlanMode::kAssemble));
+  ASSERT_EQ(early.verdict, MotionVerdict::kUnstable);
+  EXPECT_EQ(early.failure->step, 0);
+  EXPECT_FALSE(early.failure->released);
+  EXPECT_EQ(early.failure->parts, std::vector<int>{O});
+  // Disassembling, K lifted off tips O unless O is held while K leaves.
+  const SimulationResult lift = SimulatePlan(a, MakePlan(a, {Straight("K", {0, 1}, 2)}));
+  ASSERT_EQ(lift.verdict, MotionVerdict::kUnstable);
+  EXPECT_EQ(lift.failure->parts, std::vector<int>{O});
+  const SimulationResult lift_held =
+      SimulatePlan(a, MakePlan(a, {Held(Straight("K", {0, 1}, 2), {"O"})}));
+  EXPECT_EQ(lift_held.verdict, MotionVerdict::kStable)
+      << (lift_held.failure ? testing::Brief(*lift_held.failure) : std::string());
 }
 
 TEST(Simulate, WithTheWeightCarriedEveryPathIsStable) {
@@ -212,7 +274,7 @@ TEST(Simulate, PaperFig19_FrictionMakesAssemblyAndDisassemblyNonInvertible) {
 
   const SimulationResult in = SimulatePlan(
       a, MakePlan(a, {Straight("A", {1, 0}, 0.8, SupportMode::kNone)}, 0.2, PlanMode::kAssemble));
-  EXPECT_EQ(in.steps[0].ticks, 5);
+  EXPECT_EQ(in.steps[0].ticks, 6);  // 5 along the path, then A let go in place
   EXPECT_EQ(in.verdict, MotionVerdict::kStable)
       << (in.failure ? testing::Brief(*in.failure) : std::string()) << in.diagnostics;
 }

@@ -44,6 +44,14 @@ struct PlanStepDef {
   double distance = 0;
   bool has_direction = false;  ///< the step used `direction` and `distance`
   SupportMode support = SupportMode::kFull;
+  /// Parts held in place (all freedoms fixed, pulling as well as pushing, as
+  /// a robot or a crane holds a block) while this step's parts move.
+  std::vector<std::string> hold;
+  /// Parts held while this step's parts rest in their assembled pose, let
+  /// go: before they leave (disassembling), after they arrive (assembling).
+  /// Absent (has_hold_at_rest false): `hold`.
+  std::vector<std::string> hold_at_rest;
+  bool has_hold_at_rest = false;
 };
 
 /// A whole plan as the user writes it. Vector indices equal JSON indices.
@@ -60,6 +68,8 @@ struct PlanStep {
   std::vector<int> grip;      ///< part indices (tools included); never empty
   std::vector<Vector3> path;  ///< piecewise-linear displacements, path[0] = 0, ≥ 2 points
   SupportMode support = SupportMode::kFull;
+  std::vector<int> hold;          ///< held while the step's parts move (part indices)
+  std::vector<int> hold_at_rest;  ///< held while they rest in place, let go
   double Length() const;  ///< total path length
   /// The displacement after travelling arc length s along the path (clamped).
   Vector3 At(double s) const;

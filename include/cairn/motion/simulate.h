@@ -68,6 +68,9 @@ struct MotionFailure {
   MotionVerdict verdict = MotionVerdict::kStable;
   int step = -1;           ///< index into Plan::steps (file order)
   int tick = -1;           ///< tick within the step (0 = its start)
+  /// Assembling: at the step's end, when its parts were let go where they
+  /// arrived (`tick` is the last).
+  bool released = false;
   double time = 0;         ///< s, from the start of the plan
   std::vector<int> parts;  ///< unstable: the parts that move; unsupported: the gripped parts;
                            ///< infeasible: the moving part, then the part it runs into (if any)
