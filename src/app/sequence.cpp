@@ -1,5 +1,6 @@
 #include "cairn/app/sequence.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <vector>
@@ -7,6 +8,8 @@
 #include "cairn/app/blocking.h"
 #include "cairn/core/error.h"
 #include "cairn/planning/sequence.h"
+#include "cairn/geometry/plan.h"
+#include "cairn/report/plan_report.h"
 #include "cairn/report/sequence_report.h"
 
 namespace cairn::app {
@@ -39,6 +42,46 @@ std::vector<Vector3> DirectionsOf(const Model& model, const SequenceQuery& query
   return out;
 }
 
+// The order as an assembly plan (docs/plan-format.md, assemble mode): the
+// file lists the parts in the order they come out, so that assembling runs
+// the build order. Part p_i comes in along its arrival direction from a scene
+// size away (clear of every part: a part moved by the bounding box's
+// diagonal lies outside it), in two time steps (its way is free of every
+// placed part: a blocking graph to infinity), held by the gripper; while it
+// moves, the holds in place before it and those put in for it are held;
+// when it is let go, the holds of the state after it.
+PlanDef SequencePlan(const Assembly& assembly, const BuildSequence& sequence) {
+  PlanDef plan;
+  plan.mode = PlanMode::kAssemble;
+  plan.speed = assembly.scene_size();  // a scene size a second
+  plan.dt = 0.5;
+  const auto names = [&](const std::vector<int>& parts) {
+    std::vector<std::string> out;
+    for (int p : parts) out.push_back(assembly.part(p).name);
+    return out;
+  };
+  std::vector<int> before;  // the holds in place before the step
+  for (const SequenceStep& s : sequence.steps) {
+    PlanStepDef step;
+    step.remove = {assembly.part(s.part).name};
+    step.has_direction = true;
+    step.direction = -s.direction;
+    step.distance = assembly.scene_size();
+    std::vector<int> moving = before, after = before;
+    for (int h : s.added) {
+      if (h != s.part) moving.push_back(h);
+      after.push_back(h);
+    }
+    for (int h : s.removed) after.erase(std::find(after.begin(), after.end(), h));
+    step.hold = names(moving);
+    step.hold_at_rest = names(after);
+    step.has_hold_at_rest = true;
+    plan.steps.insert(plan.steps.begin(), std::move(step));
+    before = after;
+  }
+  return plan;
+}
+
 }  // namespace
 
 CommandResult SequenceDocument(const Model& model, const SequenceQuery& query,
@@ -69,6 +112,11 @@ CommandResult SequenceDocument(const Model& model, const SequenceQuery& query,
   out.document = SequenceToJson(model.assembly, sequence, seconds, report);
   out.exit = sequence.complete ? kExitStable : kExitUnstable;
   out.text = SequenceToText(model.assembly, sequence, report);
+  if (query.emit_plans && !sequence.steps.empty())
+    out.plans = {{"sequence.assemble.plan.json",
+                  PlanDefToJson(SequencePlan(model.assembly, sequence), model.assembly.dimension())
+                          .dump(2) +
+                      "\n"}};
   return out;
 }
 

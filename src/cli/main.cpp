@@ -360,6 +360,10 @@ CLI::App* AddSequence(CLI::App& app, cairn::cli::SequenceArgs& sequence) {
                   "Seconds the search may take; then (or on Ctrl-C) the best order so far, with "
                   "its bound")
       ->check(kPositive);
+  cmd->add_option("--emit-plans", sequence.emit_plans,
+                  "Write the order as an assembly plan (sequence.assemble.plan.json, the holds as "
+                  "held parts) in this folder, for cairn simulate")
+      ->check(kNotEmpty);
   AddRuleOptions(cmd, sequence.rule, sequence.require);
   AddModelOptions(cmd, sequence.model);
   return cmd;

@@ -5,6 +5,7 @@
 
 #include <csignal>
 #include <ctime>
+#include <filesystem>
 #include <ostream>
 
 #include "cairn/app/sequence.h"
@@ -85,8 +86,12 @@ class InterruptScope {
 
 int RunSequence(const SequenceArgs& args, std::ostream& out, std::ostream& err) {
   return RunGuarded(err, [&]() -> int {
+    // The outputs are checked first (never over an input), written last.
+    const std::vector<NamedFile> inputs = ModelInputs(args.scene, args.model, "the model file");
+    if (!args.emit_plans.empty()) OutputFiles(inputs).AddFolder(args.emit_plans, "--emit-plans");
     Progress progress("cairn sequence");
     app::SequenceQuery q = QueryOf(args);
+    q.emit_plans = !args.emit_plans.empty();
     q.stop = [] { return interrupted != 0; };
     app::CommandResult r;
     {
@@ -97,6 +102,15 @@ int RunSequence(const SequenceArgs& args, std::ostream& out, std::ostream& err) 
       r = app::SequenceDocument(model, q,
                                 {{}, [&](const std::string& status) { progress.Show(status); }});
       progress.Done();
+      // Every file, or none (OutputFiles).
+      OutputFiles files(inputs);
+      if (!args.emit_plans.empty()) {
+        files.AddFolder(args.emit_plans, "--emit-plans");
+        for (const auto& [name, text] : r.plans)
+          files.Add((std::filesystem::path(args.emit_plans) / name).string(), text,
+                    "--emit-plans");
+      }
+      files.Commit();
       out << (args.json ? r.document.dump(2) + "\n" : r.text) << std::flush;
     }
     return r.exit;

@@ -22,6 +22,7 @@ struct SequenceArgs {
   double time_limit = 0;                  // --time-limit S; 0: none
   std::string rule = "loaded-from-rest";  // --rule
   std::string require;                    // --require strong
+  std::string emit_plans;                 // --emit-plans DIR
   ModelArgs model;
 };
 

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <numbers>
@@ -211,6 +212,35 @@ void EveryStateStandsByCheck(const std::string& model_args, const json& sequence
   }
 }
 
+// `--emit-plans`: the order written as an assembly plan, which `cairn
+// simulate` runs stable on the same model (its holds held as the plan says);
+// with every hold taken out of the plan, the simulation fails where the
+// order needed one (`needs_holds`), and a plan with no holds says nothing.
+void EmittedPlanSimulates(const std::string& model_args, const std::string& options,
+                          bool needs_holds) {
+  static int run = 0;
+  const std::string dir = TempDir("emitted_plans_" + std::to_string(run++));
+  std::filesystem::remove_all(dir);
+  const CliRun seq = Cairn("sequence " + model_args + " " + options + " --emit-plans " + dir);
+  ASSERT_EQ(seq.exit_code, 0) << seq.err;
+  const std::string plan = dir + "/sequence.assemble.plan.json";
+  const CliRun sim = Cairn("simulate " + model_args + " " + plan + " --json");
+  EXPECT_EQ(sim.exit_code, 0) << sim.out << sim.err;
+  json doc = json::parse(Slurp(plan));
+  EXPECT_EQ(doc["mode"], "assemble");
+  bool any = false;
+  for (json& step : doc["steps"]) {
+    any = any || !step["hold"].empty() || !step["hold_at_rest"].empty();
+    step["hold"] = json::array();
+    step["hold_at_rest"] = json::array();
+  }
+  EXPECT_EQ(any, needs_holds);
+  if (!needs_holds) return;
+  const std::string bare = TempFile("plan_without_holds.json", doc.dump());
+  const CliRun fails = Cairn("simulate " + model_args + " " + bare + " --json");
+  EXPECT_EQ(fails.exit_code, 1) << fails.out << fails.err;
+}
+
 // The 3-voussoir arch: no voussoir stands alone on a springer (each leans
 // inward past its joint's inner edge), so every order needs a hold from its
 // first step: the lower bound 1. Arriving from above only, the keystone v2
@@ -245,6 +275,9 @@ TEST(Sequence, ArchOfThreeVoussoirsNeedsOneHoldAndTheBoundProvesIt) {
   const json& hold = axes["steps"][0]["temporary_in_place"][0];
   EXPECT_EQ(hold["part"], "v1");
   EXPECT_GT(hold["force"][1].get<double>(), 0);
+
+  EmittedPlanSimulates(file, "--directions axes", true);
+  EmittedPlanSimulates(file, "", true);
 
   // No support allowed: no order.
   const json none = Sequence(file + " --directions axes --max-temporary 0", 1);
@@ -285,6 +318,7 @@ TEST(Sequence, StackAndWallNeedNoSupport) {
       EXPECT_EQ(step["verdict"], "stands");
       EXPECT_TRUE(step["temporary_in_place"].empty());
     }
+    if (name != "wall.json") EmittedPlanSimulates(ExamplePath(name), "--beam 1", false);
   }
 }
 
@@ -373,6 +407,7 @@ TEST(Sequence, CompasArchNeedsOneHold) {
   EXPECT_EQ(s["temporary"]["optimal"], true);
   for (const json& step : s["steps"]) EXPECT_EQ(step["verdict"], "stands");
   EveryStateStandsByCheck(model, s);
+  EmittedPlanSimulates(model, "--directions axes --beam 1", true);
 }
 
 // The COMPAS wall (stretcher bond on the ground): no support at all, and
@@ -386,6 +421,7 @@ TEST(Sequence, CompasWallNeedsNoSupport) {
   EXPECT_EQ(s["temporary"]["max_in_place"], 0);
   EXPECT_EQ(s["temporary"]["optimal"], true);
   EveryStateStandsByCheck(model, s);
+  EmittedPlanSimulates(model, "", false);
 }
 
 }  // namespace

@@ -30,6 +30,10 @@ struct SequenceQuery {
   std::function<bool()> stop;
   VerdictRule rule = VerdictRule::kLoadedFromRest;  ///< --rule
   bool require_strong = false;                      ///< --require strong
+  /// --emit-plans: also the order as an assembly plan `cairn simulate` runs
+  /// (CommandResult::plans: "sequence.assemble.plan.json"), its supports as
+  /// held parts.
+  bool emit_plans = false;
 };
 
 /// The build order of `model`: exit 0 when a complete order was found within
