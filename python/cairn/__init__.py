@@ -415,20 +415,27 @@ def plan(m, max=None, single_parts=False, paths=None, allow_fixtures=0, keep=Non
         outputs.append((html, page, "html"))
     if dot is not None:
         outputs.append((dot, graph, "dot"))
-    if emit_plans is not None:
-        folder = os.fspath(emit_plans)
-        try:
-            os.makedirs(folder, exist_ok=True)
-        except (OSError, ValueError) as e:
-            raise _input_error("emit_plans", f"cannot make the folder {folder!r}: "
-                               f"{getattr(e, 'strerror', None) or e}") from None
-        outputs += [(os.path.join(folder, name), text, "emit_plans") for name, text in plans]
+    outputs += _plan_files(emit_plans, plans)
     _write_outputs(m, outputs, [] if paths is None or isinstance(paths, dict) else [paths])
     return json.loads(doc)
 
 
+def _plan_files(emit_plans, plans):
+    """The ``emit_plans`` folder (made now) and the plan files to write in it,
+    as _write_outputs takes them; none when ``emit_plans`` is None."""
+    if emit_plans is None:
+        return []
+    folder = os.fspath(emit_plans)
+    try:
+        os.makedirs(folder, exist_ok=True)
+    except (OSError, ValueError) as e:
+        raise _input_error("emit_plans", f"cannot make the folder {folder!r}: "
+                           f"{getattr(e, 'strerror', None) or e}") from None
+    return [(os.path.join(folder, name), text, "emit_plans") for name, text in plans]
+
+
 def sequence(m, temporary="hold", max_temporary=None, direction=None, directions="up", beam=4,
-             rule="loaded-from-rest", require=None, time_limit=None):
+             rule="loaded-from-rest", require=None, time_limit=None, emit_plans=None):
     """``cairn sequence --json``: an order to build the model in, one part a
     step from its fixed parts up, every state standing, with the fewest
     temporary holds in place at once and a lower bound that proves how far
@@ -437,7 +444,9 @@ def sequence(m, temporary="hold", max_temporary=None, direction=None, directions
     (2 or 3 numbers; a part arrives along its reverse); ``directions``: "up"
     (against gravity), "axes" or "ndbg"; ``beam``: states kept per step; ``rule``
     and ``require`` as ``check``'s; ``time_limit``: seconds, then the best
-    order so far (``stopped``). The dict has the CLI's keys."""
+    order so far (``stopped``); ``emit_plans``: a folder to write the order to
+    as an assembly plan with its holds (sequence.assemble.plan.json, for
+    ``simulate``). The dict has the CLI's keys."""
     _check_model(m)
     d = _numbers(direction, "direction")
     limit = 0.0 if time_limit is None else _number(time_limit, "time_limit")
@@ -449,8 +458,11 @@ def sequence(m, temporary="hold", max_temporary=None, direction=None, directions
         max_temporary=-1 if max_temporary is None else _whole(max_temporary, "max_temporary",
                                                               _NON_NEGATIVE),
         direction=d, directions=str(directions), beam=_whole(beam, "beam", (1, 1000)),
-        rule=str(rule), require="" if require is None else str(require), time_limit=limit)
-    return json.loads(_cairn.sequence(m, options)[0])
+        rule=str(rule), require="" if require is None else str(require), time_limit=limit,
+        emit_plans=emit_plans is not None)
+    doc, _, _, _, _, plans = _cairn.sequence(m, options)
+    _write_outputs(m, _plan_files(emit_plans, plans), [])
+    return json.loads(doc)
 
 
 def blocking(m, direction=None, without=None):

@@ -200,6 +200,7 @@ Answer Sequence(const py::object& model, const py::dict& o) {
   if (!require.empty() && require != "strong")
     throw InputError("", "require", "must be \"strong\" or None, not \"" + require + "\"");
   q.require_strong = require == "strong";
+  q.emit_plans = o["emit_plans"].cast<bool>();
   py::gil_scoped_release release;
   return AnswerOf(app::SequenceDocument(m, q));
 }

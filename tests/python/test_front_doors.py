@@ -243,6 +243,30 @@ def test_sequence_through_both_doors(cli, name):
     with pytest.raises(cairn.InputError):
         cairn.sequence(m, temporary="prop")
     with pytest.raises(cairn.InputError):
+        cairn.sequence(m, emit_plans=scene)  # a file, not a folder
+    with pytest.raises(cairn.InputError):
         cairn.sequence(m, rule="none")
     with pytest.raises(cairn.InputError):
         cairn.sequence(m, directions="sideways")
+
+
+@pytest.mark.parametrize("name", ["paper_fig4.json", "paper_fig17.json"])
+def test_sequence_emits_the_plan_the_cli_emits(cli, name, tmp_path):
+    """`emit_plans`: the order as an assembly plan with its holds, the same
+    file as `cairn sequence --emit-plans` writes; `cairn.simulate` runs it
+    stable, and unstable once its holds are taken out."""
+    scene = os.path.join("examples", name)
+    m = cairn.load(scene)
+    doc = cairn.sequence(m, emit_plans=tmp_path / "py")
+    assert doc["temporary"]["max_in_place"] == 1
+    assert cli("sequence", scene, "--emit-plans", str(tmp_path / "cli"))[0] == 0
+    name = "sequence.assemble.plan.json"
+    py_plan = (tmp_path / "py" / name).read_text(encoding="utf-8")
+    assert py_plan == (tmp_path / "cli" / name).read_text(encoding="utf-8")
+    assert cairn.simulate(m, str(tmp_path / "py" / name))["stable"]
+    plan = json.loads(py_plan)
+    assert any(step["hold"] or step["hold_at_rest"] for step in plan["steps"])
+    for step in plan["steps"]:
+        step["hold"], step["hold_at_rest"] = [], []
+    (tmp_path / "bare.json").write_text(json.dumps(plan), encoding="utf-8")
+    assert not cairn.simulate(m, str(tmp_path / "bare.json"))["stable"]
