@@ -47,35 +47,41 @@ std::vector<Vector3> DirectionsOf(const Model& model, const SequenceQuery& query
 // the build order. Part p_i comes in along its arrival direction from a scene
 // size away (clear of every part: a part moved by the bounding box's
 // diagonal lies outside it), in two time steps (its way is free of every
-// placed part: a blocking graph to infinity), held by the gripper; while it
-// moves, the holds in place before it and those put in for it are held;
-// when it is let go, the holds of the state after it.
+// placed part: a blocking graph to infinity), held by the gripper. While it
+// moves, the supports in place before it and those put in for it on other
+// parts are in place (`hold`, `props`); when it is let go, the supports of
+// the state after it (`hold_at_rest`, `props_at_rest`).
 PlanDef SequencePlan(const Assembly& assembly, const BuildSequence& sequence) {
   PlanDef plan;
   plan.mode = PlanMode::kAssemble;
   plan.speed = assembly.scene_size();  // a scene size a second
   plan.dt = 0.5;
-  const auto names = [&](const std::vector<int>& parts) {
-    std::vector<std::string> out;
-    for (int p : parts) out.push_back(assembly.part(p).name);
-    return out;
+  const auto fill = [&](const std::vector<TemporarySupport>& supports,
+                        std::vector<std::string>& hold, std::vector<FixtureDef>& props) {
+    for (const TemporarySupport& t : supports) {
+      const std::string& name = assembly.part(t.part).name;
+      if (t.kind == TemporaryKind::kHold)
+        hold.push_back(name);
+      else
+        props.push_back({name, t.point, t.normal});
+    }
   };
-  std::vector<int> before;  // the holds in place before the step
+  std::vector<TemporarySupport> before;  // the supports in place before the step
   for (const SequenceStep& s : sequence.steps) {
     PlanStepDef step;
     step.remove = {assembly.part(s.part).name};
     step.has_direction = true;
     step.direction = -s.direction;
     step.distance = assembly.scene_size();
-    std::vector<int> moving = before, after = before;
-    for (int h : s.added) {
-      if (h != s.part) moving.push_back(h);
-      after.push_back(h);
+    std::vector<TemporarySupport> moving = before, after = before;
+    for (const TemporarySupport& t : s.added) {
+      if (t.part != s.part) moving.push_back(t);
+      after.push_back(t);
     }
-    for (int h : s.removed) after.erase(std::find(after.begin(), after.end(), h));
-    step.hold = names(moving);
-    step.hold_at_rest = names(after);
-    step.has_hold_at_rest = true;
+    for (const TemporarySupport& t : s.removed) after.erase(std::find(after.begin(), after.end(), t));
+    fill(moving, step.hold, step.props);
+    fill(after, step.hold_at_rest, step.props_at_rest);
+    step.has_hold_at_rest = step.has_props_at_rest = true;
     plan.steps.insert(plan.steps.begin(), std::move(step));
     before = after;
   }
@@ -86,9 +92,12 @@ PlanDef SequencePlan(const Assembly& assembly, const BuildSequence& sequence) {
 
 CommandResult SequenceDocument(const Model& model, const SequenceQuery& query,
                                const Monitor& monitor) {
-  if (query.temporary != "hold")
-    throw InputError(model.file, "--temporary", "must be hold, not " + query.temporary);
+  if (query.temporary != "hold" && query.temporary != "prop" && query.temporary != "both")
+    throw InputError(model.file, "--temporary",
+                     "must be hold, prop or both, not " + query.temporary);
   SequenceOptions options;
+  options.holds = query.temporary != "prop";
+  options.props = query.temporary != "hold";
   options.max_temporary = query.max_temporary;
   options.directions = DirectionsOf(model, query);
   options.ndbg = query.direction.empty() && query.directions == "ndbg";

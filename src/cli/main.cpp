@@ -341,8 +341,9 @@ CLI::App* AddSequence(CLI::App& app, cairn::cli::SequenceArgs& sequence) {
       sequence.scene, sequence.json);
   cmd->add_option("--temporary", sequence.temporary,
                   "The temporary supports allowed: hold (a placed part held where it is, as a "
-                  "robot or a crane holds a block)")
-      ->check(CLI::IsMember({"hold"}));
+                  "robot or a crane holds a block), prop (a point support from the ground under a "
+                  "part's face, as falsework) or both")
+      ->check(CLI::IsMember({"hold", "prop", "both"}));
   cmd->add_option("--max-temporary", sequence.max_temporary,
                   "The most supports in place at once (default: no bound; 0: none)")
       ->check(kNonNegativeInteger);

@@ -14,7 +14,7 @@ namespace cairn::cli {
 struct SequenceArgs {
   std::string scene;
   bool json = false;
-  std::string temporary = "hold";         // --temporary hold
+  std::string temporary = "hold";         // --temporary hold|prop|both
   int max_temporary = -1;                 // --max-temporary K; -1: no bound
   std::vector<double> direction;          // --direction X,Y(,Z): the one removal direction
   std::string directions = "up";          // --directions up|axes

@@ -1,6 +1,7 @@
 #include "cairn/geometry/assembly.h"
 
 #include <algorithm>
+#include <stdexcept>
 #include <cmath>
 #include <functional>
 #include <limits>
@@ -817,6 +818,16 @@ Assembly Assembly::WithHeld(const std::vector<int>& held) const {
   for (const int p : held) {
     CAIRN_CHECK(p >= 0 && p < num_parts());
     out.parts_[p].fixed = true;
+  }
+  return out;
+}
+
+Assembly Assembly::WithFixtures(const std::vector<FixtureDef>& added) const {
+  Assembly out = *this;
+  for (const FixtureDef& f : added) {
+    if (const auto fault = FixtureFault(f))
+      throw std::invalid_argument("a fixel on '" + EscapedName(f.part) + "': " + *fault);
+    out.fixtures_.push_back(Fixture{FindPart(f.part), f.point, f.normal.normalized()});
   }
   return out;
 }

@@ -213,6 +213,33 @@ std::vector<int> HeldParts(const std::vector<std::string>& names, const char* ke
   return held;
 }
 
+// Props (`key` "props" or "props_at_rest"): fixels the scene would accept
+// (Assembly::FixtureFault), under movable parts present at step i (as
+// HeldParts), not under a part moving in this step but at rest.
+std::vector<FixtureDef> StepProps(const std::vector<FixtureDef>& props, const char* key,
+                                  const std::vector<int>& remove, size_t i,
+                                  const std::string& path, const Assembly& assembly,
+                                  const PlanValidator& check, const RemovedAt& removed_at) {
+  const std::string list = path + "." + key;
+  for (size_t k = 0; k < props.size(); ++k) {
+    const std::string entry = Indexed(list, k);
+    const int part = check.MovablePart(props[k].part, entry + ".part");
+    const std::string quoted = "part '" + EscapedName(props[k].part) + "'";
+    if (assembly.part(part).tool)
+      check.Fail(entry + ".part", quoted + " is a tool, not part of the assembly: it cannot be propped");
+    const auto it = removed_at.find(part);
+    if (it != removed_at.end() && it->second.first < i)
+      check.Fail(entry + ".part",
+                 quoted + " is not there to prop: it is removed by " + it->second.second);
+    if (std::string(key) == "props" &&
+        std::find(remove.begin(), remove.end(), part) != remove.end())
+      check.Fail(entry + ".part", quoted + " moves in this step: it cannot be propped while it "
+                                           "moves (props_at_rest props it at rest)");
+    if (const auto fault = assembly.FixtureFault(props[k])) check.Fail(entry, *fault);
+  }
+  return props;
+}
+
 // The path: from the origin, without repeated points, of nonzero length.
 std::vector<Vector3> StepPath(const PlanStepDef& sd, const std::string& path,
                               const Assembly& assembly, const PlanValidator& check) {
@@ -289,6 +316,11 @@ Plan Plan::Create(const PlanDef& def, const Assembly& assembly, const std::strin
             ? HeldParts(sd.hold_at_rest, "hold_at_rest", step.remove, i, path, assembly, check,
                         removed_at)
             : step.hold;
+    step.props = StepProps(sd.props, "props", step.remove, i, path, assembly, check, removed_at);
+    step.props_at_rest =
+        sd.has_props_at_rest ? StepProps(sd.props_at_rest, "props_at_rest", step.remove, i, path,
+                                         assembly, check, removed_at)
+                             : step.props;
     plan.steps.push_back(std::move(step));
   }
   return plan;

@@ -20,6 +20,7 @@
 #include "cairn/core/error.h"
 #include "cairn/core/tolerances.h"
 #include "cairn/core/types.h"
+#include "cairn/geometry/assembly.h"
 #include "cairn/io/input_file.h"
 
 namespace cairn::io_internal {
@@ -153,6 +154,18 @@ class JsonChecker {
     }
     return Vector3(Number(j[0], Index(path, 0)), Number(j[1], Index(path, 1)),
                    Number(j[2], Index(path, 2)));
+  }
+
+  // A fixel, {"part", "point", "normal"} (a scene's `fixtures[i]`, a plan
+  // step's `props[i]`), in a `dim`-D scene.
+  FixtureDef Fixture(const json& j, const std::string& path, int dim) const {
+    Object(j, path);
+    CheckKeys(j, path, {"part", "point", "normal"});
+    FixtureDef fixture;
+    fixture.part = String(Require(j, "part", path), Child(path, "part"));
+    fixture.point = VecN(Require(j, "point", path), Child(path, "point"), dim);
+    fixture.normal = VecN(Require(j, "normal", path), Child(path, "normal"), dim);
+    return fixture;
   }
 
   // An array of strings (part names).

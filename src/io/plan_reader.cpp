@@ -18,7 +18,8 @@ using nlohmann::json;
 constexpr std::initializer_list<const char*> kPlanKeys = {"cairn_plan", "mode", "dt", "speed",
                                                           "steps"};
 constexpr std::initializer_list<const char*> kStepKeys = {
-    "remove", "grip", "path", "direction", "distance", "support", "hold", "hold_at_rest"};
+    "remove", "grip",         "path",  "direction",    "distance",
+    "support", "hold", "hold_at_rest", "props", "props_at_rest"};
 
 // Converts a parsed document to a PlanDef, checking structure and types on
 // the way; the first fault throws an InputError with its JSON path. Values
@@ -121,7 +122,20 @@ class PlanParser : private io_internal::JsonChecker {
       step.hold_at_rest = Strings(j["hold_at_rest"], Child(path, "hold_at_rest"));
       step.has_hold_at_rest = true;
     }
+    if (j.contains("props")) step.props = Props(j["props"], Child(path, "props"));
+    if (j.contains("props_at_rest")) {
+      step.props_at_rest = Props(j["props_at_rest"], Child(path, "props_at_rest"));
+      step.has_props_at_rest = true;
+    }
     return step;
+  }
+
+  // A list of props: fixels {"part", "point", "normal"}.
+  std::vector<FixtureDef> Props(const json& j, const std::string& path) const {
+    std::vector<FixtureDef> out;
+    const json& list = Array(j, path);
+    for (size_t k = 0; k < list.size(); ++k) out.push_back(Fixture(list[k], Index(path, k), dim_));
+    return out;
   }
 
   int dim_;  // the scene's dimension: path points and directions have this many numbers

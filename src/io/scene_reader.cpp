@@ -39,7 +39,6 @@ constexpr std::initializer_list<const char*> kPartKeys = {
     "name", "fixed", "tool", "density", "mass", "polygon", "box", "polyhedron", "mesh"};
 constexpr std::initializer_list<const char*> kBoxKeys = {"min", "max"};
 constexpr std::initializer_list<const char*> kPairKeys = {"parts", "mu"};
-constexpr std::initializer_list<const char*> kFixtureKeys = {"part", "point", "normal"};
 constexpr std::initializer_list<const char*> kInterfaceKeys = {"parts", "normal", "points"};
 
 // The shape keys of a part, and the dimension each makes.
@@ -254,13 +253,7 @@ class SceneParser : private io_internal::JsonChecker {
   }
 
   FixtureDef ParseFixture(const json& j, const std::string& path) const {
-    Object(j, path);
-    CheckKeys(j, path, kFixtureKeys);
-    FixtureDef fixture;
-    fixture.part = String(Require(j, "part", path), Child(path, "part"));
-    fixture.point = VecN(Require(j, "point", path), Child(path, "point"), dim_);
-    fixture.normal = VecN(Require(j, "normal", path), Child(path, "normal"), dim_);
-    return fixture;
+    return Fixture(j, path, dim_);
   }
 
   // A 3-D part's shape as vertices and faces: a `box` with 3-D corners, a

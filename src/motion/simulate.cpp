@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <optional>
 #include <tuple>
 
 #include "cairn/core/check.h"
@@ -159,6 +160,9 @@ struct StepState {
   const PlanStep* step = nullptr;
   std::vector<bool> gripped, carried, in_group;
   std::vector<bool> hold, hold_at_rest;  // held in place while the parts move; at rest
+  // The scene with the step's props while its parts move, and at rest
+  // (empty: no props, the scene as it is).
+  std::optional<Assembly> with_props, with_props_at_rest;
   SupportMode support = SupportMode::kFull;  // may become kFull when the gripper carries
   double length = 0;                         // of the path
   int moves = 1;                             // ticks after the start
@@ -264,6 +268,9 @@ class PlanSimulation {
     st.hold_at_rest.assign(n_, false);
     for (int p : st.step->hold) st.hold[p] = true;
     for (int p : st.step->hold_at_rest) st.hold_at_rest[p] = true;
+    if (!st.step->props.empty()) st.with_props = a_.WithFixtures(st.step->props);
+    if (!st.step->props_at_rest.empty())
+      st.with_props_at_rest = a_.WithFixtures(st.step->props_at_rest);
     st.support = st.step->support;
     st.length = st.step->Length();
     const double s_start = assemble_ ? st.length : 0.0;
@@ -339,16 +346,27 @@ class PlanSimulation {
   // with their weight (the paper's figures show their contact forces until
   // they are lifted).
   // The step's held parts (PlanStep::hold) are held while its parts move,
-  // its hold_at_rest while they rest in their assembled pose, let go: a
+  // its hold_at_rest while they rest in their assembled pose (InPlace); its
+  // props likewise (SceneOf).
+  // True when the step's parts rest in their assembled pose, let go: a
   // disassembly's first solve, an assembly's release.
+  bool InPlace(const TickMotion& tm, bool at_rest) const {
+    return at_rest && (assemble_ ? tm.release : tm.tick == 0);
+  }
+
+  // The scene the step's solves see: with its props (in place or moving).
+  const Assembly& SceneOf(const StepState& st, bool in_place) const {
+    const std::optional<Assembly>& a = in_place ? st.with_props_at_rest : st.with_props;
+    return a ? *a : a_;
+  }
+
   DriveInputs MakeDrive(const StepState& st, const TickMotion& tm, bool at_rest) const {
     DriveInputs d;
     d.role.assign(n_, PartRole::kJudged);
     d.velocity.assign(n_, Vector3::Zero());
     d.guide.assign(n_, tm.guide);
     d.nu_prev = nu_;
-    const bool in_place = at_rest && (assemble_ ? tm.release : tm.tick == 0);
-    const std::vector<bool>& hold = in_place ? st.hold_at_rest : st.hold;
+    const std::vector<bool>& hold = InPlace(tm, at_rest) ? st.hold_at_rest : st.hold;
     for (int p = 0; p < n_; ++p) {
       if (hold[p]) {
         d.role[p] = PartRole::kPrescribed;  // held in place: velocity 0
@@ -381,7 +399,8 @@ class PlanSimulation {
     const DriveInputs drive = MakeDrive(st, tm, tick == 0 || tm.release);
     if (options_.on_analysis)
       options_.on_analysis({k, tick, tm.t_now, true, &config_, &drive, &so});
-    an.r = AnalyzeConfiguration(a_, config_, so, &drive, &workspace_);
+    an.r = AnalyzeConfiguration(SceneOf(st, InPlace(tm, tick == 0 || tm.release)), config_, so,
+                                &drive, &workspace_);
     ++st.report.ticks;
     for (const ComponentReport& c : an.r.components) st.report.pivots += c.pivots;
     if (!an.r.diagnostics.empty())
@@ -394,7 +413,7 @@ class PlanSimulation {
       const DriveInputs go = MakeDrive(st, tm, false);
       if (options_.on_analysis)
         options_.on_analysis({k, tick, tm.t_now, false, &config_, &go, &so});
-      an.moved = AnalyzeConfiguration(a_, config_, so, &go, &workspace_);
+      an.moved = AnalyzeConfiguration(SceneOf(st, false), config_, so, &go, &workspace_);
       an.has_moved = true;
       if (!an.moved.diagnostics.empty())
         result_.diagnostics +=

@@ -75,25 +75,22 @@ bool FaceInContact(const std::vector<Contact>& contacts, int part, const Vector3
   return false;
 }
 
-// The candidate points of one moving part at the failing tick. The part is
-// judged, so it is at its assembled pose: its vertices are the Assembly's.
-void PartCandidates(const Assembly& a, const PartMotion& m, const std::vector<Contact>& contacts,
-                    double tol, std::vector<Candidate>& out) {
-  const Part& part = a.part(m.part);
+}  // namespace
+
+std::vector<FacePoint> FreeFacePoints(const Assembly& a, int part_index,
+                                      const std::vector<Contact>& contacts, double tol) {
+  std::vector<FacePoint> out;
+  const Part& part = a.part(part_index);
   const auto add = [&](const Vector3& p, const Vector3& n_out, int face, bool centre,
                        const std::string& name) {
-    Candidate c;
-    c.part = m.part;
-    c.p_WF = p;
-    c.n_W = -n_out + Vector3::Zero();  // + 0: no −0 in reports
-    c.face = face;
-    c.centre = centre;
-    c.order = static_cast<int>(out.size());
-    // The velocity of the point: v + ω × (p − c), with c the centroid.
-    const Vector3 v = m.linear + m.angular.cross(p - part.centroid);
-    c.opposition = v.dot(n_out);
-    c.face_name = name;
-    out.push_back(c);
+    FacePoint f;
+    f.part = part_index;
+    f.point = p;
+    f.normal = -n_out + Vector3::Zero();  // + 0: no −0 in reports
+    f.face = face;
+    f.centre = centre;
+    f.face_name = name;
+    out.push_back(f);
   };
   if (!a.is_3d()) {
     const Polygon& poly = part.polygon;
@@ -102,7 +99,7 @@ void PartCandidates(const Assembly& a, const PartMotion& m, const std::vector<Co
       const Vector2 p0 = poly[e], p1 = poly[(e + 1) % nv];
       const Vector2 n2 = EdgeNormal(poly, e);
       const Vector3 n_out(n2.x(), n2.y(), 0);
-      const bool busy = FaceInContact(contacts, m.part, n_out, [&](const Vector3& q) {
+      const bool busy = FaceInContact(contacts, part_index, n_out, [&](const Vector3& q) {
         return DistanceToSegment(q.head<2>(), p0, p1) <= tol;
       });
       if (busy) continue;
@@ -113,13 +110,13 @@ void PartCandidates(const Assembly& a, const PartMotion& m, const std::vector<Co
       add(a0, n_out, e, false, name);
       add(a1, n_out, e, false, name);
     }
-    return;
+    return out;
   }
   const Polyhedron& poly = *part.polyhedron;
   for (int fi = 0; fi < static_cast<int>(poly.faces().size()); ++fi) {
     const Vector3& n_out = poly.face_normals()[fi];
     const Vector3& v0 = poly.vertices()[poly.faces()[fi][0]];
-    const bool busy = FaceInContact(contacts, m.part, n_out, [&](const Vector3& q) {
+    const bool busy = FaceInContact(contacts, part_index, n_out, [&](const Vector3& q) {
       return std::abs(n_out.dot(q - v0)) <= tol;
     });
     if (busy) continue;
@@ -141,6 +138,31 @@ void PartCandidates(const Assembly& a, const PartMotion& m, const std::vector<Co
     // inward direction.
     for (int vi : poly.faces()[fi])
       add(centroid + 0.9 * (poly.vertices()[vi] - centroid), n_out, fi, false, name);
+  }
+  return out;
+}
+
+namespace {
+
+// The candidate points of one moving part at the failing tick, with how
+// much each opposes its motion. The part is judged, so it is at its
+// assembled pose: its vertices are the Assembly's.
+void PartCandidates(const Assembly& a, const PartMotion& m, const std::vector<Contact>& contacts,
+                    double tol, std::vector<Candidate>& out) {
+  const Part& part = a.part(m.part);
+  for (const FacePoint& f : FreeFacePoints(a, m.part, contacts, tol)) {
+    Candidate c;
+    c.part = m.part;
+    c.p_WF = f.point;
+    c.n_W = f.normal;
+    c.face = f.face;
+    c.centre = f.centre;
+    c.order = static_cast<int>(out.size());
+    // The velocity of the point: v + ω × (p − c), with c the centroid.
+    const Vector3 v = m.linear + m.angular.cross(f.point - part.centroid);
+    c.opposition = -v.dot(f.normal);  // along the outward normal
+    c.face_name = f.face_name;
+    out.push_back(c);
   }
 }
 

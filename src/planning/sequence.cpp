@@ -8,6 +8,7 @@
 #include <functional>
 #include <map>
 #include <stdexcept>
+#include <tuple>
 #include <string>
 #include <unordered_map>
 #include <utility>
@@ -15,6 +16,7 @@
 
 #include "cairn/mechanics/subset_equilibrium.h"
 #include "cairn/planning/blocking.h"
+#include "cairn/planning/fixtures.h"
 
 namespace cairn {
 
@@ -22,6 +24,8 @@ const char* to_string(TemporaryKind kind) {
   switch (kind) {
     case TemporaryKind::kHold:
       return "hold";
+    case TemporaryKind::kProp:
+      return "prop";
   }
   return "?";
 }
@@ -47,11 +51,58 @@ constexpr int kExhaustiveHolds = 3;
 // new state stand (after the part just placed).
 constexpr int kMaxMovingTried = 3;
 
-// One state of the beam: the parts placed, the holds in place (oldest
+// The most prop points tried per part, the ones that most oppose its motion
+// (SuggestFixtures' ranking), and the least opposition that counts, relative
+// to the fastest point's speed (dimensionless: roundoff of a unit motion).
+constexpr int kMaxPropsTried = 6;
+constexpr double kLeastOpposition = 1e-6;
+
+// A support of a state: a hold of `part`, or the prop `prop` (an index into
+// the search's prop points) under it.
+struct Support {
+  TemporaryKind kind = TemporaryKind::kHold;
+  int part = -1;
+  int prop = -1;
+  bool operator==(const Support& o) const {
+    return kind == o.kind && part == o.part && prop == o.prop;
+  }
+  bool operator<(const Support& o) const {
+    return std::tie(kind, part, prop) < std::tie(o.kind, o.part, o.prop);
+  }
+};
+
+// ",h12" for a hold of part 12, ",p34" for prop point 34, in sorted order: a
+// key for a set of supports.
+std::string SupportKey(std::vector<Support> supports) {
+  std::sort(supports.begin(), supports.end());
+  std::string key;
+  for (const Support& t : supports)
+    key += t.kind == TemporaryKind::kHold ? ",h" + std::to_string(t.part)
+                                          : ",p" + std::to_string(t.prop);
+  return key;
+}
+
+// What a hold on `h` carries in the state checked as `r`: the force and the
+// torque (about h's centroid) that balance h's weight and the contact forces
+// of the free parts on it (force units, world).
+std::pair<Vector3, Vector3> HoldWrench(const Assembly& assembly, int h, const StabilityResult& r) {
+  const Part& part = assembly.part(h);
+  Vector3 force = part.mass * assembly.gravity(), torque = Vector3::Zero();
+  for (const ContactReport& c : r.contacts) {
+    const Vector3 f = c.normal_force * c.contact.n_W + c.friction_force;  // on a
+    const double sign = c.contact.part_a == h ? 1.0 : c.contact.part_b == h ? -1.0 : 0.0;
+    if (sign == 0) continue;
+    force += sign * f;
+    torque += (c.contact.p_WC - part.centroid).cross(sign * f);
+  }
+  return {-force, -torque};
+}
+
+// One state of the beam: the parts placed, the supports in place (oldest
 // first), and how it got there.
 struct State {
   std::vector<bool> placed;
-  std::vector<int> held;
+  std::vector<Support> supports;
   std::vector<SequenceStep> steps;
   int max_in_place = 0;
   int placements = 0;
@@ -67,6 +118,22 @@ struct Check {
   std::vector<int> moving;
 };
 
+// The parts held and the prop points of `supports`, each sorted.
+std::vector<int> HeldOf(const std::vector<Support>& supports) {
+  std::vector<int> held;
+  for (const Support& t : supports)
+    if (t.kind == TemporaryKind::kHold) held.push_back(t.part);
+  std::sort(held.begin(), held.end());
+  return held;
+}
+std::vector<int> PropsOf(const std::vector<Support>& supports) {
+  std::vector<int> props;
+  for (const Support& t : supports)
+    if (t.kind == TemporaryKind::kProp) props.push_back(t.prop);
+  std::sort(props.begin(), props.end());
+  return props;
+}
+
 class Search {
  public:
   Search(const Assembly& assembly, const SequenceOptions& options);
@@ -76,6 +143,7 @@ class Search {
   // Stages of Run, in order.
   bool CheckAssembled();
   void ComputeAdjacencyAndBlocking();
+  void ComputePropPoints(const std::vector<Contact>& assembled);
   void RunBeam(const State& start);
   void ComputeLowerBound();
   void ArgueLowerBound();
@@ -84,11 +152,21 @@ class Search {
   State Prefix(int steps) const;
 
   std::vector<State> Expand(const State& s);
-  std::optional<State> Place(const State& s, int part, const Vector3& arrival, bool with_new_hold);
+  std::optional<State> Place(const State& s, int part, const Vector3& arrival,
+                             std::optional<TemporaryKind> new_support);
+  std::optional<std::vector<Support>> OneSupportMore(const State& s,
+                                                     const std::vector<bool>& placed, int part,
+                                                     const Check& as_is, TemporaryKind kind);
+  std::vector<int> PropsFor(const std::vector<bool>& placed, const std::vector<Support>& supports,
+                            int part);
   std::optional<Vector3> Arrival(const std::vector<bool>& placed, int part) const;
-  const Check& Stands(const std::vector<bool>& placed, std::vector<int> held);
+  const Check& Stands(const std::vector<bool>& placed, const std::vector<Support>& supports);
+  const Check& StandsHeld(const std::vector<bool>& placed, const std::vector<int>& held);
+  Check FilterByLp(const std::vector<bool>& placed, const std::vector<int>& held, bool& unsure);
   Configuration ConfigOf(const std::vector<bool>& placed) const;
-  const Assembly& HeldAssembly(const std::vector<int>& held_sorted);
+  const Assembly& SupportAssembly(const std::vector<int>& held, const std::vector<int>& props);
+  TemporarySupport Public(const Support& t) const;
+  Support Internal(const TemporarySupport& t) const;
   bool Better(const State& a, const State& b) const;
   bool Stopped();
   bool ConfirmationOutOfTime();
@@ -107,7 +185,11 @@ class Search {
   std::vector<SubsetEquilibrium> subsets_;
   std::vector<std::vector<int>> subset_parts_;  // per component: its bodies' parts
   std::vector<int> subset_solves_;              // per component: its LP's solves so far
-  std::map<std::vector<int>, Assembly> held_assemblies_;
+  std::map<std::pair<std::vector<int>, std::vector<int>>, Assembly> support_assemblies_;
+  // The prop points (faces free in the assembled configuration) and, per
+  // part, its points' indices (`--temporary prop|both`).
+  std::vector<FacePoint> props_;
+  std::vector<std::vector<int>> part_props_;
   StabilityWorkspace workspace_;
   BuildSequence out_;
   State best_;
@@ -137,6 +219,8 @@ Search::Search(const Assembly& assembly, const SequenceOptions& options)
     if (!assembly.is_3d()) d.z() = 0;
   }
   if (options.beam_width < 1) throw std::invalid_argument("beam_width must be at least 1");
+  if (!options.holds && !options.props)
+    throw std::invalid_argument("no kind of temporary support allowed (holds, props)");
   if (!(options.time_limit >= 0) || !std::isfinite(options.time_limit))
     throw std::invalid_argument("time_limit must be finite and at least 0");
   if (options.time_limit > 0) {
@@ -174,12 +258,19 @@ bool Search::Stopped() {
 
 // ---- The state check, cached ---------------------------------------------
 
-const Assembly& Search::HeldAssembly(const std::vector<int>& held_sorted) {
-  if (held_sorted.empty()) return assembly_;
-  auto it = held_assemblies_.find(held_sorted);
-  if (it != held_assemblies_.end()) return it->second;
-  if (held_assemblies_.size() >= kMaxHeldAssemblies) held_assemblies_.clear();
-  return held_assemblies_.emplace(held_sorted, assembly_.WithHeld(held_sorted)).first->second;
+const Assembly& Search::SupportAssembly(const std::vector<int>& held,
+                                        const std::vector<int>& props) {
+  if (held.empty() && props.empty()) return assembly_;
+  const auto key = std::make_pair(held, props);
+  auto it = support_assemblies_.find(key);
+  if (it != support_assemblies_.end()) return it->second;
+  if (support_assemblies_.size() >= kMaxHeldAssemblies) support_assemblies_.clear();
+  std::vector<FixtureDef> fixels;
+  for (int k : props)
+    fixels.push_back({assembly_.part(props_[k].part).name, props_[k].point, props_[k].normal});
+  Assembly a = held.empty() ? assembly_ : assembly_.WithHeld(held);
+  if (!fixels.empty()) a = a.WithFixtures(fixels);
+  return support_assemblies_.emplace(key, std::move(a)).first->second;
 }
 
 Configuration Search::ConfigOf(const std::vector<bool>& placed) const {
@@ -189,34 +280,21 @@ Configuration Search::ConfigOf(const std::vector<bool>& placed) const {
   return config;
 }
 
-const Check& Search::Stands(const std::vector<bool>& placed, std::vector<int> held) {
-  std::sort(held.begin(), held.end());
-  std::string key(placed.size(), '0');
-  for (size_t p = 0; p < placed.size(); ++p)
-    if (placed[p]) key[p] = '1';
-  for (int h : held) key += "," + std::to_string(h);
-  key += full_ ? "|full" : "|lp";
-  const auto it = memo_.find(key);
-  if (it != memo_.end()) {
-    ++out_.cache_hits;
-    return it->second;
-  }
-  if (options_.checkpoint) options_.checkpoint();
-  ++out_.states_checked;
-  if (memo_.size() >= options_.max_cached_states)
-    memo_.clear();  // no reference into it outlives a call
+// The filter: a component without a static equilibrium cannot stand (the
+// verdict's first stage, without the explanation of how it falls, which on
+// a large component costs ten times the LP), by the warm LPs. The parts of
+// the components without one; `unsure` when an LP gave no verdict.
+Check Search::FilterByLp(const std::vector<bool>& placed, const std::vector<int>& held,
+                         bool& unsure) {
   Check c;
-  // The filter: a component without a static equilibrium cannot stand (the
-  // verdict's first stage, without the explanation of how it falls, which
-  // on a large component costs ten times the LP), by the warm LPs.
-  bool unsure = false;
+  unsure = false;
   for (size_t k = 0; k < subsets_.size(); ++k) {
     const std::vector<int>& parts = subset_parts_[k];
     std::vector<bool> present(parts.size()), free(parts.size());
     bool any_free = false;
     for (size_t b = 0; b < parts.size(); ++b) {
       present[b] = placed[parts[b]];
-      free[b] = present[b] && std::find(held.begin(), held.end(), parts[b]) == held.end();
+      free[b] = present[b] && !std::binary_search(held.begin(), held.end(), parts[b]);
       any_free = any_free || free[b];
     }
     if (!any_free) continue;
@@ -231,16 +309,73 @@ const Check& Search::Stands(const std::vector<bool>& placed, std::vector<int> he
       for (int b : answer.unbalanced) c.moving.push_back(parts[b]);
     }
   }
-  if (c.moving.empty() && !full_ && !unsure && !subsets_.empty()) {
+  return c;
+}
+
+const Check& Search::StandsHeld(const std::vector<bool>& placed, const std::vector<int>& held) {
+  std::vector<Support> supports;
+  for (int h : held) supports.push_back({TemporaryKind::kHold, h, -1});
+  return Stands(placed, supports);
+}
+
+// Whether the parts `placed` stand with `supports` (cached). Without props:
+// the filter, then (when it passes a state the confirmation rejected once,
+// or is unsure) the check's verdict. With props: the filter with the propped
+// parts held (a hold does all that props on its part can) rejects what no
+// props can save; the verdict decides the rest.
+const Check& Search::Stands(const std::vector<bool>& placed, const std::vector<Support>& supports) {
+  std::string key(placed.size(), '0');
+  for (size_t p = 0; p < placed.size(); ++p)
+    if (placed[p]) key[p] = '1';
+  key += SupportKey(supports);
+  key += full_ ? "|full" : "|lp";
+  const auto it = memo_.find(key);
+  if (it != memo_.end()) {
+    ++out_.cache_hits;
+    return it->second;
+  }
+  if (options_.checkpoint) options_.checkpoint();
+  ++out_.states_checked;
+  if (memo_.size() >= options_.max_cached_states)
+    memo_.clear();  // no reference into it outlives a call
+  const std::vector<int> held = HeldOf(supports), props = PropsOf(supports);
+  std::vector<int> held_or_propped = held;
+  for (int k : props) held_or_propped.push_back(props_[k].part);
+  std::sort(held_or_propped.begin(), held_or_propped.end());
+  bool unsure = false;
+  Check c = FilterByLp(placed, held_or_propped, unsure);
+  if (c.moving.empty() && !full_ && !unsure && !subsets_.empty() && props.empty()) {
     c.stands = true;  // the filter's answer; the order's states are confirmed
   } else if (c.moving.empty()) {
-    const StabilityResult r = AnalyzeConfiguration(HeldAssembly(held), ConfigOf(placed),
+    const StabilityResult r = AnalyzeConfiguration(SupportAssembly(held, props), ConfigOf(placed),
                                                    options_.stability, nullptr, &workspace_);
     c.stands = r.stable() && (!options_.require_strong || r.stability == StabilityProof::kStrong);
     c.moving = r.moving;
   }
   std::sort(c.moving.begin(), c.moving.end());
   return memo_.emplace(std::move(key), std::move(c)).first->second;
+}
+
+// A support as the document gives it, and back.
+TemporarySupport Search::Public(const Support& t) const {
+  TemporarySupport out;
+  out.kind = t.kind;
+  out.part = t.part;
+  if (t.kind == TemporaryKind::kProp) {
+    out.point = props_[t.prop].point;
+    out.normal = props_[t.prop].normal;
+  } else {
+    out.point = assembly_.part(t.part).centroid;
+  }
+  return out;
+}
+
+Support Search::Internal(const TemporarySupport& t) const {
+  Support out{t.kind, t.part, -1};
+  if (t.kind == TemporaryKind::kProp)
+    for (int k : part_props_[t.part])
+      if (props_[k].point == t.point && props_[k].normal == t.normal) out.prop = k;
+  return out;
 }
 
 // ---- Stages ----------------------------------------------------------------
@@ -262,7 +397,9 @@ bool Search::CheckAssembled() {
 void Search::ComputeAdjacencyAndBlocking() {
   const Configuration config = Configuration::Assembled(assembly_);
   touching_.assign(assembly_.num_parts(), {});
+  std::vector<Contact> contacts;
   for (const ContactLcp& lcp : BuildComponentLcps(assembly_, config, options_.stability)) {
+    contacts.insert(contacts.end(), lcp.contacts.begin(), lcp.contacts.end());
     for (const Contact& c : lcp.contacts) {
       if (c.part_a < 0 || c.part_b < 0) continue;  // a fixture
       touching_[c.part_a].push_back(c.part_b);
@@ -278,6 +415,7 @@ void Search::ComputeAdjacencyAndBlocking() {
     std::sort(t.begin(), t.end());
     t.erase(std::unique(t.begin(), t.end()), t.end());
   }
+  if (options_.props) ComputePropPoints(contacts);
   if (!options_.ndbg) {
     for (const Vector3& d : directions_)
       graphs_.push_back(ComputeBlockingGraph(assembly_, config, d, BlockingKind::kInfinity));
@@ -291,6 +429,20 @@ void Search::ComputeAdjacencyAndBlocking() {
   for (const BlockingGraph& g : graphs_) directions_.push_back(g.direction);
 }
 
+// The points a prop may push at: on the faces of the movable parts that
+// touch no part in the assembled configuration (a prop there is in no later
+// part's way), as the scene would accept a fixel.
+void Search::ComputePropPoints(const std::vector<Contact>& assembled) {
+  part_props_.assign(assembly_.num_parts(), {});
+  const double tol = assembly_.length_tolerance();
+  for (int p : movable_)
+    for (const FacePoint& f : FreeFacePoints(assembly_, p, assembled, tol)) {
+      if (assembly_.FixtureFault({assembly_.part(p).name, f.point, f.normal})) continue;
+      part_props_[p].push_back(static_cast<int>(props_.size()));
+      props_.push_back(f);
+    }
+}
+
 // The arrival direction of `part` past the placed and fixed parts: the
 // reverse of the first removal direction no such part blocks.
 std::optional<Vector3> Search::Arrival(const std::vector<bool>& placed, int part) const {
@@ -302,63 +454,118 @@ std::optional<Vector3> Search::Arrival(const std::vector<bool>& placed, int part
   return std::nullopt;
 }
 
-// `s` with `part` placed under the holds in place (`with_new_hold` false),
-// or with one more (true: the part itself, or a part the check says moves);
-// then every hold it does without taken out, oldest first. Empty when that
-// does not stand.
-std::optional<State> Search::Place(const State& s, int part, const Vector3& arrival,
-                                   bool with_new_hold) {
-  std::vector<bool> placed = s.placed;
-  placed[part] = true;
-  std::optional<std::vector<int>> held;
-  const Check as_is = Stands(placed, s.held);  // a copy: the cache may start afresh
-  if (!with_new_hold) {
-    if (as_is.stands) held = s.held;
-  } else if (!as_is.stands) {
-    // The part itself, then the parts that cannot stand, the most recently
-    // placed first (the end of a growing cantilever).
-    std::vector<int> tries = {part};
-    for (auto step = s.steps.rbegin(); step != s.steps.rend(); ++step) {
-      if (static_cast<int>(tries.size()) > kMaxMovingTried) break;
-      const int q = step->part;
-      if (std::binary_search(as_is.moving.begin(), as_is.moving.end(), q) &&
-          std::find(s.held.begin(), s.held.end(), q) == s.held.end())
-        tries.push_back(q);
-    }
-    for (int q : tries) {
-      std::vector<int> h = s.held;
-      h.push_back(q);
-      if (Stands(placed, h).stands) {
-        held = h;
-        break;
+// The props of `part` worth trying in the state (`placed`, `supports`) that
+// does not stand: its prop points that oppose its motion there (the check's
+// explanation: v + ω × (p − c) along the face's outward normal), the most
+// opposing first (near-ties: centres first, then the points' order), at
+// most kMaxPropsTried. Without a motion of the part, the points pushing
+// most nearly up first (a prop from below).
+std::vector<int> Search::PropsFor(const std::vector<bool>& placed,
+                                  const std::vector<Support>& supports, int part) {
+  if (part_props_.empty() || part_props_[part].empty()) return {};
+  const StabilityResult r =
+      AnalyzeConfiguration(SupportAssembly(HeldOf(supports), PropsOf(supports)), ConfigOf(placed),
+                           options_.stability, nullptr, &workspace_);
+  const Part& p = assembly_.part(part);
+  const PartMotion* motion = nullptr;
+  for (const PartMotion& m : r.parts)
+    if (m.part == part && m.moving) motion = &m;
+  std::vector<std::pair<double, int>> ranked;  // (−score, index)
+  double fastest = 0;
+  for (int k : part_props_[part]) {
+    const Vector3 v = motion ? Vector3(motion->linear + motion->angular.cross(props_[k].point -
+                                                                             p.centroid))
+                             : Vector3(-up_);
+    fastest = std::max(fastest, v.norm());
+    ranked.emplace_back(v.dot(props_[k].normal), k);  // the opposition, against the push
+  }
+  std::vector<int> out;
+  std::stable_sort(ranked.begin(), ranked.end(), [&](const auto& a, const auto& b) {
+    const double tie = kLeastOpposition * std::max(fastest, 1e-300);
+    if (std::abs(a.first - b.first) > tie) return a.first < b.first;
+    return props_[a.second].centre && !props_[b.second].centre;
+  });
+  for (const auto& [along, k] : ranked) {
+    if (static_cast<int>(out.size()) >= kMaxPropsTried) break;
+    if (-along > kLeastOpposition * fastest) out.push_back(k);
+  }
+  return out;
+}
+
+// The supports of `s` with one more of `kind` that makes `placed` (s's
+// parts and the part just placed) stand: on `part`, then on the parts that
+// cannot stand, the most recently placed first (the end of a growing
+// cantilever); a prop at the points that most oppose the part's motion
+// first. Empty when none does.
+std::optional<std::vector<Support>> Search::OneSupportMore(const State& s,
+                                                           const std::vector<bool>& placed,
+                                                           int part, const Check& as_is,
+                                                           TemporaryKind kind) {
+  std::vector<int> tries = {part};
+  for (auto step = s.steps.rbegin(); step != s.steps.rend(); ++step) {
+    if (static_cast<int>(tries.size()) > kMaxMovingTried) break;
+    if (std::binary_search(as_is.moving.begin(), as_is.moving.end(), step->part))
+      tries.push_back(step->part);
+  }
+  const std::vector<int> held = HeldOf(s.supports);
+  for (int q : tries) {
+    if (std::binary_search(held.begin(), held.end(), q)) continue;
+    std::vector<Support> more = s.supports;
+    more.push_back({});
+    if (kind == TemporaryKind::kProp)
+      for (int k : PropsFor(placed, s.supports, q)) {
+        more.back() = {TemporaryKind::kProp, q, k};
+        if (Stands(placed, more).stands) return more;
       }
+    if (kind == TemporaryKind::kHold) {
+      more.back() = {TemporaryKind::kHold, q, -1};
+      if (Stands(placed, more).stands) return more;
     }
   }
-  if (!held) return std::nullopt;
+  return std::nullopt;
+}
+
+// `s` with `part` placed under the supports in place (no `new_support`),
+// or with one more of that kind (OneSupportMore); then every support it
+// does without taken out, oldest first. Empty when that does not stand.
+std::optional<State> Search::Place(const State& s, int part, const Vector3& arrival,
+                                   std::optional<TemporaryKind> new_support) {
+  std::vector<bool> placed = s.placed;
+  placed[part] = true;
+  std::optional<std::vector<Support>> supports;
+  const Check as_is = Stands(placed, s.supports);  // a copy: the cache may start afresh
+  if (!new_support) {
+    if (as_is.stands) supports = s.supports;
+  } else if (!as_is.stands) {
+    supports = OneSupportMore(s, placed, part, as_is, *new_support);
+  }
+  if (!supports) return std::nullopt;
   // Take out what the state does without, oldest first.
-  for (size_t i = 0; i < held->size();) {
-    std::vector<int> without = *held;
+  for (size_t i = 0; i < supports->size();) {
+    std::vector<Support> without = *supports;
     without.erase(without.begin() + static_cast<long>(i));
     if (Stands(placed, without).stands) {
-      held = without;
+      supports = without;
     } else {
       ++i;
     }
   }
   State child;
   child.placed = std::move(placed);
-  child.held = *held;
+  child.supports = *supports;
   child.steps = s.steps;
   SequenceStep step;
   step.part = part;
   step.direction = arrival;
-  for (int h : child.held)
-    if (std::find(s.held.begin(), s.held.end(), h) == s.held.end()) step.added.push_back(h);
-  for (int h : s.held)
-    if (std::find(child.held.begin(), child.held.end(), h) == child.held.end())
-      step.removed.push_back(h);
+  const auto has = [](const std::vector<Support>& in, const Support& t) {
+    return std::find(in.begin(), in.end(), t) != in.end();
+  };
+  for (const Support& t : child.supports)
+    if (!has(s.supports, t)) step.added.push_back(Public(t));
+  for (const Support& t : s.supports)
+    if (!has(child.supports, t)) step.removed.push_back(Public(t));
   child.placements = s.placements + static_cast<int>(step.added.size());
-  child.max_in_place = std::max(s.max_in_place, static_cast<int>(child.held.size()));
+  child.max_in_place = std::max(s.max_in_place, static_cast<int>(child.supports.size()));
   child.steps.push_back(std::move(step));
   child.height = s.height + up_.dot(assembly_.part(part).centroid);
   child.names = s.names + assembly_.part(part).name + '\n';
@@ -400,23 +607,29 @@ std::vector<State> Search::Expand(const State& s) {
   int unimprovable = 0;
   for (const auto& [p, arrival] : arriving) {
     if (Stopped() || unimprovable >= options_.beam_width) break;
-    std::optional<State> child = Place(s, p, arrival, /*with_new_hold=*/false);
+    std::optional<State> child = Place(s, p, arrival, std::nullopt);
     if (!child) {
       fell.emplace_back(p, arrival);
       continue;
     }
-    if (child->held.empty()) ++unimprovable;
+    if (child->supports.empty()) ++unimprovable;
     children.push_back(std::move(*child));
   }
   const int bound = options_.max_temporary;
   if (static_cast<int>(children.size()) >= options_.beam_width ||
-      (bound >= 0 && static_cast<int>(s.held.size()) + 1 > bound))
+      (bound >= 0 && static_cast<int>(s.supports.size()) + 1 > bound))
     return children;
-  for (const auto& [p, arrival] : fell) {
-    if (Stopped()) break;
-    if (std::optional<State> child = Place(s, p, arrival, /*with_new_hold=*/true))
-      children.push_back(std::move(*child));
-  }
+  // Each kind allowed gives its own child: the beam weighs a hold that
+  // carries a growing cantilever against props that each carry one part.
+  std::vector<TemporaryKind> kinds;
+  if (options_.holds) kinds.push_back(TemporaryKind::kHold);
+  if (options_.props) kinds.push_back(TemporaryKind::kProp);
+  for (const auto& [p, arrival] : fell)
+    for (TemporaryKind kind : kinds) {
+      if (Stopped()) break;
+      if (std::optional<State> child = Place(s, p, arrival, kind))
+        children.push_back(std::move(*child));
+    }
   return children;
 }
 
@@ -424,11 +637,12 @@ std::vector<State> Search::Expand(const State& s) {
 // first, then names.
 bool Search::Better(const State& a, const State& b) const {
   if (a.max_in_place != b.max_in_place) return a.max_in_place < b.max_in_place;
-  if (a.held.size() != b.held.size()) return a.held.size() < b.held.size();
+  if (a.supports.size() != b.supports.size()) return a.supports.size() < b.supports.size();
   if (a.placements != b.placements) return a.placements < b.placements;
   const double tol = assembly_.length_tolerance();
   if (std::abs(a.height - b.height) > tol) return a.height < b.height;
-  return a.names < b.names;
+  if (a.names != b.names) return a.names < b.names;
+  return SupportKey(a.supports) < SupportKey(b.supports);  // holds (",h") before props
 }
 
 // The beam from `start` (its steps kept) to the last part, or as far as it
@@ -442,7 +656,7 @@ void Search::RunBeam(const State& start) {
     for (const State& s : beam)
       for (State& c : Expand(s)) {
         std::string key(c.placed.begin(), c.placed.end());
-        for (int h : c.held) key += "," + std::to_string(h);
+        key += SupportKey(c.supports);
         auto it = unique.find(key);
         if (it == unique.end())
           unique.emplace(std::move(key), std::move(c));
@@ -479,8 +693,8 @@ void Search::RunBeam(const State& start) {
                       std::to_string(out_.states_checked) + " states checked");
   }
   best_ = beam.front();
-  if (!best_.held.empty()) {
-    out_.message = "the last state still needs its holds";
+  if (!best_.supports.empty()) {
+    out_.message = "the last state still needs its supports";
     return;
   }
   out_.complete = true;
@@ -493,10 +707,11 @@ State Search::Prefix(int steps) const {
   for (int i = 0; i < steps; ++i) {
     const SequenceStep& step = best_.steps[i];
     s.placed[step.part] = true;
-    for (int h : step.added) s.held.push_back(h);
-    for (int h : step.removed) s.held.erase(std::find(s.held.begin(), s.held.end(), h));
+    for (const TemporarySupport& t : step.added) s.supports.push_back(Internal(t));
+    for (const TemporarySupport& t : step.removed)
+      s.supports.erase(std::find(s.supports.begin(), s.supports.end(), Internal(t)));
     s.placements += static_cast<int>(step.added.size());
-    s.max_in_place = std::max(s.max_in_place, static_cast<int>(s.held.size()));
+    s.max_in_place = std::max(s.max_in_place, static_cast<int>(s.supports.size()));
     s.height += up_.dot(assembly_.part(step.part).centroid);
     s.names += assembly_.part(step.part).name + '\n';
     s.steps.push_back(step);
@@ -506,9 +721,17 @@ State Search::Prefix(int steps) const {
 
 // Every order passes through a state of one part and one of all parts but
 // one: when none of either stands without support, every order needs one.
+// Both on the equilibrium LP (the filter, with the verdict only where an LP
+// is unsure): every rule's "stands" implies an equilibrium, so a bound on
+// the LP holds for the verdict. Props are bounded by holds: a hold on a part
+// does all that props on it can (the LP with the propped parts held is
+// feasible when it is with the props), and each propped part has a prop.
 void Search::ComputeLowerBound() {
+  const bool full = full_;
+  full_ = false;
   ArgueLowerBound();
   ExhaustiveLowerBound();
+  full_ = full;
 }
 
 void Search::ArgueLowerBound() {
@@ -577,7 +800,7 @@ void Search::ExhaustiveLowerBound() {
       if (mask & (1u << i)) in.push_back(movable_[i]);
     std::vector<int> held;
     const std::function<bool(size_t, int)> choose = [&](size_t from, int left) {
-      if (Stands(placed, held).stands) return true;
+      if (StandsHeld(placed, held).stands) return true;
       if (left == 0) return false;
       for (size_t k = from; k < in.size(); ++k) {
         held.push_back(in[k]);
@@ -602,15 +825,18 @@ void Search::ExhaustiveLowerBound() {
       }
       reachable[mask] = from && stands_with(mask, b);
     }
+    const std::string by_holds =
+        options_.props ? " (with holds, which do all that props on their parts can)" : "";
     if (reachable[all]) {
       out_.lower_bound = b;
       out_.lower_bound_reason = "every order of the " + std::to_string(n) +
-                                " parts tried: the fewest supports at once any order needs";
+                                " parts tried: the fewest supports at once any order needs" +
+                                by_holds;
       return;
     }
     out_.lower_bound = b + 1;
     out_.lower_bound_reason = "every order of the " + std::to_string(n) +
-                              " parts tried: none does with fewer supports at once";
+                              " parts tried: none does with fewer supports at once" + by_holds;
   }
 }
 
@@ -621,7 +847,8 @@ int Search::ConfirmAndMeasureHolds() {
   int first_failing = -1;
   unconfirmed_from_ = -1;
   std::vector<bool> placed(assembly_.num_parts(), false);
-  std::vector<int> held;
+  std::vector<Support> supports;
+  const int scene_fixtures = static_cast<int>(assembly_.fixtures().size());
   for (size_t i = 0; i < best_.steps.size(); ++i) {
     SequenceStep& step = best_.steps[i];
     if (options_.checkpoint) options_.checkpoint();
@@ -630,31 +857,31 @@ int Search::ConfirmAndMeasureHolds() {
       return first_failing;
     }
     placed[step.part] = true;
-    for (int h : step.added) held.push_back(h);
-    for (int h : step.removed) held.erase(std::find(held.begin(), held.end(), h));
-    std::vector<int> sorted = held;
-    std::sort(sorted.begin(), sorted.end());
-    const Configuration config = ConfigOf(placed);
+    for (const TemporarySupport& t : step.added) supports.push_back(Internal(t));
+    for (const TemporarySupport& t : step.removed)
+      supports.erase(std::find(supports.begin(), supports.end(), Internal(t)));
+    const std::vector<int> held = HeldOf(supports), props = PropsOf(supports);
     const StabilityResult r =
-        AnalyzeConfiguration(HeldAssembly(sorted), config, options_.stability);
+        AnalyzeConfiguration(SupportAssembly(held, props), ConfigOf(placed), options_.stability);
     step.stability = r.stability;
     step.stands =
         r.stable() && (!options_.require_strong || r.stability == StabilityProof::kStrong);
     step.in_place.clear();
-    for (int h : held) {
-      TemporarySupport t;
-      t.part = h;
-      const Part& part = assembly_.part(h);
-      Vector3 force = part.mass * assembly_.gravity(), torque = Vector3::Zero();
-      for (const ContactReport& c : r.contacts) {
-        const Vector3 f = c.normal_force * c.contact.n_W + c.friction_force;  // on a
-        const double sign = c.contact.part_a == h ? 1.0 : c.contact.part_b == h ? -1.0 : 0.0;
-        if (sign == 0) continue;
-        force += sign * f;
-        torque += (c.contact.p_WC - part.centroid).cross(sign * f);
+    for (const Support& s : supports) {
+      TemporarySupport t = Public(s);
+      if (s.kind == TemporaryKind::kProp) {
+        // Its push: the fixel's contact (the scene's fixtures, then the
+        // props in index order).
+        const int fixture =
+            scene_fixtures +
+            static_cast<int>(std::lower_bound(props.begin(), props.end(), s.prop) - props.begin());
+        for (const ContactReport& c : r.contacts)
+          if (c.contact.part_b == kWorld && c.contact.feature == ContactFeature::kFixture &&
+              c.contact.index_a == fixture)
+            t.force += c.normal_force * c.contact.n_W;
+      } else {
+        std::tie(t.force, t.torque) = HoldWrench(assembly_, s.part, r);
       }
-      t.force = -force;
-      t.torque = -torque;
       step.in_place.push_back(t);
     }
     if (!step.stands && first_failing < 0) first_failing = static_cast<int>(i);
@@ -663,6 +890,8 @@ int Search::ConfirmAndMeasureHolds() {
 }
 
 BuildSequence Search::Run() {
+  if (options_.holds) out_.kinds.push_back(TemporaryKind::kHold);
+  if (options_.props) out_.kinds.push_back(TemporaryKind::kProp);
   if (!CheckAssembled()) {
     ComputeLowerBound();
     return out_;
@@ -709,7 +938,33 @@ BuildSequence Search::Run() {
 }  // namespace
 
 BuildSequence FindBuildSequence(const Assembly& assembly, const SequenceOptions& options) {
-  return Search(assembly, options).Run();
+  if (!(options.holds && options.props)) return Search(assembly, options).Run();
+  // Both kinds: a beam that may also prop keeps fewer of the states a hold
+  // alone would reach (twice the children at each step), so the order with
+  // holds alone is searched too (each in half the time), and the better
+  // kept: never more supports at once than holds alone.
+  SequenceOptions half = options;
+  half.time_limit = options.time_limit / 2;
+  half.props = false;
+  BuildSequence holds = Search(assembly, half).Run();
+  half.props = true;
+  BuildSequence both = Search(assembly, half).Run();
+  const auto rank = [](const BuildSequence& r) {
+    return std::make_tuple(!r.complete, r.max_in_place, r.placements, -int(r.steps.size()));
+  };
+  BuildSequence& best = rank(holds) < rank(both) ? holds : both;
+  const BuildSequence& other = &best == &holds ? both : holds;
+  best.kinds = both.kinds;
+  if (other.lower_bound > best.lower_bound) {  // both bounds are proofs
+    best.lower_bound = other.lower_bound;
+    best.lower_bound_reason = other.lower_bound_reason;
+  }
+  best.states_checked += other.states_checked;
+  best.cache_hits += other.cache_hits;
+  best.warm_starts += other.warm_starts;
+  best.repairs += other.repairs;
+  best.stopped = best.stopped || other.stopped;
+  return std::move(best);
 }
 
 }  // namespace cairn

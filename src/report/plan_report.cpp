@@ -39,6 +39,13 @@ json StepToJson(const PlanStepDef& s, int dim) {
   j["support"] = to_string(s.support);
   if (!s.hold.empty()) j["hold"] = s.hold;
   if (s.has_hold_at_rest) j["hold_at_rest"] = s.hold_at_rest;
+  const auto props = [&](const std::vector<FixtureDef>& list) {
+    json out = json::array();
+    for (const FixtureDef& f : list) out.push_back(report_internal::FixtureToJson(f, dim));
+    return out;
+  };
+  if (!s.props.empty()) j["props"] = props(s.props);
+  if (s.has_props_at_rest) j["props_at_rest"] = props(s.props_at_rest);
   return j;
 }
 

@@ -3,6 +3,7 @@
 #include <sstream>
 #include <vector>
 
+#include "cairn/core/format.h"
 #include "report/report_common.h"
 
 namespace cairn {
@@ -16,6 +17,29 @@ using report_internal::Vec;
 
 // The state's verdict in the check's words.
 const char* VerdictWord(const SequenceStep& step) { return step.stands ? "stands" : "falls"; }
+
+// A support: its kind, part, point and (a prop) normal; in place, also what
+// it carries.
+nlohmann::json SupportToJson(const Assembly& assembly, const TemporarySupport& t, int dim,
+                             const double* force_scale) {
+  const bool prop = t.kind == TemporaryKind::kProp;
+  nlohmann::json j = {{"kind", to_string(t.kind)},
+                      {"part", assembly.part(t.part).name},
+                      {"point", Vec(t.point, dim)},
+                      {"normal", prop ? Vec(t.normal, dim) : nlohmann::json(nullptr)}};
+  if (force_scale) {
+    j["force"] = Vec(t.force / *force_scale, dim);
+    j["torque"] = prop ? nlohmann::json(nullptr) : Angular(t.torque / *force_scale, dim);
+  }
+  return j;
+}
+
+// "hold A", "prop under A at (1, 2)".
+std::string SupportWords(const Assembly& assembly, const TemporarySupport& t) {
+  if (t.kind == TemporaryKind::kHold) return "hold " + assembly.part(t.part).name;
+  return "prop under " + assembly.part(t.part).name + " at " +
+         FormatPoint(t.point, assembly.dimension());
+}
 
 }  // namespace
 
@@ -37,26 +61,26 @@ nlohmann::json SequenceToJson(const Assembly& assembly, const BuildSequence& s, 
     nlohmann::json j;
     j["place"] = assembly.part(step.part).name;
     j["direction"] = Vec(step.direction, dim);
-    nlohmann::json in_place = nlohmann::json::array();
-    for (const TemporarySupport& t : step.in_place) {
-      const Part& part = assembly.part(t.part);
-      in_place.push_back({{"kind", to_string(t.kind)},
-                          {"part", part.name},
-                          {"point", Vec(part.centroid, dim)},
-                          {"normal", nullptr},
-                          {"force", Vec(t.force / force_scale, dim)},
-                          {"torque", Angular(t.torque / force_scale, dim)}});
-    }
+    nlohmann::json in_place = nlohmann::json::array(), added = nlohmann::json::array(),
+                   removed = nlohmann::json::array();
+    for (const TemporarySupport& t : step.in_place)
+      in_place.push_back(SupportToJson(assembly, t, dim, &force_scale));
+    for (const TemporarySupport& t : step.added)
+      added.push_back(SupportToJson(assembly, t, dim, nullptr));
+    for (const TemporarySupport& t : step.removed)
+      removed.push_back(SupportToJson(assembly, t, dim, nullptr));
     j["temporary_in_place"] = in_place;
-    j["added"] = Names(assembly, step.added);
-    j["removed"] = Names(assembly, step.removed);
+    j["added"] = added;
+    j["removed"] = removed;
     j["verdict"] = VerdictWord(step);
     j["stability"] = to_string(step.stability);
     steps.push_back(j);
   }
   doc["order"] = order;
   doc["steps"] = steps;
-  doc["temporary"] = {{"kinds", {"hold"}},
+  nlohmann::json kinds = nlohmann::json::array();
+  for (TemporaryKind k : s.kinds) kinds.push_back(to_string(k));
+  doc["temporary"] = {{"kinds", kinds},
                       {"max_in_place", s.max_in_place},
                       {"placements", s.placements},
                       {"lower_bound", s.lower_bound},
@@ -79,7 +103,7 @@ std::string SequenceToText(const Assembly& assembly, const BuildSequence& s,
                     : "NO COMPLETE BUILD ORDER")
      << "  ["
      << (s.max_in_place == 0 ? std::string("no support")
-                             : std::to_string(s.max_in_place) + " hold(s) at once, " +
+                             : std::to_string(s.max_in_place) + " support(s) at once, " +
                                    std::to_string(s.placements) + " in all")
      << "]\n";
   if (!s.message.empty()) os << "  " << s.message << '\n';
@@ -90,11 +114,15 @@ std::string SequenceToText(const Assembly& assembly, const BuildSequence& s,
        << Num(step.direction.x()) << ", " << Num(step.direction.y());
     if (dim == 3) os << ", " << Num(step.direction.z());
     os << "]: " << VerdictWord(step);
-    for (int h : step.added) os << "; hold " << assembly.part(h).name;
-    for (int h : step.removed) os << "; release " << assembly.part(h).name;
+    for (const TemporarySupport& t : step.added) os << "; " << SupportWords(assembly, t);
+    for (const TemporarySupport& t : step.removed)
+      os << (t.kind == TemporaryKind::kHold ? "; release " : "; take out the prop under ")
+         << assembly.part(t.part).name;
     for (const TemporarySupport& t : step.in_place)
-      os << "; " << assembly.part(t.part).name << " held with " << Num(t.force.norm() / force_scale)
-         << ' ' << force_unit;
+      os << "; " << (t.kind == TemporaryKind::kHold ? "" : "the prop under ")
+         << assembly.part(t.part).name
+         << (t.kind == TemporaryKind::kHold ? " held with " : " carries ")
+         << Num(t.force.norm() / force_scale) << ' ' << force_unit;
     os << '\n';
   }
   os << "  supports at once: " << s.max_in_place << ", lower bound " << s.lower_bound

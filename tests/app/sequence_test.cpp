@@ -33,8 +33,12 @@ TEST(SequenceDocument, BadOptionsNameTheFlag) {
     return std::string("accepted");
   };
   SequenceQuery q;
-  q.temporary = "prop";
+  q.temporary = "crane";
   EXPECT_EQ(refused(q), "--temporary");
+  for (const char* kinds : {"hold", "prop", "both"}) {
+    q.temporary = kinds;
+    EXPECT_EQ(refused(q), "accepted") << kinds;
+  }
   q = {};
   q.direction = {0, 0};
   EXPECT_EQ(refused(q), "--direction");

@@ -68,17 +68,21 @@ std::string ArchFile(int n, bool reversed = false) {
 
 // Every state of the order checked again by `cairn check` (a fresh analysis,
 // no cache, no warm start): the scene with the parts not yet placed left out
-// and the held ones fixed.
+// the held ones fixed and the props as fixels.
 void EveryStateStands(const json& scene, const json& sequence) {
   std::set<std::string> placed, held;
   for (const json& step : sequence["steps"]) {
     placed.insert(step["place"].get<std::string>());
     held.clear();
-    for (const json& t : step["temporary_in_place"]) {
-      EXPECT_EQ(t["kind"], "hold");
-      held.insert(t["part"].get<std::string>());
-    }
     json state = scene;
+    state["fixtures"] = json::array();
+    for (const json& t : step["temporary_in_place"]) {
+      if (t["kind"] == "hold")
+        held.insert(t["part"].get<std::string>());
+      else
+        state["fixtures"].push_back(
+            {{"part", t["part"]}, {"point", t["point"]}, {"normal", t["normal"]}});
+    }
     json parts = json::array();
     for (json p : scene["parts"]) {
       const std::string name = p["name"];
@@ -213,11 +217,12 @@ void EveryStateStandsByCheck(const std::string& model_args, const json& sequence
 }
 
 // `--emit-plans`: the order written as an assembly plan, which `cairn
-// simulate` runs stable on the same model (its holds held as the plan says);
-// with every hold taken out of the plan, the simulation fails where the
-// order needed one (`needs_holds`), and a plan with no holds says nothing.
+// simulate` runs stable on the same model (its holds and props in place as
+// the plan says); with every support taken out of the plan, the simulation
+// fails where the order needed one (`needs_supports`), and a plan with no
+// supports says nothing.
 void EmittedPlanSimulates(const std::string& model_args, const std::string& options,
-                          bool needs_holds) {
+                          bool needs_supports) {
   static int run = 0;
   const std::string dir = TempDir("emitted_plans_" + std::to_string(run++));
   std::filesystem::remove_all(dir);
@@ -229,14 +234,14 @@ void EmittedPlanSimulates(const std::string& model_args, const std::string& opti
   json doc = json::parse(Slurp(plan));
   EXPECT_EQ(doc["mode"], "assemble");
   bool any = false;
-  for (json& step : doc["steps"]) {
-    any = any || !step["hold"].empty() || !step["hold_at_rest"].empty();
-    step["hold"] = json::array();
-    step["hold_at_rest"] = json::array();
-  }
-  EXPECT_EQ(any, needs_holds);
-  if (!needs_holds) return;
-  const std::string bare = TempFile("plan_without_holds.json", doc.dump());
+  for (json& step : doc["steps"])
+    for (const char* key : {"hold", "hold_at_rest", "props", "props_at_rest"}) {
+      any = any || !step.value(key, json::array()).empty();
+      step[key] = json::array();
+    }
+  EXPECT_EQ(any, needs_supports);
+  if (!needs_supports) return;
+  const std::string bare = TempFile("plan_without_supports.json", doc.dump());
   const CliRun fails = Cairn("simulate " + model_args + " " + bare + " --json");
   EXPECT_EQ(fails.exit_code, 1) << fails.out << fails.err;
 }
@@ -283,6 +288,87 @@ TEST(Sequence, ArchOfThreeVoussoirsNeedsOneHoldAndTheBoundProvesIt) {
   const json none = Sequence(file + " --directions axes --max-temporary 0", 1);
   EXPECT_EQ(none["complete"], false);
   EXPECT_NE(none["message"].get<std::string>().find("at most 0"), std::string::npos);
+}
+
+// Props (`--temporary prop`), the centering of the 3-voussoir arch derived by
+// hand. v1 (between 180° and 120°, radii 1 and 1.15) rests on the left
+// springer's top across x ∈ [−1.15, −1]; its centroid, at radius
+// r̄ = (2/3)(1.15³ − 1)/(1.15² − 1) · sin(π/6)/(π/6) on the 150° ray, lies at
+// x_c = r̄ cos 150° = −0.890, inward of the joint's inner edge (−1, 0): alone
+// it tips inward about that edge. About it the springer's pushes (at the
+// edge, or at −1.15 turning the same way) and friction (along the joint) can
+// only add to the weight's clockwise moment W (x_c + 1); a prop pushing
+// along n at p must undo it: P (p − e) × n ≥ W (x_c + 1), P ≥ P_min. So
+// each side voussoir needs a prop of its own, the keystone (locking both
+// from above) comes last, and two props are in place at once: the bound (a
+// hold does what any props on its part can, and two holds are the fewest:
+// ArchOfThree...) proves it. Every prop sits on its voussoir's intrados,
+// pushes outward along the intrados' normal and carries at least P_min.
+TEST(Sequence, ArchOfThreeVoussoirsNeedsTwoPropsAsDerivedByHand) {
+  const std::string file = ArchFile(3);
+  const json s = Sequence(file + " --temporary prop");
+  EXPECT_EQ(s["complete"], true);
+  EXPECT_EQ(s["order"], json({"v1", "v3", "v2"}));
+  EXPECT_EQ(s["temporary"]["kinds"], json({"prop"}));
+  EXPECT_EQ(s["temporary"]["max_in_place"], 2);
+  EXPECT_EQ(s["temporary"]["lower_bound"], 2);
+  EXPECT_EQ(s["temporary"]["optimal"], true);
+  const double pi = std::numbers::pi, ri = 1, ro = 1.15, g = 9.81;
+  const double weight = g * (pi / 3) / 2 * (ro * ro - ri * ri);  // density 1
+  const double rbar = 2.0 / 3 * (ro * ro * ro - 1) / (ro * ro - 1) * std::sin(pi / 6) / (pi / 6);
+  const double lever = rbar * std::cos(5 * pi / 6) + 1;  // x_c − (−1): 0.1095
+  ASSERT_GT(lever, 0) << "v1 leans inward of its joint";
+  std::set<std::string> propped;
+  for (const json& step : s["steps"])
+    for (const json& t : step["temporary_in_place"]) {
+      const std::string part = t["part"];
+      SCOPED_TRACE(part + " after placing " + step["place"].get<std::string>());
+      propped.insert(part);
+      EXPECT_EQ(t["kind"], "prop");
+      // Mirrored for v3 (x → −x).
+      const double side = part == "v1" ? 1 : -1;
+      const double px = side * t["point"][0].get<double>(), py = t["point"][1];
+      const double nx = side * t["normal"][0].get<double>(), ny = t["normal"][1];
+      // On v1's intrados, the chord from (−1, 0) to (−0.5, 0.866), pushing
+      // along its normal away from the arch's centre.
+      EXPECT_NEAR((px + 1) * std::sin(pi / 3) - py * 0.5, 0, 1e-9);
+      EXPECT_NEAR(nx, -std::cos(pi / 6), 1e-9);
+      EXPECT_NEAR(ny, std::sin(pi / 6), 1e-9);
+      const double arm = (px + 1) * ny - py * nx;  // (p − e) × n
+      ASSERT_GT(arm, 0) << "the prop turns v1 back";
+      const double fx = side * t["force"][0].get<double>(), fy = t["force"][1];
+      const double force = std::hypot(fx, fy);
+      EXPECT_NEAR(fx * ny - fy * nx, 0, 1e-9 * (1 + force)) << "a prop pushes along its normal";
+      EXPECT_GE(force, weight * lever / arm * (1 - 1e-9));
+    }
+  EXPECT_EQ(propped, (std::set<std::string>{"v1", "v3"}));
+  // v1 on its own: falls without its prop, stands with it (cairn check of
+  // the scene with the prop as a fixel).
+  json alone = Arch(3);
+  alone["parts"].erase(4);  // v3
+  alone["parts"].erase(3);  // v2
+  const json& prop = s["steps"][0]["added"][0];
+  EXPECT_EQ(Cairn("check " + TempFile("v1_alone.json", alone.dump())).exit_code, 1);
+  alone["fixtures"] = {{{"part", "v1"}, {"point", prop["point"]}, {"normal", prop["normal"]}}};
+  EXPECT_EQ(Cairn("check " + TempFile("v1_propped.json", alone.dump())).exit_code, 0);
+  EmittedPlanSimulates(file, "--temporary prop", true);
+}
+
+// Both kinds: never more supports at once than holds alone; the search
+// weighs a hold that carries a growing cantilever against props that each
+// carry one part (a prop under the last voussoir of a half arch does not
+// keep the ones before it up).
+TEST(Sequence, HoldsAndPropsTogetherNeedNoMoreThanHolds) {
+  for (const std::string file : {ArchFile(3), ArchFile(7)})
+    for (const std::string directions : {"up", "axes"}) {
+      SCOPED_TRACE(file + " " + directions);
+      const json hold = Sequence(file + " --directions " + directions);
+      const json both = Sequence(file + " --directions " + directions + " --temporary both");
+      EXPECT_EQ(both["temporary"]["kinds"], json({"hold", "prop"}));
+      EXPECT_LE(both["temporary"]["max_in_place"], hold["temporary"]["max_in_place"]);
+      EXPECT_EQ(both["temporary"]["optimal"], true);
+      EveryStateStands(Arch(file.find("arch7") != std::string::npos ? 7 : 3), both);
+    }
 }
 
 // Seven voussoirs: v1 and v7 stand alone on their springers, but no arch

@@ -185,7 +185,7 @@ const BadCase kPlanBadCases[] = {
   {"unknown_top", nullptr, R"({"gripper": "left"})", "gripper",
    "unknown key (expected one of: cairn_plan, mode, dt, speed, steps)"},
   {"unknown_step_key", nullptr, R"({"steps": [{"remove": ["C"], "path": [[0, 1]], "speed": 2}]})",
-   "steps[0] (\"C\").speed", "unknown key (expected one of: remove, grip, path, direction, distance, support, hold, hold_at_rest)"},
+   "steps[0] (\"C\").speed", "unknown key (expected one of: remove, grip, path, direction, distance, support, hold, hold_at_rest, props, props_at_rest)"},
   // Wrong types and values of the top level.
   {"mode_type", nullptr, R"({"mode": 1})", "mode", "must be a string, not a number"},
   {"mode_value", nullptr, R"({"mode": "build"})", "mode", "must be \"disassemble\" or \"assemble\", not \"build\""},

@@ -241,7 +241,7 @@ def test_sequence_through_both_doors(cli, name):
             1 for p in json.load(open(example(name), encoding="utf-8"))["parts"]
             if not p.get("fixed", False)))
     with pytest.raises(cairn.InputError):
-        cairn.sequence(m, temporary="prop")
+        cairn.sequence(m, temporary="crane")
     with pytest.raises(cairn.InputError):
         cairn.sequence(m, emit_plans=scene)  # a file, not a folder
     with pytest.raises(cairn.InputError):

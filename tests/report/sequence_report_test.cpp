@@ -23,9 +23,10 @@ TEST(SequenceReport, KeysAndWords) {
   step.part = a.FindPart("A");
   step.direction = {0, -1, 0};
   step.stands = true;
-  step.added = {step.part};
   TemporarySupport t;
   t.part = step.part;
+  t.point = a.part(t.part).centroid;
+  step.added = {t};
   t.force = {0, 9.81, 0};
   step.in_place = {t};
   s.steps = {step};
@@ -38,7 +39,10 @@ TEST(SequenceReport, KeysAndWords) {
   const nlohmann::json& st = j["steps"][0];
   EXPECT_EQ(st["place"], "A");
   EXPECT_EQ(st["direction"], nlohmann::json({0.0, -1.0}));
-  EXPECT_EQ(st["added"], nlohmann::json({"A"}));
+  ASSERT_EQ(st["added"].size(), 1u);
+  EXPECT_EQ(st["added"][0]["kind"], "hold");
+  EXPECT_EQ(st["added"][0]["part"], "A");
+  EXPECT_FALSE(st["added"][0].contains("force"));
   EXPECT_EQ(st["temporary_in_place"][0]["kind"], "hold");
   EXPECT_EQ(st["temporary_in_place"][0]["force"], nlohmann::json({0.0, 9.81}));
   EXPECT_EQ(st["verdict"], "stands");

@@ -15,7 +15,7 @@
 namespace cairn::app {
 
 struct SequenceQuery {
-  std::string temporary = "hold";  ///< --temporary: the kinds of support (hold)
+  std::string temporary = "hold";  ///< --temporary hold|prop|both: the kinds of support
   int max_temporary = -1;          ///< --max-temporary K; -1: no bound
   /// --direction X,Y(,Z): the one removal direction (a part arrives along
   /// its reverse); empty: `directions`.

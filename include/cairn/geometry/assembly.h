@@ -229,6 +229,10 @@ class Assembly {
   /// force scale (max_weight) and tolerances stay those of this model, so a
   /// state's check is judged on the scene's scale whatever is held.
   Assembly WithHeld(const std::vector<int>& held) const;
+  /// This model with the fixels `added` after its own fixtures (index
+  /// fixtures().size() + k), as Create would accept them (`cairn sequence`'s
+  /// props). @throws std::invalid_argument naming the fault (FixtureFault).
+  Assembly WithFixtures(const std::vector<FixtureDef>& added) const;
   /// The diagonal of the bounding box of all parts (length).
   double scene_size() const { return scene_size_; }
   /// The largest weight of a movable part, m |g| (force units; 0 without

@@ -52,6 +52,12 @@ struct PlanStepDef {
   /// Absent (has_hold_at_rest false): `hold`.
   std::vector<std::string> hold_at_rest;
   bool has_hold_at_rest = false;
+  /// Props (fixels from the ground: a scene's `fixtures`, docs/scene-format.md)
+  /// in place while this step's parts move, and while they rest in place
+  /// (absent, has_props_at_rest false: `props`).
+  std::vector<FixtureDef> props;
+  std::vector<FixtureDef> props_at_rest;
+  bool has_props_at_rest = false;
 };
 
 /// A whole plan as the user writes it. Vector indices equal JSON indices.
@@ -70,6 +76,8 @@ struct PlanStep {
   SupportMode support = SupportMode::kFull;
   std::vector<int> hold;          ///< held while the step's parts move (part indices)
   std::vector<int> hold_at_rest;  ///< held while they rest in place, let go
+  std::vector<FixtureDef> props;          ///< props while the step's parts move (validated)
+  std::vector<FixtureDef> props_at_rest;  ///< props while they rest in place
   double Length() const;  ///< total path length
   /// The displacement after travelling arc length s along the path (clamped).
   Vector3 At(double s) const;

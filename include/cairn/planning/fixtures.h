@@ -47,6 +47,25 @@
 
 namespace cairn {
 
+/// A point of a part's free boundary where a fixel can push: SuggestFixtures'
+/// candidates before they are ranked, and `cairn sequence`'s props.
+struct FacePoint {
+  int part = -1;            ///< index into Assembly::parts()
+  Vector3 point{0, 0, 0};   ///< world frame, assembled pose
+  Vector3 normal{0, 0, 0};  ///< unit, into the part (the inward face normal)
+  int face = -1;            ///< edge (2-D) or face (3-D) index of the part
+  bool centre = false;      ///< an edge midpoint or a face centroid
+  std::string face_name;    ///< in words: "edge 1 (7, 0)-(7, 3)", "face 4"
+};
+
+/// The points of `part`'s boundary, at its assembled pose, on the faces that
+/// carry no contact of `contacts` with another part (a contact on the face,
+/// within `tol` (length), its normal parallel to the face's): 2-D, the ends
+/// and the midpoint of each such edge; 3-D, each such face's centroid and its
+/// corners pulled 10% towards it. In the part's face order.
+std::vector<FacePoint> FreeFacePoints(const Assembly& a, int part,
+                                      const std::vector<Contact>& contacts, double tol);
+
 /// One suggested fixel and what it carries.
 struct SuggestedFixel {
   FixtureDef fixture;    ///< part (name), point on its free face, normal into the part

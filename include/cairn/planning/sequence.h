@@ -10,17 +10,23 @@
 /// A **hold** keeps a placed part where it is, as a robot or a crane holds a
 /// block: all its freedoms fixed, pulling as well as pushing. A state with
 /// held parts is checked as the same assembly with those parts fixed
-/// (Assembly::WithHeld). A hold goes in at the step whose state needs it and
-/// comes out as soon as the state stands without it.
+/// (Assembly::WithHeld). A **prop** is a point support from the ground
+/// under a part's face (falsework, a shore: the paper's fixel, a
+/// frictionless push along the face's inward normal), at a point of a face
+/// that touches no part in the assembled configuration (so it is in no later
+/// part's way), chosen as SuggestFixtures chooses fixels: the points that
+/// most oppose the part's motion in the state without it
+/// (Assembly::WithFixtures). A support goes in at the step whose state
+/// needs it and comes out as soon as the state stands without it.
 ///
 /// The search, a beam over states (placed set, held set):
 ///   1. Candidates: the unplaced parts that touch a placed or fixed part and
 ///      whose arrival is free (no placed or fixed part blocks their removal
 ///      to infinity along the direction: planning/blocking.h).
-///   2. Each candidate p placed: the state stands as it is, or with p held,
-///      or with a part the check says moves held (the first that makes it
-///      stand); then every hold the new state does without comes out (the
-///      oldest first).
+///   2. Each candidate p placed: the state stands as it is, or with one
+///      support more on p or on a part the check says moves (props first,
+///      then a hold: the first that makes it stand); then every support the
+///      new state does without comes out (the oldest first).
 ///   3. The children ranked by (most supports in place so far, supports now,
 ///      placements so far, the placed parts' height against gravity,
 ///      names), the best `beam_width` kept.
@@ -47,11 +53,14 @@
 namespace cairn {
 
 /// The kinds of temporary support the search may use.
-enum class TemporaryKind { kHold };
+enum class TemporaryKind { kHold, kProp };
 const char* to_string(TemporaryKind kind);
 
 /// Options of FindBuildSequence.
 struct SequenceOptions {
+  /// The kinds of support allowed (`--temporary hold|prop|both`): at least one.
+  bool holds = true;
+  bool props = false;
   /// The most supports in place at once; the search gives up beyond (-1: no
   /// bound).
   int max_temporary = -1;
@@ -85,16 +94,27 @@ struct SequenceOptions {
   std::function<void(const std::string&)> status;
 };
 
-/// One support in place.
+/// One temporary support.
 struct TemporarySupport {
   TemporaryKind kind = TemporaryKind::kHold;
   int part = -1;
-  /// What the hold carries: the force and torque (about the part's centroid)
-  /// it exerts on the part (force units, world), so that the part's weight
-  /// and the pushes of the free parts on it balance. Contacts with fixed or
-  /// other held parts are not counted (both are held).
+  /// A prop: the point of the part's face it pushes at and the direction it
+  /// pushes (unit, into the part), world frame, assembled pose. A hold: the
+  /// part's centroid, and 0.
+  Vector3 point{0, 0, 0};
+  Vector3 normal{0, 0, 0};
+  /// In place (SequenceStep::in_place), what it carries, from the state's
+  /// check (force units, world): a hold, the force and torque (about the
+  /// part's centroid) it exerts on the part so that the part's weight and the
+  /// pushes of the free parts on it balance (contacts with fixed or other
+  /// held parts are not counted: both are held); a prop, its push (along
+  /// `normal`), torque 0. Zero in SequenceStep::added and removed.
   Vector3 force{0, 0, 0};
   Vector3 torque{0, 0, 0};
+  /// The same support (kind, part, point, normal).
+  bool operator==(const TemporarySupport& o) const {
+    return kind == o.kind && part == o.part && point == o.point && normal == o.normal;
+  }
 };
 
 /// One step: a part placed, and the supports in place after it.
@@ -102,7 +122,9 @@ struct SequenceStep {
   int part = -1;
   Vector3 direction{0, 0, 0};  ///< the arrival direction (unit, world)
   std::vector<TemporarySupport> in_place;
-  std::vector<int> added, removed;  ///< holds put in and taken out at this step
+  /// Supports put in (just before the part arrives) and taken out (once it
+  /// is in place) at this step.
+  std::vector<TemporarySupport> added, removed;
   /// The state's check (the caller's rule): stands, and the proof.
   bool stands = false;
   StabilityProof stability = StabilityProof::kNone;
@@ -111,6 +133,7 @@ struct SequenceStep {
 /// What FindBuildSequence found.
 struct BuildSequence {
   bool complete = false;  ///< every movable part placed, every state standing
+  std::vector<TemporaryKind> kinds;  ///< the kinds of support the search could use
   std::vector<SequenceStep> steps;
   int max_in_place = 0;  ///< the most supports in place at once
   int placements = 0;    ///< supports put in, in all
