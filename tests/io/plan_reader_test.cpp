@@ -262,6 +262,15 @@ const BadCase kPlanBadCases[] = {
   {"hold_removed_earlier", nullptr,
    R"({"steps": [{"remove": ["C"], "path": [[0, 1]]}, {"remove": ["D"], "path": [[0, 1]], "hold_at_rest": ["A", "C"]}]})",
    "steps[1] (\"D\").hold_at_rest[1]", "part 'C' is not there to hold: it is removed by steps[0].remove[0]"},
+  // Props: fixels the scene would accept, under parts there and not moving.
+  {"props_type", nullptr, R"({"steps": [{"remove": ["C"], "path": [[0, 1]], "props": [1]}]})",
+   "steps[0] (\"C\").props[0]", "must be an object, not a number"},
+  {"props_unknown_key", nullptr, R"({"steps": [{"remove": ["C"], "path": [[0, 1]], "props": [{"part": "B", "point": [0, 1.5], "normal": [0, -1], "force": 1}]}]})",
+   "steps[0] (\"C\").props[0].force", "unknown key (expected one of: part, point, normal)"},
+  {"props_off_boundary", nullptr, R"({"steps": [{"remove": ["C"], "path": [[0, 1]], "props": [{"part": "B", "point": [0, 9], "normal": [0, 1]}]}]})",
+   "steps[0] (\"C\").props[0]", "(0, 9) is not on the boundary of part 'B'"},
+  {"props_moving", nullptr, R"({"steps": [{"remove": ["C"], "path": [[0, 1]], "props": [{"part": "C", "point": [-2, 1.5], "normal": [0, 1]}]}]})",
+   "steps[0] (\"C\").props[0].part", "part 'C' moves in this step: it cannot be propped while it moves"},
   // Paths.
   {"both_forms", nullptr, R"({"steps": [{"remove": ["C"], "path": [[0, 1]], "direction": [0, 1], "distance": 1}]})",
    "steps[0] (\"C\")", "has both path and direction with distance: give one of them"},

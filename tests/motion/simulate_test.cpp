@@ -118,6 +118,23 @@ TEST(Simulate, AssembledPartsAreCheckedWhenLetGoAndHoldsKeepThemInPlace) {
   EXPECT_EQ(early.failure->step, 0);
   EXPECT_FALSE(early.failure->released);
   EXPECT_EQ(early.failure->parts, std::vector<int>{O});
+  // A prop under O's right end instead of the hold: O stands on P and the
+  // prop when let go; with the prop taken out before K comes, it tips.
+  PlanStepDef o_propped = Straight("O", {0, 1}, 2);
+  o_propped.props_at_rest = {{"O", {2.5, 1, 0}, {0, 1, 0}}};
+  o_propped.has_props_at_rest = true;
+  PlanStepDef k_propped = Straight("K", {0, 1}, 2);
+  k_propped.props = o_propped.props_at_rest;
+  k_propped.has_props_at_rest = true;  // props_at_rest []: let go with K in place
+  const SimulationResult propped =
+      SimulatePlan(a, MakePlan(a, {k_propped, o_propped}, 1.0, PlanMode::kAssemble));
+  EXPECT_EQ(propped.verdict, MotionVerdict::kStable)
+      << (propped.failure ? testing::Brief(*propped.failure) : std::string());
+  const SimulationResult unpropped = SimulatePlan(
+      a, MakePlan(a, {Straight("K", {0, 1}, 2), o_propped}, 1.0, PlanMode::kAssemble));
+  ASSERT_EQ(unpropped.verdict, MotionVerdict::kUnstable);
+  EXPECT_EQ(unpropped.failure->step, 0);
+  EXPECT_EQ(unpropped.failure->parts, std::vector<int>{O});
   // Disassembling, K lifted off tips O unless O is held while K leaves.
   const SimulationResult lift = SimulatePlan(a, MakePlan(a, {Straight("K", {0, 1}, 2)}));
   ASSERT_EQ(lift.verdict, MotionVerdict::kUnstable);
