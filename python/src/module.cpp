@@ -201,6 +201,7 @@ Answer Sequence(const py::object& model, const py::dict& o) {
     throw InputError("", "require", "must be \"strong\" or None, not \"" + require + "\"");
   q.require_strong = require == "strong";
   q.emit_plans = o["emit_plans"].cast<bool>();
+  q.page = o["page"].cast<bool>();
   py::gil_scoped_release release;
   return AnswerOf(app::SequenceDocument(m, q));
 }

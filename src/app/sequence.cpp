@@ -9,6 +9,7 @@
 #include "cairn/core/error.h"
 #include "cairn/planning/sequence.h"
 #include "cairn/geometry/plan.h"
+#include "cairn/report/html_report.h"
 #include "cairn/report/plan_report.h"
 #include "cairn/report/sequence_report.h"
 
@@ -110,6 +111,7 @@ CommandResult SequenceDocument(const Model& model, const SequenceQuery& query,
   options.stability.prove_strong = query.require_strong;
   options.require_strong = query.require_strong;
   options.checkpoint = monitor.checkpoint;
+  options.record_contacts = query.page;
   options.status = monitor.status;
   const auto start = std::chrono::steady_clock::now();
   const BuildSequence sequence = FindBuildSequence(model.assembly, options);
@@ -121,6 +123,7 @@ CommandResult SequenceDocument(const Model& model, const SequenceQuery& query,
   out.document = SequenceToJson(model.assembly, sequence, seconds, report);
   out.exit = sequence.complete ? kExitStable : kExitUnstable;
   out.text = SequenceToText(model.assembly, sequence, report);
+  if (query.page) out.page = SequencePage(model.assembly, sequence, out.document, report);
   if (query.emit_plans && !sequence.steps.empty())
     out.plans = {{"sequence.assemble.plan.json",
                   PlanDefToJson(SequencePlan(model.assembly, sequence), model.assembly.dimension())

@@ -365,6 +365,7 @@ CLI::App* AddSequence(CLI::App& app, cairn::cli::SequenceArgs& sequence) {
                   "Write the order as an assembly plan (sequence.assemble.plan.json, the holds as "
                   "held parts) in this folder, for cairn simulate")
       ->check(kNotEmpty);
+  AddHtml(cmd, sequence.html);
   AddRuleOptions(cmd, sequence.rule, sequence.require);
   AddModelOptions(cmd, sequence.model);
   return cmd;

@@ -88,10 +88,12 @@ int RunSequence(const SequenceArgs& args, std::ostream& out, std::ostream& err) 
   return RunGuarded(err, [&]() -> int {
     // The outputs are checked first (never over an input), written last.
     const std::vector<NamedFile> inputs = ModelInputs(args.scene, args.model, "the model file");
+    CheckOutputs({{args.html, "--html"}}, inputs);
     if (!args.emit_plans.empty()) OutputFiles(inputs).AddFolder(args.emit_plans, "--emit-plans");
     Progress progress("cairn sequence");
     app::SequenceQuery q = QueryOf(args);
     q.emit_plans = !args.emit_plans.empty();
+    q.page = !args.html.empty();
     q.stop = [] { return interrupted != 0; };
     app::CommandResult r;
     {
@@ -110,6 +112,7 @@ int RunSequence(const SequenceArgs& args, std::ostream& out, std::ostream& err) 
           files.Add((std::filesystem::path(args.emit_plans) / name).string(), text,
                     "--emit-plans");
       }
+      if (!args.html.empty()) files.Add(args.html, r.page, "--html");
       files.Commit();
       out << (args.json ? r.document.dump(2) + "\n" : r.text) << std::flush;
     }

@@ -23,6 +23,7 @@ struct SequenceArgs {
   std::string rule = "loaded-from-rest";  // --rule
   std::string require;                    // --require strong
   std::string emit_plans;                 // --emit-plans DIR
+  std::string html;                       // --html PAGE
   ModelArgs model;
 };
 

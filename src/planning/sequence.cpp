@@ -866,6 +866,7 @@ int Search::ConfirmAndMeasureHolds() {
     step.stability = r.stability;
     step.stands =
         r.stable() && (!options_.require_strong || r.stability == StabilityProof::kStrong);
+    if (options_.record_contacts) step.contacts = r.contacts;
     step.in_place.clear();
     for (const Support& s : supports) {
       TemporarySupport t = Public(s);

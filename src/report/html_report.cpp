@@ -352,4 +352,22 @@ std::string PlanPage(const Assembly& assembly, const PlannerResult& result, cons
                    {"plan", nodes.ToJson(shown)}});
 }
 
+std::string SequencePage(const Assembly& assembly, const BuildSequence& sequence, const json& doc,
+                         const ReportOptions& options) {
+  const double force_scale = ForceScale(assembly, options).first;
+  json states = json::array();
+  size_t contacts = 0;
+  for (const SequenceStep& step : sequence.steps) {
+    contacts += step.contacts.size();
+    states.push_back(contacts <= kMaxPageContacts ? Contacts(assembly, step.contacts, force_scale)
+                                                  : json(nullptr));
+  }
+  return HtmlPage({{"cairn_page", 1},
+                   {"kind", "sequence"},
+                   {"title", Title(assembly, options)},
+                   {"scene", SceneData(assembly, options)},
+                   {"result", doc},
+                   {"sequence", {{"states", states}, {"max_contacts", kMaxPageContacts}}}});
+}
+
 }  // namespace cairn

@@ -270,3 +270,7 @@ def test_sequence_emits_the_plan_the_cli_emits(cli, name, tmp_path):
         step["hold"], step["hold_at_rest"] = [], []
     (tmp_path / "bare.json").write_text(json.dumps(plan), encoding="utf-8")
     assert not cairn.simulate(m, str(tmp_path / "bare.json"))["stable"]
+    # The page: the CLI's, byte for byte.
+    cairn.sequence(m, html=tmp_path / "py.html")
+    assert cli("sequence", scene, "--html", str(tmp_path / "cli.html"))[0] == 0
+    assert (tmp_path / "py.html").read_bytes() == (tmp_path / "cli.html").read_bytes()

@@ -93,14 +93,16 @@ class Page {
     for (const c of this.result.contacts || []) m = Math.max(m, c.normal_force || 0);
     for (const f of this.data.frames || []) scan(f.contacts.fn);
     for (const c of Object.values((this.data.plan && this.data.plan.nodes) || {})) scan(c.fn);
+    for (const c of (this.data.sequence && this.data.sequence.states) || []) for (const k of c || []) m = Math.max(m, k.normal_force || 0);
     return m > 0 ? m : this.scene.force_reference > 0 ? this.scene.force_reference : 1;
   }
 
   // --- layout --------------------------------------------------------------
   buildLayout() {
     const d = this.data, r = this.result;
-    const verdict = d.kind === 'plan' ? planVerdict(r) : r.verdict || (r.stable ? 'stable' : 'unstable');
-    const good = verdict === 'stable' || verdict === 'planned';
+    const verdict = d.kind === 'plan' ? planVerdict(r) : d.kind === 'sequence' ? (r.complete ? 'built' : 'incomplete')
+      : r.verdict || (r.stable ? 'stable' : 'unstable');
+    const good = verdict === 'stable' || verdict === 'planned' || verdict === 'built';
     this.app = document.getElementById('cairn-app') || document.body.appendChild($('div', { id: 'cairn-app' }));
     const head = $('header', {},
       $('h1', {}, d.title || this.scene.name || 'Cairn'),
@@ -125,7 +127,8 @@ class Page {
     const el = $('div', { class: 'legend' },
       row(kColors.fixed, 'fixed'), row(kColors.judged, 'must stay put'),
       row(kColors.gripped, 'gripped (moved by the gripper)'), row(kColors.carried, 'carried along'),
-      row(kColors.tool, 'tool'), row(kColors.failed, 'moves: fails'), row(kColors.fixel, 'fixel'),
+      row(kColors.tool, 'tool'), row(kColors.failed, 'moves: fails'), row(kColors.fixel, 'fixel or prop'),
+      row(kColors.held, 'held (a temporary hold)'),
       row(kColors.normal, 'normal force on the part'), row(kColors.friction, 'friction force on the part'));
     this.scaleNote = $('div', { class: 'note', id: 'force-scale' });
     const gain = $('input', { type: 'range', min: '-3', max: '3', step: '0.1', value: '0', id: 'gain' });
@@ -217,6 +220,7 @@ class Page {
   start() {
     if (this.data.kind === 'simulate') this.startSimulation();
     else if (this.data.kind === 'plan') this.startPlan();
+    else if (this.data.kind === 'sequence') this.startSequence();
     else this.startCheck();
     this.updateScaleNote();
     // Ready once the first frame is drawn (scripts and tests wait on it).
@@ -524,6 +528,119 @@ class Page {
     requestAnimationFrame(tick);
   }
 
+  // A build order (`cairn sequence`): the parts come in one a step along
+  // their arrival directions; the supports in place are drawn where they go
+  // in and gone where they come out (held parts in their colour with the
+  // hold's force at the centroid, props as fixel arrows); at each state the
+  // forces are its check's. The steps with the most supports are marked.
+  startSequence() {
+    const r = this.result, steps = r.steps || [], t = r.temporary || {};
+    const states = (this.data.sequence && this.data.sequence.states) || [];
+    this.states = states.map((c) => (c ? contactsFromReport(c, this.indexOf) : null));
+    const story = [(r.complete ? 'Build order of ' + steps.length + ' parts' : 'No complete build order: ' + steps.length + ' parts placed') + '.'];
+    const kinds = (t.kinds || []).join(' or ');
+    story.push(t.max_in_place
+      ? t.max_in_place + ' temporary support' + (t.max_in_place === 1 ? '' : 's') + ' (' + kinds + ') in place at once at most, ' +
+        t.placements + ' put in in all; no order needs fewer than ' + t.lower_bound + ' at once' + (t.optimal ? ' (optimal).' : '.')
+      : 'No temporary support needed' + (t.optimal ? ' (optimal).' : '.'));
+    if (r.message) story.push(r.message);
+    if (states.some((c) => c === null)) story.push('Forces are drawn for the first states only (the page keeps ' + this.data.sequence.max_contacts + ' contacts).');
+    this.setStory(story);
+    const peak = Math.max(0, ...steps.map((s) => s.temporary_in_place.length));
+    this.stepList = $('ol', { class: 'steps', id: 'steps' });
+    this.stepItems = steps.map((s, k) => {
+      const words = ['place ' + s.place];
+      for (const a of s.added) words.push(a.kind === 'hold' ? 'hold ' + a.part : 'prop under ' + a.part);
+      for (const a of s.removed) words.push(a.kind === 'hold' ? 'release ' + a.part : 'take out the prop under ' + a.part);
+      const most = peak > 0 && s.temporary_in_place.length === peak;
+      const li = $('li', most ? { class: 'peak' } : {}, words.join('; '),
+                   most ? $('span', { class: 'warn', title: 'the most supports in place at once' }, ' ▲' + peak) : '');
+      li.style.cursor = 'pointer';
+      li.addEventListener('click', () => this.setBuildTime(k + 1));
+      this.stepList.append(li);
+      return li;
+    });
+    this.extraSide.append($('h2', {}, 'Steps'), this.stepList);
+    const row = $('div', { class: 'row' });
+    this.playBtn = $('button', { id: 'play' }, 'Play');
+    this.playBtn.addEventListener('click', () => this.toggleBuildPlay());
+    this.scrub = $('input', { type: 'range', id: 'scrub', min: '0', max: String(steps.length), step: '0.01', value: '0' });
+    this.scrub.addEventListener('input', () => this.setBuildTime(Number(this.scrub.value)));
+    this.timeEl = $('span', { id: 'time' });
+    row.append(this.playBtn, $('div', { id: 'scrub-wrap' }, this.scrub), this.timeEl);
+    this.foot.append(row);
+    this.setBuildTime(steps.length);
+  }
+
+  // The supports in place at build time t (SequenceSupports).
+  buildSupports(t) {
+    return sequenceSupports(this.result.steps || [], t);
+  }
+
+  // t in [0, steps]: an integer k is the state after k steps (its forces
+  // drawn); between k and k + 1, part k + 1 comes in along its direction
+  // (from half the scene away) under the supports in place before it and
+  // those put in for it.
+  setBuildTime(t) {
+    const steps = this.result.steps || [], n = steps.length;
+    t = Math.max(0, Math.min(n, t));
+    this.buildTime = t;
+    this.scrub.value = String(t);
+    const k = Math.floor(t + 1e-9), frac = t - k;
+    const arriving = frac > 1e-9 ? steps[k] : null;
+    const placed = new Set(steps.slice(0, k).map((s) => this.indexOf(s.place)));
+    if (arriving) placed.add(this.indexOf(arriving.place));
+    const absent = this.scene.parts.map((p, i) => i).filter((i) => !this.scene.parts[i].fixed && !this.scene.parts[i].tool && !placed.has(i));
+    this.view.setPoses([], absent);
+    const supports = this.buildSupports(t);
+    const held = new Set(supports.filter((s) => s.kind === 'hold').map((s) => this.indexOf(s.part)));
+    const moving = arriving ? this.indexOf(arriving.place) : -1;
+    if (arriving) {
+      const d = pad3(arriving.direction), away = 0.5 * this.scene.size * (1 - frac);
+      this.view.offsetPart(moving, new THREE.Vector3(-d[0] * away, -d[1] * away, -d[2] * away));
+    }
+    this.view.setRoles((i) => (this.scene.parts[i].fixed ? 'fixed' : i === moving ? 'gripped' : held.has(i) ? 'held' : 'judged'));
+    const props = supports.filter((s) => s.kind === 'prop').map((s) => ({ ...s, part: this.indexOf(s.part) }));
+    this.view.setFixels([...(this.scene.fixtures || []), ...props]);
+    // At a state: its forces, and each hold's force as an arrow into the
+    // held part's centroid.
+    let c = emptyContacts();
+    if (!arriving && k > 0 && this.states[k - 1]) {
+      const s = this.states[k - 1];
+      c = { a: [...s.a], b: [...s.b], p: [...s.p], n: [...s.n], fn: [...s.fn], ft: [...s.ft], flags: [...s.flags] };
+      for (const h of steps[k - 1].temporary_in_place) {
+        if (h.kind !== 'hold') continue;
+        const f = pad3(h.force), size = Math.hypot(...f), p = pad3(h.point);
+        if (!(size > 0)) continue;
+        c.a.push(this.indexOf(h.part)); c.b.push(-1);
+        c.p.push(...p); c.n.push(...f.map((x) => x / size)); c.fn.push(size); c.ft.push(0, 0, 0); c.flags.push(0);
+      }
+    }
+    this.view.setContacts(c);
+    this.view.setMotions([]);
+    this.stepItems.forEach((li, j) => li.classList.toggle('now', arriving ? j === k : j === k - 1));
+    this.timeEl.textContent = arriving ? 'step ' + (k + 1) + ' of ' + n + ': ' + arriving.place + ' comes in'
+      : k === 0 ? 'the fixed parts' : 'after step ' + k + ' of ' + n + ' (' + supports.length + ' support' + (supports.length === 1 ? '' : 's') + ' in place; forces shown)';
+  }
+
+  toggleBuildPlay() {
+    if (this.playing) { this.playing = false; this.playBtn.textContent = 'Play'; return; }
+    const n = (this.result.steps || []).length;
+    if (this.buildTime >= n) this.setBuildTime(0);
+    this.playing = true;
+    this.playBtn.textContent = 'Pause';
+    let last = performance.now();
+    const tick = (now) => {
+      if (!this.playing) return;
+      const t = this.buildTime + (now - last) / Math.max(100, 8000 / Math.max(n, 1));  // about 8 s in all
+      last = now;
+      if (t >= n) { this.setBuildTime(n); this.toggleBuildPlay(); return; }
+      this.setBuildTime(t);
+      requestAnimationFrame(tick);
+    };
+    requestAnimationFrame(tick);
+  }
+
   // --- the API for scripts and tests ----------------------------------------
   api() {
     const page = this;
@@ -534,6 +651,13 @@ class Page {
       get failureFrame() { return page.failureFrame; },
       setFrame: (k) => page.setFrame(k),
       setPlanTime: (t) => page.setPlanTime(t),
+      setBuildTime: (t) => page.setBuildTime(t),
+      // The supports drawn: the parts coloured as held, and the props' points
+      // (the fixel arrows beyond the scene's own fixtures).
+      supportsDrawn: () => ({
+        held: page.view.parts.map((p, i) => (p.role === 'held' ? page.names[i] : null)).filter((x) => x !== null).sort(),
+        props: page.view.fixelArrows.heads.count - (page.scene.fixtures || []).length,
+      }),
       selectSequence: (i) => page.selectSequence(i),
       selectOneWay: (i) => page.selectOneWay(i),
       selectPair: (a, b) => page.chart && page.chart.select(page.indexOf(a), page.indexOf(b)),
@@ -563,6 +687,17 @@ class Page {
       },
     };
   }
+}
+
+// The supports in place at build time t of a sequence's steps: after step
+// k (t = k), its `temporary_in_place`; while step k + 1's part comes in,
+// those and the ones put in for it on other parts.
+function sequenceSupports(steps, t) {
+  const k = Math.floor(t + 1e-9), frac = t - k;
+  const after = k > 0 ? steps[k - 1].temporary_in_place : [];
+  if (!(frac > 1e-9) || k >= steps.length) return after;
+  const s = steps[k];
+  return [...after, ...s.added.filter((a) => a.part !== s.place)];
 }
 
 function pathPoint(step, frac, dim) {

@@ -8,6 +8,7 @@ export const kColors = {
   tool: '#8e5bd6',
   failed: '#e0312b',
   fixel: '#d6338a',
+  held: '#4b6ea8',
   normal: '#1f5fd1',
   friction: '#f08a00',
   pivot: '#111111',

@@ -110,6 +110,25 @@ const jammed = {
 writeFileSync(join(out, 'jammed.json'), JSON.stringify(jammed));
 run(['check', join(out, 'jammed.json'), '--html', page('jammed')]);
 
+// Build orders (`cairn sequence --html`): the 3-voussoir arch of the tests
+// with props and with holds (2-D), Fig. 17 with a hold, Jenga (3-D).
+const arch = { cairn: 1, name: 'arch of 3', friction: 0.6, parts: [
+  { name: 'left springer', fixed: true, box: { min: [-1.65, -1], max: [-1, 0] } },
+  { name: 'right springer', fixed: true, box: { min: [1, -1], max: [1.65, 0] } }] };
+for (let k = 0; k < 3; ++k) {
+  const t0 = Math.PI * (1 - k / 3), t1 = Math.PI * (1 - (k + 1) / 3);
+  arch.parts.push({ name: 'v' + (k + 1), polygon: [[Math.cos(t0), Math.sin(t0)], [1.15 * Math.cos(t0), 1.15 * Math.sin(t0)],
+                                                   [1.15 * Math.cos(t1), 1.15 * Math.sin(t1)], [Math.cos(t1), Math.sin(t1)]] });
+}
+writeFileSync(join(out, 'arch3.json'), JSON.stringify(arch));
+const sequences = {
+  arch_props: [join(out, 'arch3.json'), '--temporary', 'prop'],
+  arch_holds: [join(out, 'arch3.json'), '--directions', 'axes'],
+  fig17_sequence: [ex('paper_fig17.json')],
+  jenga_sequence: [ex('jenga.json'), '--beam', '1'],
+};
+for (const [name, args] of Object.entries(sequences)) run(['sequence', ...args, '--html', page(name)]);
+
 const browser = await launch();
 const open = (name, viewport) => openPage(page(name), viewport, browser);
 try {
@@ -249,6 +268,41 @@ try {
                                  cairn.partRole("it's \"B\" <!-- & \u2028 é") !== undefined),
           'hostile: the parts keep their names');
     check(await p.evaluate(() => document.querySelectorAll('img, script[src]').length === 0), 'hostile: no element was injected');
+    await o.close();
+  }
+
+  // Build orders: every state steps through, and at each the supports drawn
+  // are the document's (held parts in their colour, one arrow per prop);
+  // while a part comes in it is drawn gripped, away from its place.
+  for (const [name, args] of Object.entries(sequences)) {
+    const o = await open(name);
+    await common(o, name);
+    const p = o.page;
+    const doc = JSON.parse(run(['sequence', ...args, '--json']));
+    check(await p.evaluate(() => document.querySelectorAll('#steps li').length) === doc.steps.length,
+          name + ': its ' + doc.steps.length + ' steps are listed');
+    let same = true, gripped = true, forces = true;
+    const diffs = [];
+    for (let k = 1; k <= doc.steps.length; ++k) {
+      const st = doc.steps[k - 1];
+      const drawn = await p.evaluate((k) => { cairn.setBuildTime(k); return { ...cairn.supportsDrawn(), contacts: cairn.contactCount() }; }, k);
+      const held = st.temporary_in_place.filter((t) => t.kind === 'hold').map((t) => t.part).sort();
+      const props = st.temporary_in_place.filter((t) => t.kind === 'prop').length;
+      if (drawn.held.join() !== held.join() || drawn.props !== props) {
+        same = false;
+        diffs.push('step ' + k + ': drawn ' + JSON.stringify(drawn) + ', document ' + held.join() + ' + ' + props + ' props');
+      }
+      forces = forces && drawn.contacts > 0;
+      const arriving = await p.evaluate(([k, part]) => { cairn.setBuildTime(k - 0.5); return [cairn.partRole(part), cairn.partVisible(part)]; }, [k, st.place]);
+      gripped = gripped && arriving[0] === 'gripped' && arriving[1];
+    }
+    check(same, name + ': at every state the supports drawn are the document\'s' + (diffs.length ? ' (' + diffs.join('; ') + ')' : ''));
+    check(forces, name + ': every state is drawn with its contact forces');
+    check(gripped, name + ': each part is drawn gripped while it comes in');
+    const peak = doc.temporary.max_in_place;
+    const marked = await p.evaluate(() => document.querySelectorAll('#steps li.peak').length);
+    check(peak === 0 ? marked === 0 : marked === doc.steps.filter((s) => s.temporary_in_place.length === peak).length,
+          name + ': the steps with the most supports (' + peak + ') are marked (' + marked + ')');
     await o.close();
   }
 

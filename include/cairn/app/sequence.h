@@ -34,6 +34,8 @@ struct SequenceQuery {
   /// (CommandResult::plans: "sequence.assemble.plan.json"), its supports as
   /// held parts.
   bool emit_plans = false;
+  /// --html: also the result page (CommandResult::page).
+  bool page = false;
 };
 
 /// The build order of `model`: exit 0 when a complete order was found within

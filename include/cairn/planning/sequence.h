@@ -92,6 +92,9 @@ struct SequenceOptions {
   std::function<bool()> stop;
   /// Told the parts placed, the best so far and the bound.
   std::function<void(const std::string&)> status;
+  /// Keep each state's contacts, from the confirmation's check
+  /// (SequenceStep::contacts: the page draws their forces).
+  bool record_contacts = false;
 };
 
 /// One temporary support.
@@ -128,6 +131,9 @@ struct SequenceStep {
   /// The state's check (the caller's rule): stands, and the proof.
   bool stands = false;
   StabilityProof stability = StabilityProof::kNone;
+  /// With SequenceOptions::record_contacts: the state's contacts and their
+  /// forces, as the check found them.
+  std::vector<ContactReport> contacts;
 };
 
 /// What FindBuildSequence found.

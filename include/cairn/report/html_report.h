@@ -21,6 +21,7 @@
 #include "cairn/geometry/assembly.h"
 #include "cairn/motion/simulate.h"
 #include "cairn/planning/planner.h"
+#include "cairn/planning/sequence.h"
 #include "cairn/report/report.h"
 #include "cairn/stability/analyze.h"
 
@@ -64,6 +65,16 @@ std::string SimulationPage(const Assembly& assembly, const SimulationResult& res
 /// each) to draw its contact forces.
 std::string PlanPage(const Assembly& assembly, const PlannerResult& result,
                      const nlohmann::json& doc, const ReportOptions& options);
+
+/// At most this many contacts are put on a build order's page, over all its
+/// states; the states after have no forces drawn (the page says so).
+inline constexpr size_t kMaxPageContacts = 200000;
+
+/// `cairn sequence --html`: `sequence` found with
+/// SequenceOptions::record_contacts (the forces of each state), `doc` its
+/// document.
+std::string SequencePage(const Assembly& assembly, const BuildSequence& sequence,
+                         const nlohmann::json& doc, const ReportOptions& options);
 
 /// The page of `data` (kind, title, scene, result, ...): the HTML text.
 /// Exposed for tests of the escaping.
