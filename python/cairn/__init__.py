@@ -435,7 +435,8 @@ def _plan_files(emit_plans, plans):
 
 
 def sequence(m, temporary="hold", max_temporary=None, direction=None, directions="up", beam=4,
-             rule="loaded-from-rest", require=None, time_limit=None, emit_plans=None, html=None):
+             rule="loaded-from-rest", require=None, time_limit=None, emit_plans=None, html=None,
+             threads=0):
     """``cairn sequence --json``: an order to build the model in, one part a
     step from its fixed parts up, every state standing, with the fewest
     temporary holds in place at once and a lower bound that proves how far
@@ -447,7 +448,7 @@ def sequence(m, temporary="hold", max_temporary=None, direction=None, directions
     order so far (``stopped``); ``emit_plans``: a folder to write the order to
     as an assembly plan with its holds (sequence.assemble.plan.json, for
     ``simulate``); ``html``: a file to write the result page to (the build
-    played step by step with its supports). The dict has the CLI's keys."""
+    played step by step with its supports); ``threads``: 0 for every core. The dict has the CLI's keys."""
     _check_model(m)
     d = _numbers(direction, "direction")
     limit = 0.0 if time_limit is None else _number(time_limit, "time_limit")
@@ -459,6 +460,7 @@ def sequence(m, temporary="hold", max_temporary=None, direction=None, directions
         max_temporary=-1 if max_temporary is None else _whole(max_temporary, "max_temporary",
                                                               _NON_NEGATIVE),
         direction=d, directions=str(directions), beam=_whole(beam, "beam", (1, 1000)),
+        threads=_whole(threads, "threads", _NON_NEGATIVE),
         rule=str(rule), require="" if require is None else str(require), time_limit=limit,
         emit_plans=emit_plans is not None, page=html is not None)
     doc, _, page, _, _, plans = _cairn.sequence(m, options)

@@ -194,6 +194,7 @@ Answer Sequence(const py::object& model, const py::dict& o) {
   q.direction = o["direction"].cast<std::vector<double>>();
   q.directions = o["directions"].cast<std::string>();
   q.beam_width = o["beam"].cast<int>();
+  q.threads = o["threads"].cast<int>();
   q.time_limit = o["time_limit"].cast<double>();
   q.rule = RuleOf(o["rule"].cast<std::string>());
   const std::string require = o["require"].cast<std::string>();

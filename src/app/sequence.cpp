@@ -103,6 +103,10 @@ CommandResult SequenceDocument(const Model& model, const SequenceQuery& query,
   options.directions = DirectionsOf(model, query);
   options.ndbg = query.direction.empty() && query.directions == "ndbg";
   options.beam_width = query.beam_width;
+  if (query.threads < 0)
+    throw InputError(model.file, "--threads", "must be 0 (every core) or more, not " +
+                                                  std::to_string(query.threads));
+  options.threads = query.threads;
   if (!(query.time_limit >= 0) || !std::isfinite(query.time_limit))
     throw InputError(model.file, "--time-limit", "must be a finite number of seconds, at least 0");
   options.time_limit = query.time_limit;

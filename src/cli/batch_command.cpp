@@ -221,9 +221,9 @@ std::vector<std::string> JobCommandLine(const json& job) {
   RefuseSpecialFile(model, asap);
   for (const std::string& f : files)
     if (!f.empty()) RefuseSpecialFile(f, false);
-  // A plan job runs on one thread unless it says otherwise: the batch's
-  // workers already fill the cores.
-  if (name == "plan" && !threads) args.push_back("--threads=1");
+  // A plan or sequence job runs on one thread unless it says otherwise: the
+  // batch's workers already fill the cores.
+  if ((name == "plan" || name == "sequence") && !threads) args.push_back("--threads=1");
   args.push_back("--");
   args.push_back(model);
   if (name == "simulate") args.push_back(plan);

@@ -357,6 +357,10 @@ CLI::App* AddSequence(CLI::App& app, cairn::cli::SequenceArgs& sequence) {
       ->check(CLI::IsMember({"up", "axes", "ndbg"}));
   cmd->add_option("--beam", sequence.beam, "States kept per step (default 4; 1: greedy)")
       ->check(CLI::Range(1, 1000));
+  cmd->add_option("--threads", sequence.threads,
+                  "Worker threads (default: every core; with --temporary both, the searches with "
+                  "holds alone and with both run side by side)")
+      ->check(kNonNegativeInteger);
   cmd->add_option("--time-limit", sequence.time_limit,
                   "Seconds the search may take; then (or on Ctrl-C) the best order so far, with "
                   "its bound")

@@ -23,6 +23,7 @@ app::SequenceQuery QueryOf(const SequenceArgs& args) {
   q.direction = args.direction;
   q.directions = args.directions;
   q.beam_width = args.beam;
+  q.threads = args.threads;
   q.time_limit = args.time_limit;
   q.rule = RuleOf(args.rule);
   q.require_strong = args.require == "strong";

@@ -19,6 +19,7 @@ struct SequenceArgs {
   std::vector<double> direction;          // --direction X,Y(,Z): the one removal direction
   std::string directions = "up";          // --directions up|axes
   int beam = 4;                           // --beam W
+  int threads = 0;                        // --threads N; 0: every core
   double time_limit = 0;                  // --time-limit S; 0: none
   std::string rule = "loaded-from-rest";  // --rule
   std::string require;                    // --require strong

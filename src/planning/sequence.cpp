@@ -3,6 +3,7 @@
 #include "cairn/planning/sequence.h"
 
 #include <algorithm>
+#include <exception>
 #include <chrono>
 #include <cmath>
 #include <functional>
@@ -10,6 +11,7 @@
 #include <stdexcept>
 #include <tuple>
 #include <string>
+#include <thread>
 #include <unordered_map>
 #include <utility>
 #include <vector>
@@ -166,6 +168,7 @@ class Search {
   Configuration ConfigOf(const std::vector<bool>& placed) const;
   const Assembly& SupportAssembly(const std::vector<int>& held, const std::vector<int>& props);
   TemporarySupport Public(const Support& t) const;
+  std::string SupportNames(std::vector<Support> supports) const;
   Support Internal(const TemporarySupport& t) const;
   bool Better(const State& a, const State& b) const;
   bool Stopped();
@@ -367,6 +370,27 @@ TemporarySupport Search::Public(const Support& t) const {
   } else {
     out.point = assembly_.part(t.part).centroid;
   }
+  return out;
+}
+
+// The supports by name, sorted (holds "h:" before props "p:", a prop by its
+// part's name and its place among that part's points): a tie-break that
+// does not depend on the order the parts are given in.
+std::string Search::SupportNames(std::vector<Support> supports) const {
+  std::vector<std::string> names;
+  for (const Support& t : supports) {
+    const std::string& part = assembly_.part(t.part).name;
+    if (t.kind == TemporaryKind::kHold) {
+      names.push_back("h:" + part);
+    } else {
+      const std::vector<int>& own = part_props_[t.part];
+      names.push_back("p:" + part + "#" +
+                      std::to_string(std::find(own.begin(), own.end(), t.prop) - own.begin()));
+    }
+  }
+  std::sort(names.begin(), names.end());
+  std::string out;
+  for (const std::string& n : names) out += n + '\n';
   return out;
 }
 
@@ -642,7 +666,7 @@ bool Search::Better(const State& a, const State& b) const {
   const double tol = assembly_.length_tolerance();
   if (std::abs(a.height - b.height) > tol) return a.height < b.height;
   if (a.names != b.names) return a.names < b.names;
-  return SupportKey(a.supports) < SupportKey(b.supports);  // holds (",h") before props
+  return SupportNames(a.supports) < SupportNames(b.supports);
 }
 
 // The beam from `start` (its steps kept) to the last part, or as far as it
@@ -947,9 +971,36 @@ BuildSequence FindBuildSequence(const Assembly& assembly, const SequenceOptions&
   SequenceOptions half = options;
   half.time_limit = options.time_limit / 2;
   half.props = false;
-  BuildSequence holds = Search(assembly, half).Run();
-  half.props = true;
-  BuildSequence both = Search(assembly, half).Run();
+  half.status = nullptr;  // the other search tells where it is
+  SequenceOptions with_props = half;
+  with_props.props = true;
+  with_props.status = options.status;
+  BuildSequence holds, both;
+  const int threads = options.threads > 0
+                          ? options.threads
+                          : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+  if (threads >= 2) {
+    // Side by side: each search owns its LPs, caches and workspace.
+    std::exception_ptr failed;
+    std::thread side([&] {
+      try {
+        holds = Search(assembly, half).Run();
+      } catch (...) {
+        failed = std::current_exception();
+      }
+    });
+    try {
+      both = Search(assembly, with_props).Run();
+    } catch (...) {
+      side.join();
+      throw;
+    }
+    side.join();
+    if (failed) std::rethrow_exception(failed);
+  } else {
+    holds = Search(assembly, half).Run();
+    both = Search(assembly, with_props).Run();
+  }
   const auto rank = [](const BuildSequence& r) {
     return std::make_tuple(!r.complete, r.max_in_place, r.placements, -int(r.steps.size()));
   };

@@ -408,6 +408,25 @@ TEST(Sequence, StackAndWallNeedNoSupport) {
   }
 }
 
+// The same document for 1 and 2 threads (with both kinds of support the
+// searches with holds alone and with both run side by side) and every core
+// (but the seconds).
+TEST(Sequence, DeterministicWhateverTheThreads) {
+  const auto doc = [](const std::string& args) {
+    json d = Sequence(args);
+    d["stats"].erase("seconds");
+    return d;
+  };
+  for (const std::string& model :
+       {ArchFile(7) + " --directions axes", ArchFile(3), ExamplePath("paper_fig17.json")}) {
+    SCOPED_TRACE(model);
+    const json one = doc(model + " --temporary both --threads 1");
+    EXPECT_EQ(one, doc(model + " --temporary both --threads 2"));
+    EXPECT_EQ(one, doc(model + " --temporary both"));
+    EXPECT_EQ(one["temporary"]["kinds"], json({"hold", "prop"}));
+  }
+}
+
 // The same document for the parts given in another order, and run after run
 // (but the seconds).
 TEST(Sequence, DeterministicWhateverThePartsOrder) {
@@ -422,12 +441,18 @@ TEST(Sequence, DeterministicWhateverThePartsOrder) {
   EXPECT_EQ(a["order"], b["order"]);
   EXPECT_EQ(a["steps"], b["steps"]);
   EXPECT_EQ(a["temporary"], b["temporary"]);
+  // Props too: the same points, whatever the order of the parts.
+  const json p = Sequence(ArchFile(7) + " --temporary prop");
+  const json q = Sequence(ArchFile(7, true) + " --temporary prop");
+  EXPECT_EQ(p["order"], q["order"]);
+  EXPECT_EQ(p["steps"], q["steps"]);
 }
 
 TEST(Sequence, BadInputExitsTwo) {
   const std::string file = ArchFile(3);
-  for (const std::string bad : {"--temporary crane", "--direction 0,0", "--direction 1,0,1",
-                                "--max-temporary -1", "--beam 0", "--directions sideways"}) {
+  for (const std::string& bad : std::vector<std::string>{
+           "--temporary crane", "--direction 0,0", "--direction 1,0,1", "--max-temporary -1",
+        "--beam 0", "--directions sideways", "--threads -1", "--html /", "--emit-plans " + file}) {
     const CliRun r = Cairn("sequence " + file + " " + bad);
     EXPECT_EQ(r.exit_code, 2) << bad << ": " << r.err;
     EXPECT_FALSE(r.err.empty()) << bad;

@@ -24,6 +24,7 @@ struct SequenceQuery {
   /// the NDBG's cells (closest to up first)
   std::string directions = "up";
   int beam_width = 4;     ///< --beam W: states kept per step
+  int threads = 0;        ///< --threads; 0: every core
   double time_limit = 0;  ///< --time-limit S (seconds; 0: none)
   /// Polled during the search: true ends it with the best order so far (the
   /// CLI's SIGINT). Empty: never.

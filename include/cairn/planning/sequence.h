@@ -74,6 +74,10 @@ struct SequenceOptions {
   bool ndbg = false;
   /// States kept per step (1: greedy).
   int beam_width = 4;
+  /// Threads (0: every core): with both kinds of support, the search with
+  /// holds alone and the one with both run side by side. No answer depends
+  /// on it.
+  int threads = 0;
   /// The most state checks cached (a key of a byte per part and the parts
   /// that move: about 600 bytes each on the 399-block Armadillo, so ≈ 120 MB
   /// at the default); when full the cache starts afresh. No answer depends
