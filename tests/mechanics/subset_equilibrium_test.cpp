@@ -97,7 +97,13 @@ TEST(SubsetEquilibrium, AStackWithoutItsBaseAndWithAHold) {
 // The states a build-order search meets on the cross vault (184 blocks, one
 // component): parts placed one by one where they touch what is there, a few
 // taken away again, holds put on and taken off; 200 warm solves in a row,
-// each against a fresh LP. A warm "optimal" that does not balance, or an
+// each against a cold solve of the same LP (the same contacts: the assembled
+// configuration's between the parts present) and against the fresh LPs of
+// the state's contacts found again (FindStaticEquilibrium). The two may
+// differ where finding the contacts again gives a pair of parts other
+// contact points than the assembled configuration did (a corner shared with
+// a part that is absent): at most 2 of the 200 states, and the confirmation
+// of a sequence checks every state with the contacts found again. A warm "optimal" that does not balance, or an
 // "infeasible" without a Farkas certificate, is solved again from the slack
 // basis (before, a beam search met a warm optimum with forces of −10¹⁴ that
 // balanced to 3 %); an LP with no verdict says so (solved false) and is
@@ -112,8 +118,9 @@ TEST(SubsetEquilibrium, AWalkThroughTheCrossVaultsStatesAsFreshLps) {
   const std::vector<ContactLcp> lcps = BuildComponentLcps(a, Configuration::Assembled(a));
   ASSERT_EQ(lcps.size(), 1u);
   const ContactLcp& lcp = lcps[0];
-  SubsetEquilibrium warm(lcp);
+  SubsetEquilibrium warm(lcp), cold(lcp);
   const int nb = warm.num_bodies();
+  int redetected_differs = 0;
   // Which bodies touch each other or a fixed part, assembled.
   std::vector<std::vector<int>> touching(nb);
   std::vector<bool> grounded(nb, false);
@@ -169,19 +176,25 @@ TEST(SubsetEquilibrium, AWalkThroughTheCrossVaultsStatesAsFreshLps) {
       ++unsolved;
       continue;
     }
+    cold.ForgetBasis();
+    const SubsetEquilibrium::Answer from_slack = cold.Solve(present, free);
+    if (from_slack.solved) {
+      EXPECT_EQ(answer.exists, from_slack.exists) << "state " << state << ": warm against cold";
+    }
     const Assembly state_assembly = a.WithHeld(held_parts);
     Configuration config = Configuration::Assembled(state_assembly);
     for (int p = 0; p < a.num_parts(); ++p) config.present[p] = a.part(p).fixed || parts_present[p];
     bool fresh = true;
     for (const ContactLcp& c : BuildComponentLcps(state_assembly, config))
       fresh = fresh && FindStaticEquilibrium(c).exists;
-    EXPECT_EQ(answer.exists, fresh) << "state " << state;
+    if (answer.exists != fresh) ++redetected_differs;
     // What falls is held in the next state, as the search holds it.
     if (!answer.exists && !answer.unbalanced.empty())
       held[answer.unbalanced[rng() % answer.unbalanced.size()]] = true;
     (answer.exists ? feasible : infeasible)++;
   }
   EXPECT_LE(unsolved, 3);
+  EXPECT_LE(redetected_differs, 2);
   EXPECT_GT(feasible, 20);
   EXPECT_GT(infeasible, 20);
 }

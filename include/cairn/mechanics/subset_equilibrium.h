@@ -7,15 +7,17 @@
 /// A build order's states all sit at the assembled poses, so the contacts of
 /// a state are the assembled configuration's contacts between the parts
 /// present: the equilibrium LP of a state (static_equilibrium.h) is the LP
-/// of the whole component with
-///   - the balance rows of the bodies that are absent or held freed
-///     (−∞ ≤ row ≤ ∞: a held body is balanced by its holder, whatever it
-///     pulls or pushes with),
+/// of the whole component without
+///   - the balance rows of the bodies that are absent or held (a held body
+///     is balanced by its holder, whatever it pulls or pushes with),
 ///   - the columns of the contacts that touch an absent body, or join two
-///     bodies that are not free, fixed at 0.
-/// Successive states differ by a part or a hold, so each solve starts from
-/// the last one's basis (Clp's dual simplex, warm), a few pivots where a
-/// fresh LP takes hundreds (a claim of infeasibility is believed when the
+///     bodies that are not free.
+/// The LP holds only the rows and columns of the state: they are taken out
+/// and put in as the states change (its size, and so the factorization's
+/// and the pricing's work, is the state's, not the structure's). Successive
+/// states differ by a part or a hold, so each solve starts from the last
+/// one's basis (Clp's dual simplex, warm), a few pivots where a fresh LP
+/// takes hundreds (a claim of infeasibility is believed when the
 /// ray is a Farkas certificate, and checked from the slack basis when not). When no equilibrium
 /// exists, the dual simplex's infeasibility ray is a virtual motion ν = −P y (the Farkas
 /// certificate of the mechanism LP): the bodies it moves are the ones that cannot stand.
@@ -56,6 +58,9 @@ class SubsetEquilibrium {
   Answer Solve(const std::vector<bool>& present, const std::vector<bool>& free);
 
   int num_bodies() const;
+
+  /// The next solve starts from the slack basis (a cold solve).
+  void ForgetBasis();
 
  private:
   // After a "primal infeasible": whether Clp's ray is a Farkas certificate
