@@ -164,6 +164,12 @@ class Search {
   std::optional<Vector3> Arrival(const std::vector<bool>& placed, int part) const;
   const Check& Stands(const std::vector<bool>& placed, const std::vector<Support>& supports);
   const Check& StandsHeld(const std::vector<bool>& placed, const std::vector<int>& held);
+  std::vector<std::vector<int>> FreeComponents(const std::vector<bool>& placed,
+                                               const std::vector<int>& held) const;
+  const Check& ComponentStands(const std::vector<bool>& placed,
+                               const std::vector<Support>& supports,
+                               const std::vector<int>& component);
+  Check Evaluate(const std::vector<bool>& placed, const std::vector<Support>& supports);
   Check FilterByLp(const std::vector<bool>& placed, const std::vector<int>& held, bool& unsure);
   Configuration ConfigOf(const std::vector<bool>& placed) const;
   const Assembly& SupportAssembly(const std::vector<int>& held, const std::vector<int>& props);
@@ -181,7 +187,8 @@ class Search {
   std::vector<std::vector<int>> touching_;  // per part: the parts it touches assembled
   std::vector<Vector3> directions_;         // removal directions
   std::vector<BlockingGraph> graphs_;       // per direction, to infinity
-  std::unordered_map<std::string, Check> memo_;
+  std::unordered_map<std::string, Check> memo_;            // by state
+  std::unordered_map<std::string, Check> component_memo_;  // by component of a state
   // The filter: the assembled configuration's equilibrium LP per contact
   // component, kept between states (mechanics/subset_equilibrium.h), and
   // where each movable part is in it.
@@ -321,11 +328,8 @@ const Check& Search::StandsHeld(const std::vector<bool>& placed, const std::vect
   return Stands(placed, supports);
 }
 
-// Whether the parts `placed` stand with `supports` (cached). Without props:
-// the filter, then (when it passes a state the confirmation rejected once,
-// or is unsure) the check's verdict. With props: the filter with the propped
-// parts held (a hold does all that props on its part can) rejects what no
-// props can save; the verdict decides the rest.
+// Whether the parts `placed` stand with `supports` (cached): each of the
+// state's components apart (ComponentStands), as the check decides them.
 const Check& Search::Stands(const std::vector<bool>& placed, const std::vector<Support>& supports) {
   std::string key(placed.size(), '0');
   for (size_t p = 0; p < placed.size(); ++p)
@@ -339,8 +343,91 @@ const Check& Search::Stands(const std::vector<bool>& placed, const std::vector<S
   }
   if (options_.checkpoint) options_.checkpoint();
   ++out_.states_checked;
-  if (memo_.size() >= options_.max_cached_states)
-    memo_.clear();  // no reference into it outlives a call
+  Check c;
+  c.stands = true;
+  const std::vector<int> held = HeldOf(supports);
+  for (const std::vector<int>& component : FreeComponents(placed, held)) {
+    const Check k = ComponentStands(placed, supports, component);  // a copy: its cache may clear
+    c.stands = c.stands && k.stands;
+    c.moving.insert(c.moving.end(), k.moving.begin(), k.moving.end());
+  }
+  std::sort(c.moving.begin(), c.moving.end());
+  if (memo_.size() >= options_.max_cached_states) memo_.clear();
+  return memo_.emplace(std::move(key), std::move(c)).first->second;
+}
+
+// The state's components: its free parts (placed, neither fixed nor held)
+// joined where two touch, in the assembled configuration (its contacts are
+// the state's). Parts apart share no contact, and a fixed or held part
+// carries whatever it must: the verdict, the LP's answer and the parts that
+// move are those of each component apart. Before the contacts are known
+// (the assembled state's own check), one component.
+std::vector<std::vector<int>> Search::FreeComponents(const std::vector<bool>& placed,
+                                                     const std::vector<int>& held) const {
+  std::vector<int> free;
+  for (int p : movable_)
+    if (placed[p] && !std::binary_search(held.begin(), held.end(), p)) free.push_back(p);
+  if (touching_.empty()) {
+    if (free.empty()) return {};
+    return {free};
+  }
+  std::vector<int> component(assembly_.num_parts(), -1);
+  std::vector<std::vector<int>> out;
+  for (int start : free) {
+    if (component[start] >= 0) continue;
+    out.emplace_back();
+    std::vector<int> todo = {start};
+    component[start] = static_cast<int>(out.size()) - 1;
+    while (!todo.empty()) {
+      const int p = todo.back();
+      todo.pop_back();
+      out.back().push_back(p);
+      for (int q : touching_[p])
+        if (component[q] < 0 && std::binary_search(free.begin(), free.end(), q)) {
+          component[q] = component[start];
+          todo.push_back(q);
+        }
+    }
+    std::sort(out.back().begin(), out.back().end());
+  }
+  return out;
+}
+
+// Whether the free parts `component` of the state stand (cached by the
+// component, the held parts it touches and the props under it).
+const Check& Search::ComponentStands(const std::vector<bool>& placed,
+                                     const std::vector<Support>& supports,
+                                     const std::vector<int>& component) {
+  std::vector<Support> own;  // the holds it leans on, the props under it
+  for (const Support& t : supports) {
+    const bool on_it = std::binary_search(component.begin(), component.end(), t.part);
+    bool touches = false;
+    if (t.kind == TemporaryKind::kHold && !touching_.empty())
+      for (int q : touching_[t.part])
+        touches = touches || std::binary_search(component.begin(), component.end(), q);
+    if (on_it || touches || touching_.empty()) own.push_back(t);
+  }
+  std::string key;
+  for (int p : component) key += std::to_string(p) + ',';
+  key += SupportKey(own);
+  key += full_ ? "|full" : "|lp";
+  const auto it = component_memo_.find(key);
+  if (it != component_memo_.end()) return it->second;
+  std::vector<bool> only(placed.size(), false);
+  for (int p : component) only[p] = true;
+  for (const Support& t : own)
+    if (t.kind == TemporaryKind::kHold) only[t.part] = placed[t.part];
+  Check c = Evaluate(only, own);
+  if (component_memo_.size() >= options_.max_cached_states) component_memo_.clear();
+  return component_memo_.emplace(std::move(key), std::move(c)).first->second;
+}
+
+// The check of the parts `placed` with `supports`, uncached. Without
+// props: the filter, then (when it passes a state the confirmation rejected
+// once, or is unsure) the check's verdict. With props: the filter with the
+// propped parts held (a hold does all that props on its part can) rejects
+// what no props can save; the verdict decides the rest.
+Check Search::Evaluate(const std::vector<bool>& placed, const std::vector<Support>& supports) {
   const std::vector<int> held = HeldOf(supports), props = PropsOf(supports);
   std::vector<int> held_or_propped = held;
   for (int k : props) held_or_propped.push_back(props_[k].part);
@@ -356,7 +443,7 @@ const Check& Search::Stands(const std::vector<bool>& placed, const std::vector<S
     c.moving = r.moving;
   }
   std::sort(c.moving.begin(), c.moving.end());
-  return memo_.emplace(std::move(key), std::move(c)).first->second;
+  return c;
 }
 
 // A support as the document gives it, and back.
