@@ -495,10 +495,20 @@ Support Search::Internal(const TemporarySupport& t) const {
 bool Search::CheckAssembled() {
   std::vector<bool> all(assembly_.num_parts(), false);
   for (int p : movable_) all[p] = true;
-  if (Stands(all, {}).stands) return true;
-  out_.message = "the assembly itself does not stand" +
+  const Check assembled = Stands(all, {});
+  if (assembled.stands) return true;
+  bool anything_fixed = !assembly_.fixtures().empty();
+  for (int p = 0; p < assembly_.num_parts(); ++p)
+    anything_fixed = anything_fixed || assembly_.part(p).fixed;
+  std::string moving;
+  if (!assembled.moving.empty())
+    moving = " (" + assembly_.NameList(assembled.moving) +
+             (assembled.moving.size() == 1 ? " moves)" : " move)");
+  out_.message = "the assembly itself does not stand" + moving +
                  std::string(options_.require_strong ? " with strong stability proved" : "") +
-                 ": no build order ends in a standing state";
+                 ": no build order ends in a standing state" +
+                 (anything_fixed ? "" : "; nothing is fixed: fix the parts that rest on the ground "
+                                        "(--fixed PART,...)");
   return false;
 }
 
@@ -1005,7 +1015,7 @@ BuildSequence Search::Run() {
   if (options_.holds) out_.kinds.push_back(TemporaryKind::kHold);
   if (options_.props) out_.kinds.push_back(TemporaryKind::kProp);
   if (!CheckAssembled()) {
-    ComputeLowerBound();
+    out_.lower_bound_reason = "no order exists: the assembly itself does not stand";
     return out_;
   }
   ComputeAdjacencyAndBlocking();

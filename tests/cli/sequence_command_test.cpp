@@ -459,6 +459,23 @@ TEST(Sequence, BadInputExitsTwo) {
   }
 }
 
+// An assembly that does not stand has no build order: the message names
+// what moves, and says when nothing is fixed; no bound is claimed.
+TEST(Sequence, AnAssemblyThatFallsHasNoOrderAndSaysWhy) {
+  const json tips = Sequence(ExamplePath("overhang_tips.json"), 1);
+  EXPECT_EQ(tips["complete"], false);
+  EXPECT_NE(tips["message"].get<std::string>().find("the assembly itself does not stand (block moves)"),
+            std::string::npos)
+      << tips["message"];
+  EXPECT_EQ(tips["message"].get<std::string>().find("nothing is fixed"), std::string::npos);
+  EXPECT_EQ(tips["temporary"]["lower_bound_reason"], "no order exists: the assembly itself does not stand");
+  json loose = Arch(3);
+  for (json& p : loose["parts"]) p["fixed"] = false;
+  const json none = Sequence(TempFile("nothing_fixed.json", loose.dump()), 1);
+  EXPECT_NE(none["message"].get<std::string>().find("nothing is fixed"), std::string::npos)
+      << none["message"];
+}
+
 // Anytime: at --time-limit the best order so far, its states checked, with
 // its bound, --json included (a millisecond ends the search before its first
 // placement: the assembled wall's own check takes longer).
