@@ -7,8 +7,8 @@
 
 #include "cairn/app/blocking.h"
 #include "cairn/core/error.h"
-#include "cairn/planning/sequence.h"
 #include "cairn/geometry/plan.h"
+#include "cairn/planning/sequence.h"
 #include "cairn/report/html_report.h"
 #include "cairn/report/plan_report.h"
 #include "cairn/report/sequence_report.h"
@@ -79,7 +79,8 @@ PlanDef SequencePlan(const Assembly& assembly, const BuildSequence& sequence) {
       if (t.part != s.part) moving.push_back(t);
       after.push_back(t);
     }
-    for (const TemporarySupport& t : s.removed) after.erase(std::find(after.begin(), after.end(), t));
+    for (const TemporarySupport& t : s.removed)
+      after.erase(std::find(after.begin(), after.end(), t));
     fill(moving, step.hold, step.props);
     fill(after, step.hold_at_rest, step.props_at_rest);
     step.has_hold_at_rest = step.has_props_at_rest = true;
@@ -104,8 +105,8 @@ CommandResult SequenceDocument(const Model& model, const SequenceQuery& query,
   options.ndbg = query.direction.empty() && query.directions == "ndbg";
   options.beam_width = query.beam_width;
   if (query.threads < 0)
-    throw InputError(model.file, "--threads", "must be 0 (every core) or more, not " +
-                                                  std::to_string(query.threads));
+    throw InputError(model.file, "--threads",
+                     "must be 0 (every core) or more, not " + std::to_string(query.threads));
   options.threads = query.threads;
   if (!(query.time_limit >= 0) || !std::isfinite(query.time_limit))
     throw InputError(model.file, "--time-limit", "must be a finite number of seconds, at least 0");
@@ -129,10 +130,10 @@ CommandResult SequenceDocument(const Model& model, const SequenceQuery& query,
   out.text = SequenceToText(model.assembly, sequence, report);
   if (query.page) out.page = SequencePage(model.assembly, sequence, out.document, report);
   if (query.emit_plans && !sequence.steps.empty())
-    out.plans = {{"sequence.assemble.plan.json",
-                  PlanDefToJson(SequencePlan(model.assembly, sequence), model.assembly.dimension())
-                          .dump(2) +
-                      "\n"}};
+    out.plans = {
+        {"sequence.assemble.plan.json",
+         PlanDefToJson(SequencePlan(model.assembly, sequence), model.assembly.dimension()).dump(2) +
+             "\n"}};
   return out;
 }
 

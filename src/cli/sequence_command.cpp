@@ -110,8 +110,7 @@ int RunSequence(const SequenceArgs& args, std::ostream& out, std::ostream& err) 
       if (!args.emit_plans.empty()) {
         files.AddFolder(args.emit_plans, "--emit-plans");
         for (const auto& [name, text] : r.plans)
-          files.Add((std::filesystem::path(args.emit_plans) / name).string(), text,
-                    "--emit-plans");
+          files.Add((std::filesystem::path(args.emit_plans) / name).string(), text, "--emit-plans");
       }
       if (!args.html.empty()) files.Add(args.html, r.page, "--html");
       files.Commit();

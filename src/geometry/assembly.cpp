@@ -1,13 +1,13 @@
 #include "cairn/geometry/assembly.h"
 
 #include <algorithm>
-#include <stdexcept>
 #include <cmath>
 #include <functional>
 #include <limits>
 #include <map>
 #include <numeric>
 #include <optional>
+#include <stdexcept>
 #include <unordered_map>
 #include <utility>
 #include <variant>

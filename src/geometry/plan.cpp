@@ -199,15 +199,17 @@ std::vector<int> HeldParts(const std::vector<std::string>& names, const char* ke
     const int part = check.MovablePart(names[k], entry);
     const std::string quoted = "part '" + EscapedName(names[k]) + "'";
     if (assembly.part(part).tool)
-      check.Fail(entry, quoted + " is a tool, not part of the assembly: it cannot be held in place");
+      check.Fail(entry,
+                 quoted + " is a tool, not part of the assembly: it cannot be held in place");
     if (std::find(held.begin(), held.end(), part) != held.end())
       check.Fail(entry, "names " + quoted + " twice");
     const auto it = removed_at.find(part);
     if (it != removed_at.end() && it->second.first < i)
       check.Fail(entry, quoted + " is not there to hold: it is removed by " + it->second.second);
     if (!at_rest && std::find(remove.begin(), remove.end(), part) != remove.end())
-      check.Fail(entry, quoted + " moves in this step: it cannot be held in place while it moves "
-                                 "(hold_at_rest keeps it in the gripper at rest)");
+      check.Fail(entry, quoted +
+                            " moves in this step: it cannot be held in place while it moves "
+                            "(hold_at_rest keeps it in the gripper at rest)");
     held.push_back(part);
   }
   return held;
@@ -217,24 +219,26 @@ std::vector<int> HeldParts(const std::vector<std::string>& names, const char* ke
 // (Assembly::FixtureFault), under movable parts present at step i (as
 // HeldParts), not under a part moving in this step but at rest.
 std::vector<FixtureDef> StepProps(const std::vector<FixtureDef>& props, const char* key,
-                                  const std::vector<int>& remove, size_t i,
-                                  const std::string& path, const Assembly& assembly,
-                                  const PlanValidator& check, const RemovedAt& removed_at) {
+                                  const std::vector<int>& remove, size_t i, const std::string& path,
+                                  const Assembly& assembly, const PlanValidator& check,
+                                  const RemovedAt& removed_at) {
   const std::string list = path + "." + key;
   for (size_t k = 0; k < props.size(); ++k) {
     const std::string entry = Indexed(list, k);
     const int part = check.MovablePart(props[k].part, entry + ".part");
     const std::string quoted = "part '" + EscapedName(props[k].part) + "'";
     if (assembly.part(part).tool)
-      check.Fail(entry + ".part", quoted + " is a tool, not part of the assembly: it cannot be propped");
+      check.Fail(entry + ".part",
+                 quoted + " is a tool, not part of the assembly: it cannot be propped");
     const auto it = removed_at.find(part);
     if (it != removed_at.end() && it->second.first < i)
       check.Fail(entry + ".part",
                  quoted + " is not there to prop: it is removed by " + it->second.second);
     if (std::string(key) == "props" &&
         std::find(remove.begin(), remove.end(), part) != remove.end())
-      check.Fail(entry + ".part", quoted + " moves in this step: it cannot be propped while it "
-                                           "moves (props_at_rest props it at rest)");
+      check.Fail(entry + ".part", quoted +
+                                      " moves in this step: it cannot be propped while it "
+                                      "moves (props_at_rest props it at rest)");
     if (const auto fault = assembly.FixtureFault(props[k])) check.Fail(entry, *fault);
   }
   return props;
@@ -311,14 +315,13 @@ Plan Plan::Create(const PlanDef& def, const Assembly& assembly, const std::strin
     StepTicks(step, plan, max_ticks, path, check);
     step.support = sd.support;
     step.hold = HeldParts(sd.hold, "hold", step.remove, i, path, assembly, check, removed_at);
-    step.hold_at_rest =
-        sd.has_hold_at_rest
-            ? HeldParts(sd.hold_at_rest, "hold_at_rest", step.remove, i, path, assembly, check,
-                        removed_at)
-            : step.hold;
+    step.hold_at_rest = sd.has_hold_at_rest
+                            ? HeldParts(sd.hold_at_rest, "hold_at_rest", step.remove, i, path,
+                                        assembly, check, removed_at)
+                            : step.hold;
     step.props = StepProps(sd.props, "props", step.remove, i, path, assembly, check, removed_at);
-    step.props_at_rest =
-        sd.has_props_at_rest ? StepProps(sd.props_at_rest, "props_at_rest", step.remove, i, path,
+    step.props_at_rest = sd.has_props_at_rest
+                             ? StepProps(sd.props_at_rest, "props_at_rest", step.remove, i, path,
                                          assembly, check, removed_at)
                              : step.props;
     plan.steps.push_back(std::move(step));

@@ -18,8 +18,8 @@ using nlohmann::json;
 constexpr std::initializer_list<const char*> kPlanKeys = {"cairn_plan", "mode", "dt", "speed",
                                                           "steps"};
 constexpr std::initializer_list<const char*> kStepKeys = {
-    "remove", "grip",         "path",  "direction",    "distance",
-    "support", "hold", "hold_at_rest", "props", "props_at_rest"};
+    "remove",  "grip", "path",         "direction", "distance",
+    "support", "hold", "hold_at_rest", "props",     "props_at_rest"};
 
 // Converts a parsed document to a PlanDef, checking structure and types on
 // the way; the first fault throws an InputError with its JSON path. Values

@@ -84,44 +84,72 @@ SubsetEquilibrium::SubsetEquilibrium(const ContactLcp& lcp) : impl_(std::make_un
   m.lp_row.assign(m.e.nrows, -1);
 }
 
+namespace {
+
+// The LP's rows (or columns) listed in `members` (by their index in the
+// component) kept where `keep` says so: the others' LP indices returned,
+// in order, for Clp to delete, and `position` (component index → LP index,
+// -1 when out) made that of the kept ones.
+template <typename Keep>
+std::vector<int> KeepOnly(std::vector<int>& members, std::vector<int>& position, Keep keep) {
+  std::vector<int> drop, kept;
+  for (size_t i = 0; i < members.size(); ++i) {
+    if (keep(members[i])) {
+      kept.push_back(members[i]);
+    } else {
+      drop.push_back(static_cast<int>(i));
+      position[members[i]] = -1;
+    }
+  }
+  members = std::move(kept);
+  for (size_t i = 0; i < members.size(); ++i) position[members[i]] = static_cast<int>(i);
+  return drop;
+}
+
+// The vectors `add` of `m` (rows of a row-ordered matrix, columns of a
+// column-ordered one) as Clp adds them: each entry whose other index the LP
+// holds (`position` ≥ 0), at that LP index.
+struct Vectors {
+  std::vector<CoinBigIndex> starts = {0};
+  std::vector<int> index;
+  std::vector<double> value;
+};
+Vectors Gather(const CoinPackedMatrix& m, const std::vector<int>& add,
+               const std::vector<int>& position) {
+  Vectors out;
+  const CoinBigIndex* start = m.getVectorStarts();
+  const int* length = m.getVectorLengths();
+  for (int v : add) {
+    for (CoinBigIndex k = start[v]; k < start[v] + length[v]; ++k) {
+      const int at = position[m.getIndices()[k]];
+      if (at < 0) continue;
+      out.index.push_back(at);
+      out.value.push_back(m.getElements()[k]);
+    }
+    out.starts.push_back(static_cast<CoinBigIndex>(out.index.size()));
+  }
+  return out;
+}
+
+}  // namespace
+
 // The LP's rows made those of the bodies `keep_body` (6 each): the others
 // taken out, the new ones added as equalities with their slack basic and
 // their entries in the columns the LP holds.
 void SubsetEquilibrium::Impl::SetRows(const std::vector<bool>& keep_body) {
-  std::vector<int> drop, kept;
-  for (size_t i = 0; i < row.size(); ++i) {
-    if (keep_body[row[i] / 6]) {
-      kept.push_back(row[i]);
-    } else {
-      drop.push_back(static_cast<int>(i));
-      lp_row[row[i]] = -1;
-    }
-  }
+  const std::vector<int> drop =
+      KeepOnly(row, lp_row, [&](int r) { return static_cast<bool>(keep_body[r / 6]); });
   if (!drop.empty()) lp.deleteRows(static_cast<int>(drop.size()), drop.data());
-  row = std::move(kept);
-  for (size_t i = 0; i < row.size(); ++i) lp_row[row[i]] = static_cast<int>(i);
   std::vector<int> add;
   for (int r = 0; r < e.nrows; ++r)
     if (keep_body[r / 6] && lp_row[r] < 0) add.push_back(r);
   if (add.empty()) return;
-  std::vector<CoinBigIndex> starts = {0};
-  std::vector<int> cols;
-  std::vector<double> values, bound;
-  const CoinBigIndex* start = rows.getVectorStarts();
-  const int* length = rows.getVectorLengths();
-  for (int r : add) {
-    for (CoinBigIndex k = start[r]; k < start[r] + length[r]; ++k) {
-      const int j = lp_column[rows.getIndices()[k]];
-      if (j < 0) continue;
-      cols.push_back(j);
-      values.push_back(rows.getElements()[k]);
-    }
-    starts.push_back(static_cast<CoinBigIndex>(cols.size()));
-    bound.push_back(e.rhs[r]);
-  }
+  const Vectors v = Gather(rows, add, lp_column);
+  std::vector<double> bound;
+  for (int r : add) bound.push_back(e.rhs[r]);
   const int first = lp.numberRows();
-  lp.addRows(static_cast<int>(add.size()), bound.data(), bound.data(), starts.data(), cols.data(),
-             values.data());
+  lp.addRows(static_cast<int>(add.size()), bound.data(), bound.data(), v.starts.data(),
+             v.index.data(), v.value.data());
   if (!lp.statusArray()) lp.createStatus();  // before the first solve: a slack basis
   for (size_t k = 0; k < add.size(); ++k) {
     const int i = first + static_cast<int>(k);
@@ -135,41 +163,19 @@ void SubsetEquilibrium::Impl::SetRows(const std::vector<bool>& keep_body) {
 // taken out, the new ones added at their lower bound (0) with their entries
 // in the rows the LP holds, the others keeping their basis status.
 void SubsetEquilibrium::Impl::SetColumns(const std::vector<bool>& on) {
-  std::vector<int> drop, kept;
-  for (size_t j = 0; j < generator.size(); ++j) {
-    if (on[generator[j]]) {
-      kept.push_back(generator[j]);
-    } else {
-      drop.push_back(static_cast<int>(j));
-      lp_column[generator[j]] = -1;
-    }
-  }
+  const std::vector<int> drop =
+      KeepOnly(generator, lp_column, [&](int g) { return static_cast<bool>(on[g]); });
   if (!drop.empty()) lp.deleteColumns(static_cast<int>(drop.size()), drop.data());
-  generator = std::move(kept);
-  for (size_t j = 0; j < generator.size(); ++j) lp_column[generator[j]] = static_cast<int>(j);
   std::vector<int> add;
   for (size_t g = 0; g < on.size(); ++g)
     if (on[g] && lp_column[g] < 0) add.push_back(static_cast<int>(g));
   if (add.empty()) return;
-  std::vector<CoinBigIndex> starts = {0};
-  std::vector<int> rws;
-  std::vector<double> values;
-  const CoinBigIndex* start = columns.getVectorStarts();
-  const int* length = columns.getVectorLengths();
-  for (int g : add) {
-    for (CoinBigIndex k = start[g]; k < start[g] + length[g]; ++k) {
-      const int i = lp_row[columns.getIndices()[k]];
-      if (i < 0) continue;
-      rws.push_back(i);
-      values.push_back(columns.getElements()[k]);
-    }
-    starts.push_back(static_cast<CoinBigIndex>(rws.size()));
-  }
+  const Vectors v = Gather(columns, add, lp_row);
   const std::vector<double> lo(add.size(), 0.0), hi(add.size(), COIN_DBL_MAX),
       cost(add.size(), 0.0);
   const int first = lp.numberColumns();
-  lp.addColumns(static_cast<int>(add.size()), lo.data(), hi.data(), cost.data(), starts.data(),
-                rws.data(), values.data());
+  lp.addColumns(static_cast<int>(add.size()), lo.data(), hi.data(), cost.data(), v.starts.data(),
+                v.index.data(), v.value.data());
   if (!lp.statusArray()) lp.createStatus();
   for (size_t k = 0; k < add.size(); ++k) {
     const int j = first + static_cast<int>(k);

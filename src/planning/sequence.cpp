@@ -3,15 +3,15 @@
 #include "cairn/planning/sequence.h"
 
 #include <algorithm>
-#include <exception>
 #include <chrono>
 #include <cmath>
+#include <exception>
 #include <functional>
 #include <map>
 #include <stdexcept>
-#include <tuple>
 #include <string>
 #include <thread>
+#include <tuple>
 #include <unordered_map>
 #include <utility>
 #include <vector>
@@ -120,20 +120,17 @@ struct Check {
   std::vector<int> moving;
 };
 
-// The parts held and the prop points of `supports`, each sorted.
-std::vector<int> HeldOf(const std::vector<Support>& supports) {
-  std::vector<int> held;
+// The parts held (kHold) or the prop points (kProp) of `supports`, sorted.
+std::vector<int> SortedOf(const std::vector<Support>& supports, TemporaryKind kind) {
+  std::vector<int> out;
   for (const Support& t : supports)
-    if (t.kind == TemporaryKind::kHold) held.push_back(t.part);
-  std::sort(held.begin(), held.end());
-  return held;
+    if (t.kind == kind) out.push_back(kind == TemporaryKind::kHold ? t.part : t.prop);
+  std::sort(out.begin(), out.end());
+  return out;
 }
-std::vector<int> PropsOf(const std::vector<Support>& supports) {
-  std::vector<int> props;
-  for (const Support& t : supports)
-    if (t.kind == TemporaryKind::kProp) props.push_back(t.prop);
-  std::sort(props.begin(), props.end());
-  return props;
+std::vector<int> HeldOf(const std::vector<Support>& s) { return SortedOf(s, TemporaryKind::kHold); }
+std::vector<int> PropsOf(const std::vector<Support>& s) {
+  return SortedOf(s, TemporaryKind::kProp);
 }
 
 class Search {
@@ -184,10 +181,10 @@ class Search {
   const SequenceOptions& options_;
   Vector3 up_;
   std::vector<int> movable_;
-  std::vector<std::vector<int>> touching_;  // per part: the parts it touches assembled
-  std::vector<Vector3> directions_;         // removal directions
-  std::vector<BlockingGraph> graphs_;       // per direction, to infinity
-  std::unordered_map<std::string, Check> memo_;            // by state
+  std::vector<std::vector<int>> touching_;       // per part: the parts it touches assembled
+  std::vector<Vector3> directions_;              // removal directions
+  std::vector<BlockingGraph> graphs_;            // per direction, to infinity
+  std::unordered_map<std::string, Check> memo_;  // by state
   std::unordered_map<std::string, Check> component_memo_;  // by component of a state
   // The filter: the assembled configuration's equilibrium LP per contact
   // component, kept between states (mechanics/subset_equilibrium.h), and
@@ -507,8 +504,9 @@ bool Search::CheckAssembled() {
   out_.message = "the assembly itself does not stand" + moving +
                  std::string(options_.require_strong ? " with strong stability proved" : "") +
                  ": no build order ends in a standing state" +
-                 (anything_fixed ? "" : "; nothing is fixed: fix the parts that rest on the ground "
-                                        "(--fixed PART,...)");
+                 (anything_fixed ? ""
+                                 : "; nothing is fixed: fix the parts that rest on the ground "
+                                   "(--fixed PART,...)");
   return false;
 }
 
@@ -594,9 +592,9 @@ std::vector<int> Search::PropsFor(const std::vector<bool>& placed,
   std::vector<std::pair<double, int>> ranked;  // (−score, index)
   double fastest = 0;
   for (int k : part_props_[part]) {
-    const Vector3 v = motion ? Vector3(motion->linear + motion->angular.cross(props_[k].point -
-                                                                             p.centroid))
-                             : Vector3(-up_);
+    const Vector3 v =
+        motion ? Vector3(motion->linear + motion->angular.cross(props_[k].point - p.centroid))
+               : Vector3(-up_);
     fastest = std::max(fastest, v.norm());
     ranked.emplace_back(v.dot(props_[k].normal), k);  // the opposition, against the push
   }

@@ -450,9 +450,10 @@ TEST(Sequence, DeterministicWhateverThePartsOrder) {
 
 TEST(Sequence, BadInputExitsTwo) {
   const std::string file = ArchFile(3);
-  for (const std::string& bad : std::vector<std::string>{
-           "--temporary crane", "--direction 0,0", "--direction 1,0,1", "--max-temporary -1",
-        "--beam 0", "--directions sideways", "--threads -1", "--html /", "--emit-plans " + file}) {
+  for (const std::string& bad :
+       std::vector<std::string>{"--temporary crane", "--direction 0,0", "--direction 1,0,1",
+                                "--max-temporary -1", "--beam 0", "--directions sideways",
+                                "--threads -1", "--html /", "--emit-plans " + file}) {
     const CliRun r = Cairn("sequence " + file + " " + bad);
     EXPECT_EQ(r.exit_code, 2) << bad << ": " << r.err;
     EXPECT_FALSE(r.err.empty()) << bad;
@@ -464,11 +465,13 @@ TEST(Sequence, BadInputExitsTwo) {
 TEST(Sequence, AnAssemblyThatFallsHasNoOrderAndSaysWhy) {
   const json tips = Sequence(ExamplePath("overhang_tips.json"), 1);
   EXPECT_EQ(tips["complete"], false);
-  EXPECT_NE(tips["message"].get<std::string>().find("the assembly itself does not stand (block moves)"),
-            std::string::npos)
+  EXPECT_NE(
+      tips["message"].get<std::string>().find("the assembly itself does not stand (block moves)"),
+      std::string::npos)
       << tips["message"];
   EXPECT_EQ(tips["message"].get<std::string>().find("nothing is fixed"), std::string::npos);
-  EXPECT_EQ(tips["temporary"]["lower_bound_reason"], "no order exists: the assembly itself does not stand");
+  EXPECT_EQ(tips["temporary"]["lower_bound_reason"],
+            "no order exists: the assembly itself does not stand");
   json loose = Arch(3);
   for (json& p : loose["parts"]) p["fixed"] = false;
   const json none = Sequence(TempFile("nothing_fixed.json", loose.dump()), 1);

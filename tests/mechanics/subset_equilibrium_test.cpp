@@ -103,11 +103,10 @@ TEST(SubsetEquilibrium, AStackWithoutItsBaseAndWithAHold) {
 // differ where finding the contacts again gives a pair of parts other
 // contact points than the assembled configuration did (a corner shared with
 // a part that is absent): at most 2 of the 200 states, and the confirmation
-// of a sequence checks every state with the contacts found again. A warm "optimal" that does not balance, or an
-// "infeasible" without a Farkas certificate, is solved again from the slack
-// basis (before, a beam search met a warm optimum with forces of −10¹⁴ that
-// balanced to 3 %); an LP with no verdict says so (solved false) and is
-// never counted as an answer.
+// of a sequence checks every state with the contacts found again. A warm "optimal" that does not
+// balance, or an "infeasible" without a Farkas certificate, is solved again from the slack basis
+// (before, a beam search met a warm optimum with forces of −10¹⁴ that balanced to 3 %); an LP with
+// no verdict says so (solved false) and is never counted as an answer.
 TEST(SubsetEquilibrium, AWalkThroughTheCrossVaultsStatesAsFreshLps) {
   if (SharedDir().empty()) GTEST_SKIP() << "../shared (the COMPAS datasets) is absent";
   const std::string path = SharedDir() + "/datasets/compas_assembly/crossvault_assembly.json";

@@ -92,8 +92,8 @@ TEST(Simulate, AssembledPartsAreCheckedWhenLetGoAndHoldsKeepThemInPlace) {
   // Assembling O then K (the file lists K's step first): O tips when the
   // gripper lets go of it on P.
   const SimulationResult bare = SimulatePlan(
-      a, MakePlan(a, {Straight("K", {0, 1}, 2), Straight("O", {0, 1}, 2)}, 1.0,
-                  PlanMode::kAssemble));
+      a,
+      MakePlan(a, {Straight("K", {0, 1}, 2), Straight("O", {0, 1}, 2)}, 1.0, PlanMode::kAssemble));
   ASSERT_EQ(bare.verdict, MotionVerdict::kUnstable);
   EXPECT_EQ(bare.failure->step, 1);
   EXPECT_TRUE(bare.failure->released) << testing::Brief(*bare.failure);
@@ -103,17 +103,19 @@ TEST(Simulate, AssembledPartsAreCheckedWhenLetGoAndHoldsKeepThemInPlace) {
   EXPECT_LT(bare.failure->motions[0].angular.z(), 0.0) << "O tips clockwise";
   // O kept in its gripper when it arrives, and held while K comes in; K
   // let go with O let go too: every state stands.
-  const SimulationResult held = SimulatePlan(
-      a, MakePlan(a, {Held(Straight("K", {0, 1}, 2), {"O"}, std::vector<std::string>{}),
-                      Held(Straight("O", {0, 1}, 2), {}, std::vector<std::string>{"O"})},
-                  1.0, PlanMode::kAssemble));
+  const SimulationResult held =
+      SimulatePlan(a, MakePlan(a,
+                               {Held(Straight("K", {0, 1}, 2), {"O"}, std::vector<std::string>{}),
+                                Held(Straight("O", {0, 1}, 2), {}, std::vector<std::string>{"O"})},
+                               1.0, PlanMode::kAssemble));
   EXPECT_EQ(held.verdict, MotionVerdict::kStable)
       << (held.failure ? testing::Brief(*held.failure) : std::string());
   // The hold let go before K arrives: O tips as K's step starts.
-  const SimulationResult early = SimulatePlan(
-      a, MakePlan(a, {Straight("K", {0, 1}, 2),
-                      Held(Straight("O", {0, 1}, 2), {}, std::vector<std::string>{"O"})},
-                  1.0, PlanMode::kAssemble));
+  const SimulationResult early =
+      SimulatePlan(a, MakePlan(a,
+                               {Straight("K", {0, 1}, 2),
+                                Held(Straight("O", {0, 1}, 2), {}, std::vector<std::string>{"O"})},
+                               1.0, PlanMode::kAssemble));
   ASSERT_EQ(early.verdict, MotionVerdict::kUnstable);
   EXPECT_EQ(early.failure->step, 0);
   EXPECT_FALSE(early.failure->released);
@@ -130,8 +132,8 @@ TEST(Simulate, AssembledPartsAreCheckedWhenLetGoAndHoldsKeepThemInPlace) {
       SimulatePlan(a, MakePlan(a, {k_propped, o_propped}, 1.0, PlanMode::kAssemble));
   EXPECT_EQ(propped.verdict, MotionVerdict::kStable)
       << (propped.failure ? testing::Brief(*propped.failure) : std::string());
-  const SimulationResult unpropped = SimulatePlan(
-      a, MakePlan(a, {Straight("K", {0, 1}, 2), o_propped}, 1.0, PlanMode::kAssemble));
+  const SimulationResult unpropped =
+      SimulatePlan(a, MakePlan(a, {Straight("K", {0, 1}, 2), o_propped}, 1.0, PlanMode::kAssemble));
   ASSERT_EQ(unpropped.verdict, MotionVerdict::kUnstable);
   EXPECT_EQ(unpropped.failure->step, 0);
   EXPECT_EQ(unpropped.failure->parts, std::vector<int>{O});

@@ -74,11 +74,11 @@ struct PlanStep {
   std::vector<int> grip;      ///< part indices (tools included); never empty
   std::vector<Vector3> path;  ///< piecewise-linear displacements, path[0] = 0, ≥ 2 points
   SupportMode support = SupportMode::kFull;
-  std::vector<int> hold;          ///< held while the step's parts move (part indices)
-  std::vector<int> hold_at_rest;  ///< held while they rest in place, let go
+  std::vector<int> hold;                  ///< held while the step's parts move (part indices)
+  std::vector<int> hold_at_rest;          ///< held while they rest in place, let go
   std::vector<FixtureDef> props;          ///< props while the step's parts move (validated)
   std::vector<FixtureDef> props_at_rest;  ///< props while they rest in place
-  double Length() const;  ///< total path length
+  double Length() const;                  ///< total path length
   /// The displacement after travelling arc length s along the path (clamped).
   Vector3 At(double s) const;
 };

@@ -66,8 +66,8 @@ const char* to_string(MotionVerdict v);
 /// Where and why a step failed.
 struct MotionFailure {
   MotionVerdict verdict = MotionVerdict::kStable;
-  int step = -1;           ///< index into Plan::steps (file order)
-  int tick = -1;           ///< tick within the step (0 = its start)
+  int step = -1;  ///< index into Plan::steps (file order)
+  int tick = -1;  ///< tick within the step (0 = its start)
   /// Assembling: at the step's end, when its parts were let go where they
   /// arrived (`tick` is the last).
   bool released = false;

@@ -142,7 +142,7 @@ struct SequenceStep {
 
 /// What FindBuildSequence found.
 struct BuildSequence {
-  bool complete = false;  ///< every movable part placed, every state standing
+  bool complete = false;             ///< every movable part placed, every state standing
   std::vector<TemporaryKind> kinds;  ///< the kinds of support the search could use
   std::vector<SequenceStep> steps;
   int max_in_place = 0;  ///< the most supports in place at once
