@@ -129,11 +129,20 @@ CommandResult SequenceDocument(const Model& model, const SequenceQuery& query,
   out.exit = sequence.complete ? kExitStable : kExitUnstable;
   out.text = SequenceToText(model.assembly, sequence, report);
   if (query.page) out.page = SequencePage(model.assembly, sequence, out.document, report);
-  if (query.emit_plans && !sequence.steps.empty())
+  if (query.emit_plans && !sequence.complete) {
+    // A plan lists the parts it moves; the others are there from the start.
+    const std::string why =
+        "--emit-plans: no plan written: the order is not complete (a plan of part of it would "
+        "have the parts not placed there from the start)";
+    out.text += "  " + why + "\n";
+    std::string message = out.document.value("message", std::string());
+    out.document["message"] = message.empty() ? why : message + "; " + why;
+  } else if (query.emit_plans) {
     out.plans = {
         {"sequence.assemble.plan.json",
          PlanDefToJson(SequencePlan(model.assembly, sequence), model.assembly.dimension()).dump(2) +
              "\n"}};
+  }
   return out;
 }
 

@@ -284,10 +284,14 @@ TEST(Sequence, ArchOfThreeVoussoirsNeedsOneHoldAndTheBoundProvesIt) {
   EmittedPlanSimulates(file, "--directions axes", true);
   EmittedPlanSimulates(file, "", true);
 
-  // No support allowed: no order.
-  const json none = Sequence(file + " --directions axes --max-temporary 0", 1);
+  // No support allowed: no order, and no plan of part of one.
+  const std::string dir = TempDir("no_plan");
+  std::filesystem::remove_all(dir);
+  const json none = Sequence(file + " --directions axes --max-temporary 0 --emit-plans " + dir, 1);
   EXPECT_EQ(none["complete"], false);
   EXPECT_NE(none["message"].get<std::string>().find("at most 0"), std::string::npos);
+  EXPECT_NE(none["message"].get<std::string>().find("no plan written"), std::string::npos);
+  EXPECT_FALSE(std::filesystem::exists(dir + "/sequence.assemble.plan.json"));
 }
 
 // Props (`--temporary prop`), the centering of the 3-voussoir arch derived by
