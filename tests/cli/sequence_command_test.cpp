@@ -363,7 +363,7 @@ TEST(Sequence, ArchOfThreeVoussoirsNeedsTwoPropsAsDerivedByHand) {
 // carry one part (a prop under the last voussoir of a half arch does not
 // keep the ones before it up).
 TEST(Sequence, HoldsAndPropsTogetherNeedNoMoreThanHolds) {
-  for (const std::string file : {ArchFile(3), ArchFile(7)})
+  for (const std::string& file : {ArchFile(3), ArchFile(7)})
     for (const std::string directions : {"up", "axes"}) {
       SCOPED_TRACE(file + " " + directions);
       const json hold = Sequence(file + " --directions " + directions);
