@@ -19,24 +19,34 @@
 /// (Assembly::WithFixtures). A support goes in at the step whose state
 /// needs it and comes out as soon as the state stands without it.
 ///
-/// The search, a beam over states (placed set, held set):
+/// The search, a beam over states (placed set, supports in place):
 ///   1. Candidates: the unplaced parts that touch a placed or fixed part and
 ///      whose arrival is free (no placed or fixed part blocks their removal
 ///      to infinity along the direction: planning/blocking.h).
-///   2. Each candidate p placed: the state stands as it is, or with one
-///      support more on p or on a part the check says moves (props first,
-///      then a hold: the first that makes it stand); then every support the
-///      new state does without comes out (the oldest first).
+///   2. Each candidate p placed: the state stands as it is; only when that
+///      gives fewer than `beam_width` children, with one support more of
+///      each kind allowed (a child each), on p or on a part the check says
+///      moves (a prop at the points most opposing its motion; a hold); then
+///      every support the new state does without comes out (the oldest
+///      first). With both kinds, the search with holds alone runs too and
+///      the better order is kept.
 ///   3. The children ranked by (most supports in place so far, supports now,
 ///      placements so far, the placed parts' height against gravity,
-///      names), the best `beam_width` kept.
-/// Every state the returned order passes through is checked by
-/// AnalyzeConfiguration with the caller's rule (the verdict of `cairn check`).
+///      names, supports by name), the best `beam_width` kept.
+/// A state is checked component by component (its free parts joined where
+/// they touch), each component's check cached: the equilibrium LP
+/// (mechanics/subset_equilibrium.h), then, where it passes a state that the
+/// confirmation once rejected or has props, the check's verdict. Every state
+/// the returned order passes through is confirmed by AnalyzeConfiguration
+/// with the caller's rule (the verdict of `cairn check`).
 ///
 /// The lower bound: every order passes through a state of one part (its
 /// first) and one of all parts but one (before its last). When no single
-/// part stands on the fixed parts alone, and no assembly missing one part
-/// stands, every order needs at least one support in place at some step.
+/// part stands on the fixed parts alone, or no assembly missing one part
+/// stands, every order needs at least one support in place at some step. On
+/// models of at most 10 movable parts, every order is tried. Bounds are
+/// proved with holds on the equilibrium LP; they bound props too (a hold on a
+/// part does all that props on it can).
 ///
 /// Deterministic: the same document for the parts given in any order, up to
 /// ties broken by name.
