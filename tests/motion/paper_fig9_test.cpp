@@ -199,14 +199,15 @@ TEST_F(PaperFig9, SlidingCAlongPlusXWithoutThePadTipsTheAssembly) {
 TEST_F(PaperFig9, AssemblingInTheReverseOrdersGivesTheSameVerdicts) {
   // Frictionless, assembly is disassembly run backwards. B, C, A (the reverse
   // of A-C-B) fails once C rests on B without A: C is held until it is in
-  // place and let go when the gripper moves on to A, at which tick B topples.
-  // B, A, C, each lowered from above, is stable throughout.
+  // place, and B topples when the gripper lets go of C there (the check at
+  // the end of C's step). B, A, C, each lowered from above, is stable
+  // throughout.
   Plan acb = ReadPlan(ExamplePath("plans/paper_fig9_acb.plan.json"), a_);
   acb.mode = PlanMode::kAssemble;
   const SimulationResult bad = SimulatePlan(a_, acb);
   ASSERT_EQ(bad.verdict, MotionVerdict::kUnstable) << Why(bad);
-  EXPECT_EQ(bad.failure->step, 0) << "A's step (file order), the third placed";
-  EXPECT_EQ(bad.failure->tick, 0) << "as soon as C is let go";
+  EXPECT_EQ(bad.failure->step, 1) << "C's step (file order), the second placed";
+  EXPECT_TRUE(bad.failure->released) << "as soon as C is let go";
   EXPECT_TRUE(Contains(bad.failure->parts, B_)) << Why(bad);
 
   PlanDef def;
