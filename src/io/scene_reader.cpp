@@ -103,7 +103,7 @@ class SceneParser : private io_internal::JsonChecker {
     if (doc.contains("fixtures")) {
       const json& fixtures = Array(doc["fixtures"], "fixtures");
       for (size_t i = 0; i < fixtures.size(); ++i) {
-        def.fixtures.push_back(ParseFixture(fixtures[i], Index("fixtures", i)));
+        def.fixtures.push_back(Fixture(fixtures[i], Index("fixtures", i), dim_));
       }
     }
     if (doc.contains("interfaces")) {
@@ -250,10 +250,6 @@ class SceneParser : private io_internal::JsonChecker {
     for (size_t i = 0; i < points.size(); ++i)
       in.points.push_back(VecN(points[i], Index(points_path, i), 3));
     return in;
-  }
-
-  FixtureDef ParseFixture(const json& j, const std::string& path) const {
-    return Fixture(j, path, dim_);
   }
 
   // A 3-D part's shape as vertices and faces: a `box` with 3-D corners, a

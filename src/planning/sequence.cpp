@@ -156,8 +156,7 @@ class Search {
   std::optional<std::vector<Support>> OneSupportMore(const State& s,
                                                      const std::vector<bool>& placed, int part,
                                                      const Check& as_is, TemporaryKind kind);
-  std::vector<int> PropsFor(const std::vector<bool>& placed, const std::vector<Support>& supports,
-                            int part);
+  std::vector<int> PropsFor(const StabilityResult& failing, int part) const;
   std::optional<Vector3> Arrival(const std::vector<bool>& placed, int part) const;
   const Check& Stands(const std::vector<bool>& placed, const std::vector<Support>& supports);
   const Check& StandsHeld(const std::vector<bool>& placed, const std::vector<int>& held);
@@ -573,21 +572,16 @@ std::optional<Vector3> Search::Arrival(const std::vector<bool>& placed, int part
   return std::nullopt;
 }
 
-// The props of `part` worth trying in the state (`placed`, `supports`) that
-// does not stand: its prop points that oppose its motion there (the check's
-// explanation: v + ω × (p − c) along the face's outward normal), the most
-// opposing first (near-ties: centres first, then the points' order), at
-// most kMaxPropsTried. Without a motion of the part, the points pushing
-// most nearly up first (a prop from below).
-std::vector<int> Search::PropsFor(const std::vector<bool>& placed,
-                                  const std::vector<Support>& supports, int part) {
-  if (part_props_.empty() || part_props_[part].empty()) return {};
-  const StabilityResult r =
-      AnalyzeConfiguration(SupportAssembly(HeldOf(supports), PropsOf(supports)), ConfigOf(placed),
-                           options_.stability, nullptr, &workspace_);
+// The props of `part` worth trying in the state that does not stand, as its
+// check `failing` explains it: the part's prop points that oppose its motion
+// there (v + ω × (p − c) along the face's outward normal), the most opposing
+// first (near-ties: centres first, then the points' order), at most
+// kMaxPropsTried. Without a motion of the part, the points pushing most
+// nearly up first (a prop from below).
+std::vector<int> Search::PropsFor(const StabilityResult& failing, int part) const {
   const Part& p = assembly_.part(part);
   const PartMotion* motion = nullptr;
-  for (const PartMotion& m : r.parts)
+  for (const PartMotion& m : failing.parts)
     if (m.part == part && m.moving) motion = &m;
   std::vector<std::pair<double, int>> ranked;  // (−score, index)
   double fastest = 0;
@@ -627,15 +621,20 @@ std::optional<std::vector<Support>> Search::OneSupportMore(const State& s,
       tries.push_back(step->part);
   }
   const std::vector<int> held = HeldOf(s.supports);
+  std::optional<StabilityResult> failing;  // the state's check, how its parts move: once
   for (int q : tries) {
     if (std::binary_search(held.begin(), held.end(), q)) continue;
     std::vector<Support> more = s.supports;
     more.push_back({});
-    if (kind == TemporaryKind::kProp)
-      for (int k : PropsFor(placed, s.supports, q)) {
+    if (kind == TemporaryKind::kProp && !part_props_[q].empty()) {
+      if (!failing)
+        failing = AnalyzeConfiguration(SupportAssembly(held, PropsOf(s.supports)), ConfigOf(placed),
+                                       options_.stability, nullptr, &workspace_);
+      for (int k : PropsFor(*failing, q)) {
         more.back() = {TemporaryKind::kProp, q, k};
         if (Stands(placed, more).stands) return more;
       }
+    }
     if (kind == TemporaryKind::kHold) {
       more.back() = {TemporaryKind::kHold, q, -1};
       if (Stands(placed, more).stands) return more;
