@@ -7,6 +7,7 @@
 #include <cmath>
 #include <coin/ClpSimplex.hpp>
 #include <coin/CoinPackedMatrix.hpp>
+#include <unordered_map>
 #include <utility>
 
 #include "cairn/core/check.h"
@@ -34,11 +35,20 @@ constexpr double kRayMotion = 1e-9;
 // contacts' by far more than rounding.
 constexpr double kFarkasColumnSlack = 1e-9;
 constexpr double kFarkasPower = 1e-7;
+// Unchecked (set_checked(false)), the column slack a kept ray is read with:
+// the rays of a simplex that perturbed its costs (Clp does when it stalls)
+// miss a certificate by the perturbation's size (1e-6 of the costs), and an
+// unchecked warm claim is believed anyway.
+constexpr double kUncheckedColumnSlack = 1e-5;
 
 // An optimum is an equilibrium when every row balances, and every force is
 // ≥ 0 (0 where the contact is off), to this fraction of the largest load a
 // row balances (dimensionless; the simplex's own tolerance is 1e-10).
 constexpr double kBalanceSlack = 1e-9;
+
+// The certificates kept per hint (Solve): the mechanisms of the last few
+// states that failed when that part was placed.
+constexpr size_t kCertificatesPerHint = 4;
 
 }  // namespace
 
@@ -60,6 +70,18 @@ struct SubsetEquilibrium::Impl {
 
   void SetRows(const std::vector<bool>& keep_body);
   void SetColumns(const std::vector<bool>& on);
+  // The statuses of `b` (Basis), the rows it did not hold with their slacks
+  // basic, the columns it did not hold at their lower bound.
+  void StartFrom(const Basis& b);
+  // Whether `y` (over the component's rows, 0 on the others) proves that the
+  // bodies `loose` cannot be balanced by the generators `on` (Farkas, read
+  // with the slacks above); `y` is turned to the sign that does.
+  bool Proves(std::vector<double>& y, const std::vector<bool>& loose, const std::vector<bool>& on,
+              double column_slack) const;
+  // The certificates of recent solves without an equilibrium, by the hint
+  // they were solved with, the newest first.
+  std::unordered_map<int, std::vector<std::vector<double>>> certificates;
+  std::vector<int> Moved(const std::vector<double>& y, const std::vector<bool>& loose) const;
   // The ray of `lp` (over its rows) over the component's rows (0 on the others).
   std::vector<double> FullRay(const double* ray) const;
 };
@@ -191,6 +213,41 @@ std::vector<double> SubsetEquilibrium::Impl::FullRay(const double* ray) const {
   return full;
 }
 
+bool SubsetEquilibrium::Impl::Proves(std::vector<double>& y, const std::vector<bool>& loose,
+                                     const std::vector<bool>& on, double column_slack) const {
+  double y_norm = 0, b_norm = 0, power = 0;
+  for (int r = 0; r < e.nrows; ++r) {
+    if (!loose[r / 6]) {
+      y[r] = 0;
+      continue;
+    }
+    y_norm = std::max(y_norm, std::abs(y[r]));
+    b_norm = std::max(b_norm, std::abs(e.rhs[r]));
+    power += y[r] * e.rhs[r];
+  }
+  if (!(y_norm > 0)) return false;
+  // The ray may point either way: the certificate is y or −y.
+  if (power < 0) {
+    for (double& v : y) v = -v;
+    power = -power;
+  }
+  if (!(power > kFarkasPower * y_norm * b_norm)) return false;
+  const CoinBigIndex* start = columns.getVectorStarts();
+  const int* length = columns.getVectorLengths();
+  const int* index = columns.getIndices();
+  const double* value = columns.getElements();
+  for (size_t g = 0; g < on.size(); ++g) {
+    if (!on[g]) continue;
+    double dot = 0, a_norm = 0;
+    for (CoinBigIndex k = start[g]; k < start[g] + length[g]; ++k) {
+      dot += y[index[k]] * value[k];
+      a_norm = std::max(a_norm, std::abs(value[k]));
+    }
+    if (dot > column_slack * y_norm * a_norm) return false;
+  }
+  return true;
+}
+
 SubsetEquilibrium::~SubsetEquilibrium() = default;
 SubsetEquilibrium::SubsetEquilibrium(SubsetEquilibrium&&) noexcept = default;
 SubsetEquilibrium& SubsetEquilibrium::operator=(SubsetEquilibrium&&) noexcept = default;
@@ -218,47 +275,49 @@ bool SubsetEquilibrium::SolutionBalances() const {
   return true;
 }
 
-bool SubsetEquilibrium::RayProvesInfeasible() const {
-  const ClpSimplex& lp = impl_->lp;
-  std::unique_ptr<double[]> ray(lp.infeasibilityRay());
-  if (!ray) return false;
-  const int nr = lp.numberRows();
-  const double* row_lo = lp.getRowLower();
-  const double* row_hi = lp.getRowUpper();
-  double y_norm = 0, b_norm = 0, power = 0;
-  for (int r = 0; r < nr; ++r)
-    if (row_lo[r] == row_hi[r]) y_norm = std::max(y_norm, std::abs(ray[r]));
-  if (!(y_norm > 0)) return false;
-  for (int r = 0; r < nr; ++r) {
-    if (row_lo[r] != row_hi[r]) continue;  // freed: the certificate is y with these at 0
-    b_norm = std::max(b_norm, std::abs(row_lo[r]));
-    power += ray[r] * row_lo[r];
+SubsetEquilibrium::Basis SubsetEquilibrium::CurrentBasis() const {
+  const Impl& m = *impl_;
+  Basis b;
+  for (size_t j = 0; j < m.generator.size(); ++j)
+    if (m.lp.getColumnStatus(static_cast<int>(j)) == ClpSimplex::basic)
+      b.basic_generators.push_back(m.generator[j]);
+  for (size_t i = 0; i < m.row.size(); ++i) {
+    b.rows.push_back(m.row[i]);
+    if (m.lp.getRowStatus(static_cast<int>(i)) == ClpSimplex::basic)
+      b.basic_rows.push_back(m.row[i]);
   }
-  // Clp's ray may point either way: the certificate is y or −y.
-  const double sign = power > 0 ? 1.0 : -1.0;
-  if (!(sign * power > kFarkasPower * y_norm * b_norm)) return false;
-  const CoinPackedMatrix& a = *lp.matrix();
-  const double* col_hi = lp.getColUpper();
-  const int* start = a.getVectorStarts();
-  const int* length = a.getVectorLengths();
-  const int* index = a.getIndices();
-  const double* value = a.getElements();
-  for (int j = 0; j < lp.numberColumns(); ++j) {
-    if (col_hi[j] <= 0) continue;  // a contact that is off
-    double dot = 0, a_norm = 0;
-    for (int k = start[j]; k < start[j] + length[j]; ++k) {
-      const int r = index[k];
-      if (row_lo[r] != row_hi[r]) continue;
-      dot += ray[r] * value[k];
-      a_norm = std::max(a_norm, std::abs(value[k]));
-    }
-    if (sign * dot > kFarkasColumnSlack * y_norm * a_norm) return false;
-  }
-  return true;
+  return b;
+}
+
+void SubsetEquilibrium::Impl::StartFrom(const Basis& b) {
+  for (int j = 0; j < lp.numberColumns(); ++j) lp.setColumnStatus(j, ClpSimplex::atLowerBound);
+  for (int i = 0; i < lp.numberRows(); ++i) lp.setRowStatus(i, ClpSimplex::basic);
+  for (int r : b.rows)
+    if (lp_row[r] >= 0) lp.setRowStatus(lp_row[r], ClpSimplex::atLowerBound);
+  for (int r : b.basic_rows)
+    if (lp_row[r] >= 0) lp.setRowStatus(lp_row[r], ClpSimplex::basic);
+  for (int g : b.basic_generators)
+    if (lp_column[g] >= 0) lp.setColumnStatus(lp_column[g], ClpSimplex::basic);
+}
+
+// The bodies a certificate y moves (ν = −P y): those among `loose` faster
+// than kRayMotion of the fastest.
+std::vector<int> SubsetEquilibrium::Impl::Moved(const std::vector<double>& y,
+                                                const std::vector<bool>& loose) const {
+  const std::vector<Vector6> nu = MotionOfDuals(e, y.data());
+  double fastest = 0;
+  for (size_t b = 0; b < loose.size(); ++b)
+    if (loose[b]) fastest = std::max(fastest, nu[b].norm());
+  std::vector<int> out;
+  if (!(fastest > 0)) return out;
+  for (size_t b = 0; b < loose.size(); ++b)
+    if (loose[b] && nu[b].norm() > kRayMotion * fastest) out.push_back(static_cast<int>(b));
+  return out;
 }
 
 SubsetEquilibrium::Answer SubsetEquilibrium::Solve(const std::vector<bool>& present,
-                                                   const std::vector<bool>& free) {
+                                                   const std::vector<bool>& free,
+                                                   const Basis* start, int hint) {
   Impl& m = *impl_;
   const int nb = num_bodies();
   CAIRN_CHECK(static_cast<int>(present.size()) == nb && static_cast<int>(free.size()) == nb);
@@ -273,27 +332,56 @@ SubsetEquilibrium::Answer SubsetEquilibrium::Solve(const std::vector<bool>& pres
     const auto [a, b] = m.sides[g];
     on[g] = there(a) && there(b) && (loose(a) || loose(b));
   }
+  Answer out;
+  const double column_slack = checked_ ? kFarkasColumnSlack : kUncheckedColumnSlack;
+  // 1. A certificate of an earlier solve with this hint that proves this
+  //    LP infeasible too: no simplex at all.
+  std::vector<std::vector<double>>* known = hint >= 0 ? &m.certificates[hint] : nullptr;
+  if (known)
+    for (size_t k = 0; k < known->size(); ++k) {
+      std::vector<double> y = (*known)[k];
+      if (!m.Proves(y, loose_body, on, column_slack)) continue;
+      std::rotate(known->begin(), known->begin() + static_cast<long>(k),
+                  known->begin() + static_cast<long>(k) + 1);
+      out.solved = true;
+      out.reused = true;
+      out.unbalanced = m.Moved(y, loose_body);
+      return out;
+    }
+  // 2. The simplex, from `start` or the last basis.
   m.SetColumns(on);  // columns out first: the rows then added carry fewer entries
   m.SetRows(loose_body);
+  if (start) m.StartFrom(*start);
   clp::SolveBySimplex(m.lp);
-  Answer out;
   out.iterations = m.lp.numberIterations();
-  // A warm start's claim of infeasibility stands when its ray is a Farkas
-  // certificate, and its optimum when its forces balance; otherwise it is
-  // checked from the slack basis. After bounds that change from 0 to ∞ and
-  // rows freed, Clp's dual simplex from the old basis has said "infeasible"
-  // of a feasible LP (Fig. 4, all parts with the top one held, after the
-  // other subsets), and "optimal" with forces of −10¹⁴ that balance to 3 %
-  // (the cross vault, state 46 of a beam-1 search).
-  const clp::Status warm = clp::StatusOf(m.lp);
-  if ((warm == clp::Status::kPrimalInfeasible && !RayProvesInfeasible()) ||
-      (warm == clp::Status::kOptimal && !SolutionBalances())) {
+
+  // 3. A warm start's claim of infeasibility stands when its ray is a
+  //    Farkas certificate (or, unchecked, as it is), and its optimum when
+  //    its forces balance; otherwise it is checked from the slack basis.
+  //    After bounds that change from 0 to ∞ and rows freed, Clp's dual
+  //    simplex from the old basis has said "infeasible" of a feasible LP
+  //    (Fig. 4, all parts with the top one held, after the other subsets),
+  //    and "optimal" with forces of −10¹⁴ that balance to 3 % (the cross
+  //    vault, state 46 of a beam-1 search).
+  std::vector<double> y;
+  bool proved = false;
+  const auto read_ray = [&] {
+    std::unique_ptr<double[]> ray(m.lp.infeasibilityRay());
+    y = ray ? m.FullRay(ray.get()) : std::vector<double>();
+    proved = !y.empty() && m.Proves(y, loose_body, on, column_slack);
+  };
+  clp::Status status = clp::StatusOf(m.lp);
+  if (status == clp::Status::kPrimalInfeasible) read_ray();
+  if ((status == clp::Status::kPrimalInfeasible && !proved && checked_) ||
+      (status == clp::Status::kOptimal && !SolutionBalances())) {
     m.lp.allSlackBasis(true);
     clp::SolveBySimplex(m.lp);
     out.iterations += m.lp.numberIterations();
     out.cold = true;
+    status = clp::StatusOf(m.lp);
+    if (status == clp::Status::kPrimalInfeasible) read_ray();
   }
-  switch (clp::StatusOf(m.lp)) {
+  switch (status) {
     case clp::Status::kOptimal:
       if (!SolutionBalances()) {  // not even from the slack basis: no verdict
         m.lp.allSlackBasis(true);
@@ -308,16 +396,14 @@ SubsetEquilibrium::Answer SubsetEquilibrium::Solve(const std::vector<bool>& pres
       m.lp.allSlackBasis(true);  // start afresh next time
       return out;
   }
-  // The ray y (row duals' direction): the motion ν = −P y per body.
-  std::unique_ptr<double[]> ray(m.lp.infeasibilityRay());
-  if (!ray) return out;
-  const std::vector<Vector6> nu = MotionOfDuals(m.e, m.FullRay(ray.get()).data());
-  double fastest = 0;
-  for (int b = 0; b < nb; ++b)
-    if (present[b] && free[b]) fastest = std::max(fastest, nu[b].norm());
-  if (!(fastest > 0)) return out;
-  for (int b = 0; b < nb; ++b)
-    if (present[b] && free[b] && nu[b].norm() > kRayMotion * fastest) out.unbalanced.push_back(b);
+  // 4. The ray y (row duals' direction): the motion ν = −P y per body. A
+  //    proof is kept for the next solves with this hint.
+  if (y.empty()) return out;
+  out.unbalanced = m.Moved(y, loose_body);
+  if (known && proved) {
+    known->insert(known->begin(), std::move(y));
+    if (known->size() > kCertificatesPerHint) known->pop_back();
+  }
   return out;
 }
 

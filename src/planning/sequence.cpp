@@ -49,6 +49,11 @@ constexpr double kConfirmAfterStop = 5.0;
 constexpr int kExhaustiveParts = 10;
 constexpr int kExhaustiveHolds = 3;
 
+// The most LP bases kept (ComponentStands; a basis is two ints a row, 9 KB
+// for the whole cross vault, 18 KB for the Armadillo): beyond, the cache
+// starts afresh (the search needs only those of the beam's states).
+constexpr size_t kMaxBases = 10000;
+
 // The most parts the check says move that are tried as the hold that makes a
 // new state stand (after the part just placed).
 constexpr int kMaxMovingTried = 3;
@@ -165,8 +170,16 @@ class Search {
   const Check& ComponentStands(const std::vector<bool>& placed,
                                const std::vector<Support>& supports,
                                const std::vector<int>& component);
-  Check Evaluate(const std::vector<bool>& placed, const std::vector<Support>& supports);
-  Check FilterByLp(const std::vector<bool>& placed, const std::vector<int>& held, bool& unsure);
+  std::pair<std::vector<Support>, std::string> ComponentKey(
+      const std::vector<Support>& supports, const std::vector<int>& component) const;
+  std::optional<SubsetEquilibrium::Basis> StartingBasis(const std::vector<Support>& supports,
+                                                        const std::vector<int>& component) const;
+  Check Evaluate(const std::vector<bool>& placed, const std::vector<Support>& supports,
+                 const SubsetEquilibrium::Basis* start = nullptr,
+                 std::optional<SubsetEquilibrium::Basis>* end = nullptr);
+  Check FilterByLp(const std::vector<bool>& placed, const std::vector<int>& held, bool& unsure,
+                   const SubsetEquilibrium::Basis* start = nullptr,
+                   std::optional<SubsetEquilibrium::Basis>* end = nullptr);
   Configuration ConfigOf(const std::vector<bool>& placed) const;
   const Assembly& SupportAssembly(const std::vector<int>& held, const std::vector<int>& props);
   TemporarySupport Public(const Support& t) const;
@@ -185,6 +198,20 @@ class Search {
   std::vector<BlockingGraph> graphs_;            // per direction, to infinity
   std::unordered_map<std::string, Check> memo_;  // by state
   std::unordered_map<std::string, Check> component_memo_;  // by component of a state
+  // The LP's basis of each component that stands, by its key (ComponentKey):
+  // the start of the LPs of the components it joins when a part is placed.
+  std::unordered_map<std::string, SubsetEquilibrium::Basis> bases_;
+  // The part Place is placing and the supports of the state it is placed
+  // in (null: not placing): where the LPs start (StartingBasis).
+  // `hint`: what the LPs' proofs of infeasibility are kept by
+  // (SubsetEquilibrium::Solve): the part placed, or the support taken out
+  // (a state fails again and again by the same mechanism: the part that
+  // cannot yet be placed, the cantilever a hold still carries).
+  struct From {
+    int part = -1;
+    const std::vector<Support>* supports = nullptr;
+    int hint = -1;
+  } from_;
   // The filter: the assembled configuration's equilibrium LP per contact
   // component, kept between states (mechanics/subset_equilibrium.h), and
   // where each movable part is in it.
@@ -207,6 +234,11 @@ class Search {
   bool full_ = false;
   bool stop_seen_ = false;     // ConfirmationOutOfTime has seen the stop
   int unconfirmed_from_ = -1;  // the first step the confirmation had no time for
+  // True while the lower bound is computed: the LPs' claims of infeasibility
+  // are proofs (SubsetEquilibrium::set_checked).
+  bool proving_ = false;
+  // How states are decided, in the caches' keys.
+  const char* Mode() const { return full_ ? "|full" : proving_ ? "|proof" : "|lp"; }
 };
 
 Search::Search(const Assembly& assembly, const SequenceOptions& options)
@@ -291,7 +323,8 @@ Configuration Search::ConfigOf(const std::vector<bool>& placed) const {
 // a large component costs ten times the LP), by the warm LPs. The parts of
 // the components without one; `unsure` when an LP gave no verdict.
 Check Search::FilterByLp(const std::vector<bool>& placed, const std::vector<int>& held,
-                         bool& unsure) {
+                         bool& unsure, const SubsetEquilibrium::Basis* start,
+                         std::optional<SubsetEquilibrium::Basis>* end) {
   Check c;
   unsure = false;
   for (size_t k = 0; k < subsets_.size(); ++k) {
@@ -304,7 +337,14 @@ Check Search::FilterByLp(const std::vector<bool>& placed, const std::vector<int>
       any_free = any_free || free[b];
     }
     if (!any_free) continue;
-    const SubsetEquilibrium::Answer answer = subsets_[k].Solve(present, free);
+    // `start` is a basis of the component's subset (the only one with free parts).
+    // While searching, the part being placed is the hint: the mechanism it
+    // failed with in a state before is tried first (no simplex when it
+    // still moves). A proof checks every warm claim of infeasibility.
+    subsets_[k].set_checked(proving_);
+    const SubsetEquilibrium::Answer answer =
+        subsets_[k].Solve(present, free, start, proving_ ? -1 : from_.hint);
+    if (end && answer.solved && answer.exists) *end = subsets_[k].CurrentBasis();
     if (subset_solves_[k]++ > 0) ++out_.warm_starts;  // from the last solve's basis
     if (!answer.solved) unsure = true;                // no LP verdict: the check decides this state
     if (!answer.solved || answer.exists) continue;
@@ -331,7 +371,7 @@ const Check& Search::Stands(const std::vector<bool>& placed, const std::vector<S
   for (size_t p = 0; p < placed.size(); ++p)
     if (placed[p]) key[p] = '1';
   key += SupportKey(supports);
-  key += full_ ? "|full" : "|lp";
+  key += Mode();
   const auto it = memo_.find(key);
   if (it != memo_.end()) {
     ++out_.cache_hits;
@@ -389,12 +429,12 @@ std::vector<std::vector<int>> Search::FreeComponents(const std::vector<bool>& pl
   return out;
 }
 
-// Whether the free parts `component` of the state stand (cached by the
-// component, the held parts it touches and the props under it).
-const Check& Search::ComponentStands(const std::vector<bool>& placed,
-                                     const std::vector<Support>& supports,
-                                     const std::vector<int>& component) {
-  std::vector<Support> own;  // the holds it leans on, the props under it
+// The supports of a state a component of its free parts leans on (the
+// holds it touches, the props under it), and the component's key (its
+// parts and those supports) in the caches.
+std::pair<std::vector<Support>, std::string> Search::ComponentKey(
+    const std::vector<Support>& supports, const std::vector<int>& component) const {
+  std::vector<Support> own;
   for (const Support& t : supports) {
     const bool on_it = std::binary_search(component.begin(), component.end(), t.part);
     bool touches = false;
@@ -406,16 +446,64 @@ const Check& Search::ComponentStands(const std::vector<bool>& placed,
   std::string key;
   for (int p : component) key += std::to_string(p) + ',';
   key += SupportKey(own);
-  key += full_ ? "|full" : "|lp";
-  const auto it = component_memo_.find(key);
+  return {std::move(own), std::move(key)};
+}
+
+// Where the LP of `component` starts while Place places a part: the bases
+// of the state it comes from (from_) that the component joins, those
+// components having the parts of `component` less the part placed, plus the
+// parts a new hold holds, less those a hold let go (a state of a part and
+// a support fewer). The simplex then restores the placed part's balance and
+// the changed holds' neighbours', a few pivots where the last LP's basis
+// (null: when not placing, or no basis is known) takes hundreds.
+std::optional<SubsetEquilibrium::Basis> Search::StartingBasis(
+    const std::vector<Support>& supports, const std::vector<int>& component) const {
+  if (!from_.supports || touching_.empty()) return std::nullopt;
+  const std::vector<int> held = HeldOf(supports), held_before = HeldOf(*from_.supports);
+  std::vector<bool> before(assembly_.num_parts(), false);
+  for (int p : component) before[p] = true;
+  for (int h : held)
+    if (!std::binary_search(held_before.begin(), held_before.end(), h))
+      for (int q : touching_[h]) before[h] = before[h] || before[q];
+  for (int h : held_before)
+    if (!std::binary_search(held.begin(), held.end(), h)) before[h] = false;
+  before[from_.part] = false;
+  std::optional<SubsetEquilibrium::Basis> start;
+  for (const std::vector<int>& part_of : FreeComponents(before, held_before)) {
+    const auto found = bases_.find(ComponentKey(*from_.supports, part_of).second);
+    if (found == bases_.end()) continue;
+    if (!start) start.emplace();
+    const SubsetEquilibrium::Basis& b = found->second;
+    start->basic_generators.insert(start->basic_generators.end(), b.basic_generators.begin(),
+                                   b.basic_generators.end());
+    start->basic_rows.insert(start->basic_rows.end(), b.basic_rows.begin(), b.basic_rows.end());
+    start->rows.insert(start->rows.end(), b.rows.begin(), b.rows.end());
+  }
+  return start;
+}
+
+// Whether the free parts `component` of the state stand (cached by the
+// component, the held parts it touches and the props under it).
+const Check& Search::ComponentStands(const std::vector<bool>& placed,
+                                     const std::vector<Support>& supports,
+                                     const std::vector<int>& component) {
+  auto [own, key] = ComponentKey(supports, component);
+  const std::string memo_key = key + Mode();
+  const auto it = component_memo_.find(memo_key);
   if (it != component_memo_.end()) return it->second;
   std::vector<bool> only(placed.size(), false);
   for (int p : component) only[p] = true;
   for (const Support& t : own)
     if (t.kind == TemporaryKind::kHold) only[t.part] = placed[t.part];
-  Check c = Evaluate(only, own);
+  const std::optional<SubsetEquilibrium::Basis> start = StartingBasis(supports, component);
+  std::optional<SubsetEquilibrium::Basis> end;
+  Check c = Evaluate(only, own, start ? &*start : nullptr, &end);
+  if (end) {
+    if (bases_.size() >= kMaxBases) bases_.clear();
+    bases_[key] = std::move(*end);
+  }
   if (component_memo_.size() >= options_.max_cached_states) component_memo_.clear();
-  return component_memo_.emplace(std::move(key), std::move(c)).first->second;
+  return component_memo_.emplace(memo_key, std::move(c)).first->second;
 }
 
 // The check of the parts `placed` with `supports`, uncached. Without
@@ -423,13 +511,15 @@ const Check& Search::ComponentStands(const std::vector<bool>& placed,
 // once, or is unsure) the check's verdict. With props: the filter with the
 // propped parts held (a hold does all that props on its part can) rejects
 // what no props can save; the verdict decides the rest.
-Check Search::Evaluate(const std::vector<bool>& placed, const std::vector<Support>& supports) {
+Check Search::Evaluate(const std::vector<bool>& placed, const std::vector<Support>& supports,
+                       const SubsetEquilibrium::Basis* start,
+                       std::optional<SubsetEquilibrium::Basis>* end) {
   const std::vector<int> held = HeldOf(supports), props = PropsOf(supports);
   std::vector<int> held_or_propped = held;
   for (int k : props) held_or_propped.push_back(props_[k].part);
   std::sort(held_or_propped.begin(), held_or_propped.end());
   bool unsure = false;
-  Check c = FilterByLp(placed, held_or_propped, unsure);
+  Check c = FilterByLp(placed, held_or_propped, unsure, start, end);
   if (c.moving.empty() && !full_ && !unsure && !subsets_.empty() && props.empty()) {
     c.stands = true;  // the filter's answer; the order's states are confirmed
   } else if (c.moving.empty()) {
@@ -651,6 +741,11 @@ std::optional<State> Search::Place(const State& s, int part, const Vector3& arri
   std::vector<bool> placed = s.placed;
   placed[part] = true;
   std::optional<std::vector<Support>> supports;
+  from_ = {part, &s.supports, part};  // the LPs start from s's bases
+  struct Reset {
+    From& from;
+    ~Reset() { from = {}; }
+  } reset{from_};
   const Check as_is = Stands(placed, s.supports);  // a copy: the cache may start afresh
   if (!new_support) {
     if (as_is.stands) supports = s.supports;
@@ -662,6 +757,9 @@ std::optional<State> Search::Place(const State& s, int part, const Vector3& arri
   for (size_t i = 0; i < supports->size();) {
     std::vector<Support> without = *supports;
     without.erase(without.begin() + static_cast<long>(i));
+    const Support& out = (*supports)[i];
+    const int n = assembly_.num_parts();
+    from_.hint = out.kind == TemporaryKind::kHold ? n + out.part : 2 * n + out.prop;
     if (Stands(placed, without).stands) {
       supports = without;
     } else {
@@ -847,8 +945,10 @@ State Search::Prefix(int steps) const {
 void Search::ComputeLowerBound() {
   const bool full = full_;
   full_ = false;
+  proving_ = true;
   ArgueLowerBound();
   ExhaustiveLowerBound();
+  proving_ = false;
   full_ = full;
 }
 

@@ -15,12 +15,16 @@
 /// The LP holds only the rows and columns of the state: they are taken out
 /// and put in as the states change (its size, and so the factorization's
 /// and the pricing's work, is the state's, not the structure's). Successive
-/// states differ by a part or a hold, so each solve starts from the last
-/// one's basis (Clp's dual simplex, warm), a few pivots where a fresh LP
-/// takes hundreds (a claim of infeasibility is believed when the
-/// ray is a Farkas certificate, and checked from the slack basis when not). When no equilibrium
-/// exists, the dual simplex's infeasibility ray is a virtual motion ν = −P y (the Farkas
-/// certificate of the mechanism LP): the bodies it moves are the ones that cannot stand.
+/// states differ by a part or a hold, so each solve starts from a basis
+/// (Clp's dual simplex, warm): the caller's, a state's with a part fewer
+/// (`Basis`), or the last solve's. A claim of infeasibility is believed when
+/// its ray is a Farkas certificate, and solved again from the slack basis
+/// when not (unless unchecked: `set_checked`). When no equilibrium exists,
+/// the ray is a virtual motion ν = −P y (the Farkas certificate of the
+/// mechanism LP): the bodies it moves are the ones that cannot stand. Such
+/// a proof is kept by the solve's hint and tried first on the next solves
+/// with that hint: a mechanism the parts added since do not stop is proved
+/// again by a product, without a simplex.
 
 #include <memory>
 #include <vector>
@@ -51,11 +55,39 @@ class SubsetEquilibrium {
     /// Solved again from the slack basis: a warm claim of infeasibility
     /// whose ray is not a Farkas certificate is checked so.
     bool cold = false;
+    /// Proved by the certificate of an earlier solve (no simplex).
+    bool reused = false;
+  };
+
+  /// A basis of a solve, by the component's generators and rows (not the
+  /// LP's indices, which change as rows and columns come and go): the
+  /// generators and the rows whose slacks are basic, and the rows the LP
+  /// held (a row held and not basic has its slack at its bound).
+  struct Basis {
+    std::vector<int> basic_generators;
+    std::vector<int> basic_rows;
+    std::vector<int> rows;
   };
 
   /// `present[b]`: body b is there; `free[b]` (present): it must balance
-  /// (false: held). Both num_bodies() long.
-  Answer Solve(const std::vector<bool>& present, const std::vector<bool>& free);
+  /// (false: held). Both num_bodies() long. The solve starts from `start`
+  /// when given (the basis of a state with a part fewer: its columns keep
+  /// their status, the rows it did not hold start with their slacks basic,
+  /// the columns it did not hold at 0), else from the last solve's basis.
+  /// A proof of infeasibility found with a `hint` ≥ 0 (for instance the
+  /// part just placed) is tried first by the next solves with that hint.
+  Answer Solve(const std::vector<bool>& present, const std::vector<bool>& free,
+               const Basis* start = nullptr, int hint = -1);
+
+  /// Whether a warm claim of infeasibility must come with a Farkas
+  /// certificate (default; else it is solved again from the slack basis).
+  /// Unchecked, a warm claim with a ray is believed: a filter whose answers
+  /// are confirmed later can afford the rare false "infeasible".
+  void set_checked(bool checked) { checked_ = checked; }
+
+  /// The basis the last solve ended with (meaningful after an equilibrium
+  /// was found).
+  Basis CurrentBasis() const;
 
   int num_bodies() const;
 
@@ -63,15 +95,13 @@ class SubsetEquilibrium {
   void ForgetBasis();
 
  private:
-  // After a "primal infeasible": whether Clp's ray is a Farkas certificate
-  // of it (then no cold solve is needed to believe it).
-  bool RayProvesInfeasible() const;
   // After an "optimal": whether its forces are an equilibrium (≥ 0, off
   // where the contact is, balancing every free body's rows).
   bool SolutionBalances() const;
 
   struct Impl;
   std::unique_ptr<Impl> impl_;
+  bool checked_ = true;
 };
 
 }  // namespace cairn
