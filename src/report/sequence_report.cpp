@@ -89,6 +89,7 @@ nlohmann::json SequenceToJson(const Assembly& assembly, const BuildSequence& s, 
   doc["stats"] = {{"states_checked", s.states_checked},
                   {"cache_hits", s.cache_hits},
                   {"repairs", s.repairs},
+                  {"verdict_rejections", s.verdict_rejections},
                   {"lp_warm_starts", s.warm_starts},
                   {"seconds", seconds}};
   return doc;

@@ -168,6 +168,9 @@ struct BuildSequence {
   /// Times the confirmation rejected a state of the order the equilibrium
   /// LP had let through, and the search went on from there with the verdict.
   int repairs = 0;
+  /// States the equilibrium LP passed and the check's verdict rejected
+  /// before they entered the beam (each replaced there by the next best).
+  int verdict_rejections = 0;
   int cache_hits = 0;
   int warm_starts = 0;
 };
