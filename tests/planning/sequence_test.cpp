@@ -4,8 +4,10 @@
 #include <gtest/gtest.h>
 
 #include <string>
+#include <vector>
 
 #include "cairn/io/scene_reader.h"
+#include "cairn/stability/analyze.h"
 #include "test_paths.h"
 
 namespace cairn {
@@ -72,6 +74,49 @@ TEST(FindBuildSequence, TheCachesCapChangesNoAnswer) {
     if (capped.states_checked > full.states_checked) ++recomputed;
   }
   EXPECT_GE(recomputed, 2);  // the cap was reached
+}
+
+// A plug that just fits between two walls, on a key that comes in from the
+// side under the right wall (2-D, μ 0.5). The plug alone has a rigid
+// equilibrium (the walls could squeeze it: the LP passes it) but loaded
+// from rest nothing squeezes it and it falls (the check's verdict,
+// docs/loaded-from-rest.md). Both orders pass the LP, and the plug first
+// wins the tie (by name); the confirmation rejects its first state, and the
+// search, repaired with its beam confirmed by the verdict, builds the key
+// first: the verdict rejects the plug-first state as it enters the beam.
+TEST(FindBuildSequence, AStateTheLpPassesAndTheVerdictRejectsIsRepaired) {
+  AssemblyDef def;
+  def.friction = 0.5;
+  const auto part = [](const std::string& name, bool fixed, std::vector<Vector2> polygon) {
+    PartDef p;
+    p.name = name;
+    p.fixed = fixed;
+    p.polygon = std::move(polygon);
+    return p;
+  };
+  def.parts = {part("ground", true, {{-5, -1}, {5, -1}, {5, 0}, {-5, 0}}),
+               part("left", true, {{-2, 0}, {-1, 0}, {-1, 3}, {-2, 3}}),
+               part("right", true, {{1, 1}, {2, 1}, {2, 3}, {1, 3}}),
+               part("a_plug", false, {{-1, 1}, {1, 1}, {1, 2}, {-1, 2}}),
+               part("b_key", false, {{-1, 0}, {1.8, 0}, {1.8, 1}, {-1, 1}})};
+  const Assembly a = Assembly::Create(def, "plug and key");
+  SequenceOptions options;
+  options.directions = {Vector3(0, 1, 0), Vector3(1, 0, 0), Vector3(-1, 0, 0)};
+  const BuildSequence s = FindBuildSequence(a, options);
+  ASSERT_TRUE(s.complete) << s.message;
+  ASSERT_EQ(s.steps.size(), 2u);
+  EXPECT_EQ(a.part(s.steps[0].part).name, "b_key");
+  EXPECT_EQ(a.part(s.steps[1].part).name, "a_plug");
+  EXPECT_EQ(s.repairs, 1);
+  EXPECT_GE(s.verdict_rejections, 1);
+  EXPECT_EQ(s.max_in_place, 0);
+  EXPECT_TRUE(s.optimal());
+  for (const SequenceStep& step : s.steps) EXPECT_TRUE(step.stands);
+  // The state the LP passed: the plug alone has an equilibrium, and the
+  // check says it falls.
+  Configuration plug_alone = Configuration::Assembled(a);
+  plug_alone.present[a.FindPart("b_key")] = false;
+  EXPECT_FALSE(AnalyzeConfiguration(a, plug_alone).stable());
 }
 
 TEST(FindBuildSequence, RefusesBadOptions) {
