@@ -47,7 +47,8 @@ else:
     print(f"{head}: {'complete' if doc['complete'] else 'INCOMPLETE'}, {len(doc['order'])} placed, "
           f"{t['max_in_place']} support(s) at once ({'+'.join(t['kinds'])}), {t['placements']} in all, "
           f"lower bound {t['lower_bound']}{' (optimal)' if t['optimal'] else ''}; "
-          f"{s['states_checked']} states, {s['repairs']} repairs"
+          f"{s['states_checked']} states, {s['repairs']} repairs, "
+          f"{s.get('verdict_rejections', 0)} verdict rejections"
           + (f"; {doc['message']}" if doc["message"] else ""))
 PY
 }

@@ -131,6 +131,38 @@ TEST(SubsetEquilibrium, AKeptProofAnswersOnlyTheStatesItStillProves) {
   EXPECT_TRUE(held.exists && !held.reused);
 }
 
+// The cross vault of compas_assembly (μ 0.84): its assembled contact LPs
+// (one component) and, per body of it, the bodies it touches and whether
+// it touches a fixed part.
+struct CrossVault {
+  Assembly a;
+  std::vector<ContactLcp> lcps;
+  std::vector<std::vector<int>> touching;
+  std::vector<bool> grounded;
+};
+CrossVault ReadCrossVault() {
+  const std::string path = SharedDir() + "/datasets/compas_assembly/crossvault_assembly.json";
+  CompasOptions options;
+  options.friction = 0.84;
+  const CompasModel model = CompasToModel(ReadCompasAssembly(path), options, path);
+  CrossVault v{Assembly::Create(model.def, path), {}, {}, {}};
+  v.lcps = BuildComponentLcps(v.a, Configuration::Assembled(v.a));
+  if (v.lcps.size() != 1) return v;
+  const size_t nb = v.lcps[0].bodies.size();
+  v.touching.resize(nb);
+  v.grounded.assign(nb, false);
+  for (const JacobianRow& row : v.lcps[0].normal_rows) {
+    const int b0 = row.body[0], b1 = row.body[1];
+    if (b0 >= 0 && b1 >= 0) {
+      v.touching[b0].push_back(b1);
+      v.touching[b1].push_back(b0);
+    } else {
+      v.grounded[b0 >= 0 ? b0 : b1] = true;
+    }
+  }
+  return v;
+}
+
 // The states a build-order search meets on the cross vault (184 blocks, one
 // component): parts placed one by one where they touch what is there, a few
 // taken away again, holds put on and taken off; 200 warm solves in a row,
@@ -146,29 +178,15 @@ TEST(SubsetEquilibrium, AKeptProofAnswersOnlyTheStatesItStillProves) {
 // no verdict says so (solved false) and is never counted as an answer.
 TEST(SubsetEquilibrium, AWalkThroughTheCrossVaultsStatesAsFreshLps) {
   if (SharedDir().empty()) GTEST_SKIP() << "../shared (the COMPAS datasets) is absent";
-  const std::string path = SharedDir() + "/datasets/compas_assembly/crossvault_assembly.json";
-  CompasOptions options;
-  options.friction = 0.84;
-  const CompasModel model = CompasToModel(ReadCompasAssembly(path), options, path);
-  const Assembly a = Assembly::Create(model.def, path);
-  const std::vector<ContactLcp> lcps = BuildComponentLcps(a, Configuration::Assembled(a));
-  ASSERT_EQ(lcps.size(), 1u);
-  const ContactLcp& lcp = lcps[0];
+  const CrossVault v = ReadCrossVault();
+  ASSERT_EQ(v.lcps.size(), 1u);
+  const Assembly& a = v.a;
+  const ContactLcp& lcp = v.lcps[0];
+  const std::vector<std::vector<int>>& touching = v.touching;
+  const std::vector<bool>& grounded = v.grounded;
   SubsetEquilibrium warm(lcp), cold(lcp);
   const int nb = warm.num_bodies();
   int redetected_differs = 0;
-  // Which bodies touch each other or a fixed part, assembled.
-  std::vector<std::vector<int>> touching(nb);
-  std::vector<bool> grounded(nb, false);
-  for (const JacobianRow& row : lcp.normal_rows) {
-    const int b0 = row.body[0], b1 = row.body[1];
-    if (b0 >= 0 && b1 >= 0) {
-      touching[b0].push_back(b1);
-      touching[b1].push_back(b0);
-    } else {
-      grounded[b0 >= 0 ? b0 : b1] = true;
-    }
-  }
   std::mt19937 rng(7);
   std::vector<bool> present(nb, false), held(nb, false);
   int feasible = 0, infeasible = 0, unsolved = 0;
@@ -246,28 +264,15 @@ TEST(SubsetEquilibrium, AWalkThroughTheCrossVaultsStatesAsFreshLps) {
 // computed checked).
 TEST(SubsetEquilibrium, StartingFromTheStateBeforeAndFromKeptProofsOnTheCrossVault) {
   if (SharedDir().empty()) GTEST_SKIP() << "../shared (the COMPAS datasets) is absent";
-  const std::string path = SharedDir() + "/datasets/compas_assembly/crossvault_assembly.json";
-  CompasOptions options;
-  options.friction = 0.84;
-  const CompasModel model = CompasToModel(ReadCompasAssembly(path), options, path);
-  const Assembly a = Assembly::Create(model.def, path);
-  const std::vector<ContactLcp> lcps = BuildComponentLcps(a, Configuration::Assembled(a));
-  ASSERT_EQ(lcps.size(), 1u);
-  const ContactLcp& lcp = lcps[0];
+  const CrossVault v = ReadCrossVault();
+  ASSERT_EQ(v.lcps.size(), 1u);
+  const Assembly& a = v.a;
+  const ContactLcp& lcp = v.lcps[0];
+  const std::vector<std::vector<int>>& touching = v.touching;
+  const std::vector<bool>& grounded = v.grounded;
   SubsetEquilibrium checked(lcp), unchecked(lcp), cold(lcp);
   unchecked.set_checked(false);
   const int nb = checked.num_bodies();
-  std::vector<std::vector<int>> touching(nb);
-  std::vector<bool> grounded(nb, false);
-  for (const JacobianRow& row : lcp.normal_rows) {
-    const int b0 = row.body[0], b1 = row.body[1];
-    if (b0 >= 0 && b1 >= 0) {
-      touching[b0].push_back(b1);
-      touching[b1].push_back(b0);
-    } else {
-      grounded[b0 >= 0 ? b0 : b1] = true;
-    }
-  }
   std::mt19937 rng(11);
   std::vector<bool> present(nb, false);
   SubsetEquilibrium::Basis basis, unchecked_basis;  // of the last state that stands
