@@ -74,6 +74,13 @@ TEST(SubsetEquilibrium, EverySubsetAndHoldAsAFreshLp) {
     EverySubsetAgrees(example);
 }
 
+// Each part's body in `lcp` (-1: none).
+std::vector<int> BodyOfPart(const Assembly& a, const ContactLcp& lcp) {
+  std::vector<int> body(a.num_parts(), -1);
+  for (size_t b = 0; b < lcp.bodies.size(); ++b) body[lcp.bodies[b].part] = static_cast<int>(b);
+  return body;
+}
+
 // The stack without its bottom block: the two above have nothing to stand on
 // (the ray moves them); holding the middle one, the top one stands on it.
 TEST(SubsetEquilibrium, AStackWithoutItsBaseAndWithAHold) {
@@ -81,8 +88,7 @@ TEST(SubsetEquilibrium, AStackWithoutItsBaseAndWithAHold) {
   const std::vector<ContactLcp> lcps = BuildComponentLcps(a, Configuration::Assembled(a));
   ASSERT_EQ(lcps.size(), 1u);
   SubsetEquilibrium warm(lcps[0]);
-  std::vector<int> body(a.num_parts(), -1);
-  for (size_t b = 0; b < lcps[0].bodies.size(); ++b) body[lcps[0].bodies[b].part] = int(b);
+  const std::vector<int> body = BodyOfPart(a, lcps[0]);
   const int A = body[a.FindPart("A")], B = body[a.FindPart("B")];
   std::vector<bool> present(3, true), free(3, true);
   EXPECT_TRUE(warm.Solve(present, free).exists);
@@ -104,8 +110,7 @@ TEST(SubsetEquilibrium, AKeptProofAnswersOnlyTheStatesItStillProves) {
   const std::vector<ContactLcp> lcps = BuildComponentLcps(a, Configuration::Assembled(a));
   ASSERT_EQ(lcps.size(), 1u);
   SubsetEquilibrium lp(lcps[0]);
-  std::vector<int> body(a.num_parts(), -1);
-  for (size_t b = 0; b < lcps[0].bodies.size(); ++b) body[lcps[0].bodies[b].part] = int(b);
+  const std::vector<int> body = BodyOfPart(a, lcps[0]);
   const int A = body[a.FindPart("A")], B = body[a.FindPart("B")], C = body[a.FindPart("C")];
   constexpr int kHint = 5;
   std::vector<bool> present(3, true), free(3, true);
@@ -182,8 +187,6 @@ TEST(SubsetEquilibrium, AWalkThroughTheCrossVaultsStatesAsFreshLps) {
   ASSERT_EQ(v.lcps.size(), 1u);
   const Assembly& a = v.a;
   const ContactLcp& lcp = v.lcps[0];
-  const std::vector<std::vector<int>>& touching = v.touching;
-  const std::vector<bool>& grounded = v.grounded;
   SubsetEquilibrium warm(lcp), cold(lcp);
   const int nb = warm.num_bodies();
   int redetected_differs = 0;
@@ -199,8 +202,8 @@ TEST(SubsetEquilibrium, AWalkThroughTheCrossVaultsStatesAsFreshLps) {
         there.push_back(b);
         continue;
       }
-      bool touches = grounded[b];
-      for (int q : touching[b]) touches = touches || present[q];
+      bool touches = v.grounded[b];
+      for (int q : v.touching[b]) touches = touches || present[q];
       if (touches) next.push_back(b);
     }
     if (!there.empty() && (next.empty() || rng() % 8 == 0)) {
@@ -268,8 +271,6 @@ TEST(SubsetEquilibrium, StartingFromTheStateBeforeAndFromKeptProofsOnTheCrossVau
   ASSERT_EQ(v.lcps.size(), 1u);
   const Assembly& a = v.a;
   const ContactLcp& lcp = v.lcps[0];
-  const std::vector<std::vector<int>>& touching = v.touching;
-  const std::vector<bool>& grounded = v.grounded;
   SubsetEquilibrium checked(lcp), unchecked(lcp), cold(lcp);
   unchecked.set_checked(false);
   const int nb = checked.num_bodies();
@@ -281,8 +282,8 @@ TEST(SubsetEquilibrium, StartingFromTheStateBeforeAndFromKeptProofsOnTheCrossVau
     std::vector<int> next;
     for (int b = 0; b < nb; ++b) {
       if (present[b]) continue;
-      bool touches = grounded[b];
-      for (int q : touching[b]) touches = touches || present[q];
+      bool touches = v.grounded[b];
+      for (int q : v.touching[b]) touches = touches || present[q];
       if (touches) next.push_back(b);
     }
     ASSERT_FALSE(next.empty());
