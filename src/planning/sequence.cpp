@@ -165,6 +165,7 @@ class Search {
   int ConfirmAndMeasureHolds();
   State Prefix(int steps) const;
   bool Confirmed(const State& s);
+  bool AnyArrives(const std::vector<State>& beam) const;
 
   std::vector<State> Expand(const State& s);
   std::optional<State> Place(const State& s, int part, const Vector3& arrival,
@@ -919,6 +920,14 @@ void Search::RunBeam(const State& start) {
                      " parts: the best order so far";
       return;
     }
+    if (next.empty() && !AnyArrives(beam)) {
+      best_ = beam.front();
+      out_.message = "no part left can arrive along the directions tried after " +
+                     std::to_string(depth) + " of " + std::to_string(n) +
+                     " parts: each is blocked by the parts placed (--directions axes or ndbg "
+                     "tries more)";
+      return;
+    }
     if (next.empty()) {
       best_ = beam.front();
       out_.message =
@@ -945,6 +954,14 @@ void Search::RunBeam(const State& start) {
     return;
   }
   out_.complete = true;
+}
+
+// Whether some part not yet placed in a state of `beam` can arrive.
+bool Search::AnyArrives(const std::vector<State>& beam) const {
+  for (const State& s : beam)
+    for (int p : movable_)
+      if (!s.placed[p] && Arrival(s.placed, p)) return true;
+  return false;
 }
 
 // Whether the check's verdict confirms `s` (the LP passed it) when the beam
@@ -1074,6 +1091,22 @@ void Search::ExhaustiveLowerBound() {
     return choose(0, holds);
   };
   const unsigned all = (1u << n) - 1;
+  // Whether every part can arrive in some order along the directions tried,
+  // whatever stands: if not, no order exists, with any supports.
+  std::vector<char> arrives(all + 1, 0);
+  arrives[0] = 1;
+  for (unsigned mask = 1; mask <= all; ++mask)
+    for (int i = 0; i < n && !arrives[mask]; ++i) {
+      const unsigned before = mask & ~(1u << i);
+      arrives[mask] = (mask & (1u << i)) && arrives[before] &&
+                      Arrival(placed_of(before), movable_[i]).has_value();
+    }
+  if (!arrives[all]) {
+    out_.lower_bound_reason = "every order of the " + std::to_string(n) +
+                              " parts tried: in none can every part arrive along the directions "
+                              "tried (a part is blocked by those placed before it)";
+    return;
+  }
   for (int b = out_.lower_bound; b < target && b <= kExhaustiveHolds; ++b) {
     std::vector<char> reachable(all + 1, 0);
     reachable[0] = 1;

@@ -112,11 +112,38 @@ TEST(FindBuildSequence, AStateTheLpPassesAndTheVerdictRejectsIsRepaired) {
   EXPECT_EQ(s.max_in_place, 0);
   EXPECT_TRUE(s.optimal());
   for (const SequenceStep& step : s.steps) EXPECT_TRUE(step.stands);
+  // Arriving from above only, the key is blocked by the right wall for
+  // good: no order exists. The search ends where the plug alone is
+  // rejected by the verdict (after the LP-led search met the blocked key),
+  // and the bound says that no order lets every part arrive.
+  options.directions = {Vector3(0, 1, 0)};
+  const BuildSequence blocked = FindBuildSequence(a, options);
+  EXPECT_FALSE(blocked.complete);
+  EXPECT_NE(blocked.message.find("the check's verdict rejected"), std::string::npos)
+      << blocked.message;
+  EXPECT_NE(blocked.lower_bound_reason.find("in none can every part arrive"), std::string::npos)
+      << blocked.lower_bound_reason;
   // The state the LP passed: the plug alone has an equilibrium, and the
   // check says it falls.
   Configuration plug_alone = Configuration::Assembled(a);
   plug_alone.present[a.FindPart("b_key")] = false;
   EXPECT_FALSE(AnalyzeConfiguration(a, plug_alone).stable());
+}
+
+// Parts that can only arrive from below a table (removed downwards, through
+// it): none can arrive first, and both the search and the bound say so.
+TEST(FindBuildSequence, PartsThatCannotArriveAreSaidToBeBlocked) {
+  const Assembly a = ReadScene(ExamplePath("stack3.json"));
+  SequenceOptions options;
+  options.directions = {Vector3(0, -1, 0)};
+  const BuildSequence s = FindBuildSequence(a, options);
+  EXPECT_FALSE(s.complete);
+  EXPECT_TRUE(s.steps.empty());
+  EXPECT_NE(s.message.find("no part left can arrive along the directions tried after 0 of 3"),
+            std::string::npos)
+      << s.message;
+  EXPECT_NE(s.lower_bound_reason.find("in none can every part arrive"), std::string::npos)
+      << s.lower_bound_reason;
 }
 
 TEST(FindBuildSequence, RefusesBadOptions) {
