@@ -125,6 +125,7 @@ struct State {
   int placements = 0;
   double height = 0;  // Σ of the placed parts' centroid heights against gravity (length)
   std::string names;  // the order's names, for ties
+  int parent = -1;    // its parent's place in the beam it grew from (RunBeam)
 };
 
 // A state's check, as the search needs it: whether it stands and, when it
@@ -166,6 +167,8 @@ class Search {
   State Prefix(int steps) const;
   bool Confirmed(const State& s);
   bool AnyArrives(const std::vector<State>& beam) const;
+  void WithOneSupportMore(const std::vector<State>& beam, const std::vector<State>& turned_down,
+                          std::vector<State>& next);
 
   std::vector<State> Expand(const State& s);
   std::optional<State> Place(const State& s, int part, const Vector3& arrival,
@@ -884,8 +887,9 @@ void Search::RunBeam(const State& start) {
   out_.complete = false;
   for (size_t depth = start.steps.size(); depth < n; ++depth) {
     std::map<std::string, State> unique;  // by (placed, held): the better kept
-    for (const State& s : beam)
-      for (State& c : Expand(s)) {
+    for (size_t i = 0; i < beam.size(); ++i)
+      for (State& c : Expand(beam[i])) {
+        c.parent = static_cast<int>(i);
         std::string key(c.placed.begin(), c.placed.end());
         key += SupportKey(c.supports);
         auto it = unique.find(key);
@@ -902,17 +906,19 @@ void Search::RunBeam(const State& start) {
     for (auto& [key, state] : unique) children.push_back(std::move(state));
     std::sort(children.begin(), children.end(),
               [&](const State& a, const State& b) { return Better(a, b); });
-    std::vector<State> next;
-    int rejected = 0;
+    std::vector<State> next, turned_down;
     for (State& c : children) {
       if (next.size() >= static_cast<size_t>(options_.beam_width) || Stopped()) break;
       if (Confirmed(c)) {
         next.push_back(std::move(c));
       } else {
-        ++rejected;
         ++out_.verdict_rejections;
+        turned_down.push_back(std::move(c));
       }
     }
+    const int rejected = static_cast<int>(turned_down.size());
+    if (next.size() < static_cast<size_t>(options_.beam_width) && !turned_down.empty())
+      WithOneSupportMore(beam, turned_down, next);
     if (Stopped()) {
       best_ = beam.front();
       out_.message = std::string(options_.stop && options_.stop() ? "stopped" : "time limit") +
@@ -954,6 +960,40 @@ void Search::RunBeam(const State& start) {
     return;
   }
   out_.complete = true;
+}
+
+// The children the verdict turned down (the LP passed them, so Expand did
+// not try them with a support more) placed again with one support more of
+// each kind allowed, judged by the verdict; the best of them join `next`
+// while it has room.
+void Search::WithOneSupportMore(const std::vector<State>& beam,
+                                const std::vector<State>& turned_down, std::vector<State>& next) {
+  const int bound = options_.max_temporary;
+  std::vector<TemporaryKind> kinds;
+  if (options_.holds) kinds.push_back(TemporaryKind::kHold);
+  if (options_.props) kinds.push_back(TemporaryKind::kProp);
+  std::vector<State> more;
+  const bool full = full_;
+  full_ = true;
+  for (const State& c : turned_down) {
+    const State& parent = beam[static_cast<size_t>(c.parent)];
+    if (bound >= 0 && static_cast<int>(parent.supports.size()) + 1 > bound) continue;
+    for (TemporaryKind kind : kinds) {
+      if (Stopped()) break;
+      if (std::optional<State> alt =
+              Place(parent, c.steps.back().part, c.steps.back().direction, kind))
+        more.push_back(std::move(*alt));
+    }
+  }
+  full_ = full;
+  std::sort(more.begin(), more.end(), [&](const State& a, const State& b) { return Better(a, b); });
+  for (State& m : more) {
+    if (next.size() >= static_cast<size_t>(options_.beam_width)) break;
+    const auto same = [&](const State& t) {
+      return t.placed == m.placed && SupportKey(t.supports) == SupportKey(m.supports);
+    };
+    if (std::none_of(next.begin(), next.end(), same)) next.push_back(std::move(m));
+  }
 }
 
 // Whether some part not yet placed in a state of `beam` can arrive.

@@ -113,14 +113,23 @@ TEST(FindBuildSequence, AStateTheLpPassesAndTheVerdictRejectsIsRepaired) {
   EXPECT_TRUE(s.optimal());
   for (const SequenceStep& step : s.steps) EXPECT_TRUE(step.stands);
   // Arriving from above only, the key is blocked by the right wall for
-  // good: no order exists. The search ends where the plug alone is
-  // rejected by the verdict (after the LP-led search met the blocked key),
-  // and the bound says that no order lets every part arrive.
+  // good: no order exists. The LP-led search placed the plug alone; the
+  // verdict rejects that, so the repaired search places it held (the
+  // children the verdict turns down are tried with a support more), and
+  // then the key cannot arrive. The bound says that in no order can every
+  // part arrive.
   options.directions = {Vector3(0, 1, 0)};
   const BuildSequence blocked = FindBuildSequence(a, options);
   EXPECT_FALSE(blocked.complete);
-  EXPECT_NE(blocked.message.find("the check's verdict rejected"), std::string::npos)
+  EXPECT_NE(blocked.message.find("no part left can arrive along the directions tried after 1 of 2"),
+            std::string::npos)
       << blocked.message;
+  ASSERT_EQ(blocked.steps.size(), 1u);
+  EXPECT_EQ(a.part(blocked.steps[0].part).name, "a_plug");
+  ASSERT_EQ(blocked.steps[0].added.size(), 1u);
+  EXPECT_EQ(blocked.steps[0].added[0].kind, TemporaryKind::kHold);
+  EXPECT_EQ(a.part(blocked.steps[0].added[0].part).name, "a_plug");
+  EXPECT_TRUE(blocked.steps[0].stands);
   EXPECT_NE(blocked.lower_bound_reason.find("in none can every part arrive"), std::string::npos)
       << blocked.lower_bound_reason;
   // The state the LP passed: the plug alone has an equilibrium, and the
