@@ -28,8 +28,8 @@ namespace {
 constexpr double kRayMotion = 1e-9;
 
 // A ray y proves that no equilibrium exists (Farkas) when yᵀb > 0 while
-// yᵀA_j ≤ 0 on every column that can carry force and y is 0 on every freed
-// row: then yᵀA x = yᵀb > 0 for an equilibrium x ≥ 0, yet yᵀA x ≤ 0. The
+// yᵀA_j ≤ 0 on every column that is on, y at 0 on the rows of absent and
+// held bodies: then yᵀA x = yᵀb > 0 for an equilibrium x ≥ 0, yet yᵀA x ≤ 0. The
 // two inequalities are read to these fractions of |y|·|A_j| and |y|·|b|
 // (dimensionless): gravity's power along the motion must exceed the
 // contacts' by far more than rounding.

@@ -208,6 +208,7 @@ class Search {
   const SequenceOptions& options_;
   Vector3 up_;
   std::vector<int> movable_;
+  std::vector<TemporaryKind> kinds_;             // the kinds of support allowed, holds first
   std::vector<std::vector<int>> touching_;       // per part: the parts it touches assembled
   std::vector<Vector3> directions_;              // removal directions
   std::vector<BlockingGraph> graphs_;            // per direction, to infinity
@@ -277,6 +278,8 @@ Search::Search(const Assembly& assembly, const SequenceOptions& options)
   if (options.beam_width < 1) throw std::invalid_argument("beam_width must be at least 1");
   if (!options.holds && !options.props)
     throw std::invalid_argument("no kind of temporary support allowed (holds, props)");
+  if (options.holds) kinds_.push_back(TemporaryKind::kHold);
+  if (options.props) kinds_.push_back(TemporaryKind::kProp);
   if (!(options.time_limit >= 0) || !std::isfinite(options.time_limit))
     throw std::invalid_argument("time_limit must be finite and at least 0");
   if (options.time_limit > 0) {
@@ -363,8 +366,9 @@ Check Search::FilterByLp(const std::vector<bool>& placed, const std::vector<int>
     const SubsetEquilibrium::Answer answer =
         subsets_[k].Solve(present, free, start, proving_ ? -1 : from_.hint);
     if (end && answer.solved && answer.exists) *end = subsets_[k].CurrentBasis();
-    if (subset_solves_[k]++ > 0) ++out_.warm_starts;  // from the last solve's basis
-    if (!answer.solved) unsure = true;                // no LP verdict: the check decides this state
+    // After the first: from a kept basis, the last solve's, or a kept proof.
+    if (subset_solves_[k]++ > 0) ++out_.warm_starts;
+    if (!answer.solved) unsure = true;  // no LP verdict: the check decides this state
     if (!answer.solved || answer.exists) continue;
     if (answer.unbalanced.empty()) {
       for (size_t b = 0; b < parts.size(); ++b)
@@ -855,11 +859,8 @@ std::vector<State> Search::Expand(const State& s) {
     return children;
   // Each kind allowed gives its own child: the beam weighs a hold that
   // carries a growing cantilever against props that each carry one part.
-  std::vector<TemporaryKind> kinds;
-  if (options_.holds) kinds.push_back(TemporaryKind::kHold);
-  if (options_.props) kinds.push_back(TemporaryKind::kProp);
   for (const auto& [p, arrival] : fell)
-    for (TemporaryKind kind : kinds) {
+    for (TemporaryKind kind : kinds_) {
       if (Stopped()) break;
       if (std::optional<State> child = Place(s, p, arrival, kind))
         children.push_back(std::move(*child));
@@ -969,16 +970,13 @@ void Search::RunBeam(const State& start) {
 void Search::WithOneSupportMore(const std::vector<State>& beam,
                                 const std::vector<State>& turned_down, std::vector<State>& next) {
   const int bound = options_.max_temporary;
-  std::vector<TemporaryKind> kinds;
-  if (options_.holds) kinds.push_back(TemporaryKind::kHold);
-  if (options_.props) kinds.push_back(TemporaryKind::kProp);
   std::vector<State> more;
   const bool full = full_;
   full_ = true;
   for (const State& c : turned_down) {
     const State& parent = beam[static_cast<size_t>(c.parent)];
     if (bound >= 0 && static_cast<int>(parent.supports.size()) + 1 > bound) continue;
-    for (TemporaryKind kind : kinds) {
+    for (TemporaryKind kind : kinds_) {
       if (Stopped()) break;
       if (std::optional<State> alt =
               Place(parent, c.steps.back().part, c.steps.back().direction, kind))
@@ -1225,8 +1223,7 @@ int Search::ConfirmAndMeasureHolds() {
 }
 
 BuildSequence Search::Run() {
-  if (options_.holds) out_.kinds.push_back(TemporaryKind::kHold);
-  if (options_.props) out_.kinds.push_back(TemporaryKind::kProp);
+  out_.kinds = kinds_;
   if (!CheckAssembled()) {
     out_.lower_bound_reason = "no order exists: the assembly itself does not stand";
     return out_;
