@@ -74,6 +74,9 @@ namespace cairn {
 namespace {
 
 constexpr double kEps = std::numeric_limits<double>::epsilon();
+// The perturbed retry after a ray: this many times the first path's pivots
+// (plus n + 1) at most (dimensionless; SolveLemke).
+constexpr int kRayRetryPivots = 2;
 
 // Solves the complementary basis {z_i basic : basic_z[i]} from the original
 // data: M_αα z_α = −q_α by LU with partial pivoting plus one refinement step,
@@ -623,13 +626,21 @@ LcpResult SolveLemkeScaled(const MatrixX& M, const VectorX& q, const LemkeParame
   // factored_lcp.h) and the final basis is re-solved with the true q.
   // A path that cycles (the pivot limit) or ends on a secondary ray of an LCP
   // that has a solution is the same trouble seen later: ties blurred on the
-  // way. The perturbed path is tried for those too.
+  // way. The perturbed path is tried for those too. After a ray it gets
+  // kRayRetryPivots times the first path's pivots and n more: the perturbed
+  // problem's path is the same one with its ties untied, no longer than the
+  // first where the ray was spurious (measured: docs/benchmarks.md,
+  // "Lemke's retry after a ray"), and a ray that is the answer (a collapse
+  // loaded from rest) would otherwise cost the whole pivot budget again.
   if (result.status == LcpStatus::kNumericalFailure || result.status == LcpStatus::kPivotLimit ||
       result.status == LcpStatus::kRayTermination) {
     VectorX q_pert = q;
     for (Eigen::Index i = 0; i < n; ++i)
       q_pert[i] += internal::PerturbationSize(pb.tol, params.solution_tolerance) * pb.scale *
                    internal::PerturbationWeight(0, static_cast<uint64_t>(i));
+    if (result.status == LcpStatus::kRayTermination)
+      pb.max_pivots = static_cast<int>(std::min<Eigen::Index>(
+          pb.max_pivots, Eigen::Index{kRayRetryPivots} * result.pivots + n + 1));
     LcpResult retry;
     FollowAndCheck(pb, q_pert, &retry);
     retry.pivots += result.pivots;

@@ -235,13 +235,34 @@ void FillBaraff(ContactLcp& lcp, const std::vector<Matrix6>& W_of,
   for (int c = 0; c < nc; ++c) lcp.q(c) = lcp.normal_rows[c].Dot(free_motion);
 }
 
+// The compliant contacts' entries of K (LcpBuildOptions): c_n on the normal
+// rows' diagonal, c_t d_kᵀd_j in each contact's block of friction rows.
+void AddCompliance(const ContactLcp& lcp, const LcpBuildOptions& options,
+                   std::vector<Eigen::Triplet<double>>& k_entries) {
+  const int nc = static_cast<int>(lcp.contacts.size());
+  const int D = lcp.num_directions;
+  if (options.normal_compliance != 0.0)
+    for (int c = 0; c < nc; ++c) k_entries.emplace_back(c, c, options.normal_compliance);
+  if (options.tangential_compliance == 0.0) return;
+  for (int f = 0; f < lcp.num_friction; ++f)
+    for (int k = 0; k < D; ++k)
+      for (int j = 0; j < D; ++j) {
+        const double dd =
+            lcp.friction_directions[D * f + k].dot(lcp.friction_directions[D * f + j]);
+        if (dd != 0.0)
+          k_entries.emplace_back(nc + D * f + k, nc + D * f + j,
+                                 options.tangential_compliance * dd);
+      }
+}
+
 // Stewart–Trinkle's LCP (paper eq. 5): rows are the normals, then D
 // directions per frictional contact; then one λ per frictional contact, with
 // the coupling K: λ enters every friction row of its contact (E);
 // μ p_n − Eᵀ p_f ≥ 0. q adds the gaps over Δt when `use_gaps`.
 void FillStewartTrinkle(ContactLcp& lcp, const std::vector<Matrix6>& W_of,
-                        const std::vector<Vector6>& free_motion, LcpStorage storage,
-                        bool use_gaps) {
+                        const std::vector<Vector6>& free_motion, const LcpBuildOptions& options) {
+  const LcpStorage storage = options.storage;
+  const bool use_gaps = options.use_gaps;
   const int nc = static_cast<int>(lcp.contacts.size());
   const int D = lcp.num_directions;
   const int nf = lcp.num_friction;
@@ -267,10 +288,11 @@ void FillStewartTrinkle(ContactLcp& lcp, const std::vector<Matrix6>& W_of,
     }
     k_entries.emplace_back(lam, contact_of[f], mu_of[f]);
   }
+  AddCompliance(lcp, options, k_entries);
   if (WantDense(storage, n)) {
     lcp.M = MatrixX::Zero(n, n);
     lcp.M.topLeftCorner(nr, nr) = Delassus(rows, W_of);
-    for (const auto& t : k_entries) lcp.M(t.row(), t.col()) = t.value();
+    for (const auto& t : k_entries) lcp.M(t.row(), t.col()) += t.value();
   }
   if (WantFactored(storage, n)) lcp.factored = Factored(rows, n, lcp.bodies, W_of, k_entries);
   lcp.q = VectorX::Zero(n);
@@ -308,7 +330,7 @@ ContactLcp BuildContactLcp(std::vector<BodyDynamics> bodies, std::vector<Contact
   if (lcp.formulation == Formulation::kBaraff)
     FillBaraff(lcp, W_of, free_motion, options.storage);
   else
-    FillStewartTrinkle(lcp, W_of, free_motion, options.storage, options.use_gaps);
+    FillStewartTrinkle(lcp, W_of, free_motion, options);
   return lcp;
 }
 

@@ -33,6 +33,12 @@ constexpr double kResidualTolerance = 1e-6;
 constexpr double kCollapseShare = 1e-3;
 // The collapse step's Lemke pivots, per LCP variable (dimensionless).
 constexpr int kCollapsePivotsPerVariable = 10;
+// The loading LCP's Lemke pivots, per LCP variable, when the caller sets no
+// budget (dimensionless): paths that end take at most 5 on the cross vault's
+// states (docs/benchmarks.md, "Loading from rest"); one that stalls gets
+// twice that, not SolveLemke's default 50, which cost seconds for each of
+// the few stalled ones (each form and its perturbed retry).
+constexpr int kLoadPivotsPerVariable = 10;
 
 // The unknowns of the loaded-from-rest LCP, in order: the free displacement
 // coordinates ξ of every body, then per contact f_n, then per frictional
@@ -169,7 +175,6 @@ void ReadState(const ContactLcp& lcp, const std::vector<Eigen::Matrix<double, 6,
 // Their displacements (ν⁺ Δt), or empty when Lemke's method fails on it.
 std::vector<Vector6> CollapseStep(const ContactLcp& lcp, double kn, double kt,
                                   const LemkeParameters& lemke) {
-  const int nc = static_cast<int>(lcp.contacts.size());
   // The step: bodies whose inertia is kInertiaRatio of the contact stiffness
   // (m / Δt² = ρ k_n, Δt = 1 s), from rest.
   std::vector<BodyDynamics> bodies = lcp.bodies;
@@ -183,29 +188,22 @@ std::vector<Vector6> CollapseStep(const ContactLcp& lcp, double kn, double kt,
   build.formulation = Formulation::kStewartTrinkle;
   build.dt = 1.0;
   build.use_gaps = false;
-  build.storage = LcpStorage::kDense;
+  // The contact laws' compliance: p_n / k_n in the normal rows, Gᵀ G β / k_t
+  // in the friction rows. The matrix is J W Jᵀ plus sparse terms: stored
+  // factored above kMaxDenseLcp, where a pivot costs O(k² + nnz(J)) with k
+  // at most the bodies' degrees of freedom, against the dense O(n²).
+  build.normal_compliance = 1.0 / kn;
+  build.tangential_compliance = 1.0 / kt;
+  build.storage = LcpStorage::kAuto;
   // The unscaled F_ext stays: the bodies' weights.
   std::vector<Contact> contacts = lcp.contacts;
-  ContactLcp step = BuildContactLcp(std::move(bodies), std::move(contacts), build);
-  // The contact laws' compliance: p_n / k_n in the normal rows, Gᵀ G β / k_t
-  // in the friction rows.
-  MatrixX A = step.M;
-  for (int c = 0; c < nc; ++c) A(c, c) += 1.0 / kn;
-  const int D = step.num_directions;
-  for (int c = 0; c < nc; ++c) {
-    const int f = step.friction_of.empty() ? -1 : step.friction_of[c];
-    if (f < 0) continue;
-    for (int k = 0; k < D; ++k)
-      for (int j = 0; j < D; ++j)
-        A(nc + D * f + k, nc + D * f + j) +=
-            step.friction_directions[D * f + k].dot(step.friction_directions[D * f + j]) / kt;
-  }
+  const ContactLcp step = BuildContactLcp(std::move(bodies), std::move(contacts), build);
   // A budget of kCollapsePivotsPerVariable pivots a variable: the step only
   // says how it moves, and the caller has other ways to say it.
   LemkeParameters budget = lemke;
   const int most = kCollapsePivotsPerVariable * (step.size() + 1);
   if (budget.max_pivots <= 0 || budget.max_pivots > most) budget.max_pivots = most;
-  const LcpResult r = SolveLemke(A, step.q, budget);
+  const LcpResult r = SolveContactLcp(step, budget);
   if (r.status != LcpStatus::kSolved && r.status != LcpStatus::kTrivial) return {};
   return RecoverSolution(step, r.z).body_motion;
 }
@@ -242,15 +240,17 @@ LoadedFromRest LoadFromRest(const ContactLcp& lcp, const LoadFromRestOptions& op
   const double kt = options.stiffness_ratio * kn;
   out.stiffness = kn;
 
+  LemkeParameters lemke = options.lemke;
+  if (lemke.max_pivots <= 0) lemke.max_pivots = kLoadPivotsPerVariable * (n + 1);
   MatrixX M;
   VectorX q;
   BuildStaticLcp(lcp, B, L, kn, kt, M, q);
-  LcpResult r = SolveLemke(M, q, options.lemke);
+  LcpResult r = SolveLemke(M, q, lemke);
   out.pivots = r.pivots;
   if (r.status == LcpStatus::kPivotLimit || r.status == LcpStatus::kNumericalFailure) {
     L.shifted = true;  // the other form of the free displacements (Layout)
     BuildStaticLcp(lcp, B, L, kn, kt, M, q);
-    r = SolveLemke(M, q, options.lemke);
+    r = SolveLemke(M, q, lemke);
     out.pivots += r.pivots;
   }
   if (r.status == LcpStatus::kRayTermination) {

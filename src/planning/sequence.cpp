@@ -3,11 +3,13 @@
 #include "cairn/planning/sequence.h"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <exception>
 #include <functional>
 #include <map>
+#include <mutex>
 #include <stdexcept>
 #include <string>
 #include <thread>
@@ -126,6 +128,9 @@ struct State {
   double height = 0;  // Σ of the placed parts' centroid heights against gravity (length)
   std::string names;  // the order's names, for ties
   int parent = -1;    // its parent's place in the beam it grew from (RunBeam)
+  // The parts not placed that can no longer arrive (Stranded): an order
+  // through this state can never be finished.
+  int stranded = 0;
 };
 
 // A state's check, as the search needs it: whether it stands and, when it
@@ -158,12 +163,16 @@ class Search {
   // Stages of Run, in order.
   bool CheckAssembled();
   void ComputeAdjacencyAndBlocking();
+  void ComputeBlocks();
   void ComputePropPoints(const std::vector<Contact>& assembled);
   void RunBeam(const State& start);
   void ComputeLowerBound();
   void ArgueLowerBound();
   void ExhaustiveLowerBound();
   int ConfirmAndMeasureHolds();
+  std::vector<char> ConfirmStates(int n, const std::function<void(int)>& check);
+  void MeasureStep(const StabilityResult& r, const std::vector<Support>& supports,
+                   SequenceStep& step) const;
   State Prefix(int steps) const;
   bool Confirmed(const State& s);
   bool AnyArrives(const std::vector<State>& beam) const;
@@ -178,6 +187,8 @@ class Search {
                                                      const Check& as_is, TemporaryKind kind);
   std::vector<int> PropsFor(const StabilityResult& failing, int part) const;
   std::optional<Vector3> Arrival(const std::vector<bool>& placed, int part) const;
+  std::vector<std::pair<int, Vector3>> Candidates(const State& s) const;
+  int Stranded(const State& s, int part) const;
   const Check& Stands(const std::vector<bool>& placed, const std::vector<Support>& supports);
   const Check& StandsHeld(const std::vector<bool>& placed, const std::vector<int>& held);
   std::vector<std::vector<int>> FreeComponents(const std::vector<bool>& placed,
@@ -212,6 +223,7 @@ class Search {
   std::vector<std::vector<int>> touching_;       // per part: the parts it touches assembled
   std::vector<Vector3> directions_;              // removal directions
   std::vector<BlockingGraph> graphs_;            // per direction, to infinity
+  std::vector<std::vector<int>> blocks_;         // per part: the parts it blocks in some direction
   std::unordered_map<std::string, Check> memo_;  // by state
   std::unordered_map<std::string, Check> component_memo_;  // by component of a state
   // The LP's basis of each component that stands, by its key (ComponentKey):
@@ -659,6 +671,19 @@ void Search::ComputeAdjacencyAndBlocking() {
   for (const BlockingGraph& g : graphs_) directions_.push_back(g.direction);
 }
 
+// Per part, the parts it is in the way of in some removal direction (the
+// only ones whose arrival its placing can close).
+void Search::ComputeBlocks() {
+  blocks_.assign(assembly_.num_parts(), {});
+  for (const BlockingGraph& g : graphs_)
+    for (int q = 0; q < assembly_.num_parts(); ++q)
+      for (int p : g.blockers[q]) blocks_[p].push_back(q);
+  for (auto& b : blocks_) {
+    std::sort(b.begin(), b.end());
+    b.erase(std::unique(b.begin(), b.end()), b.end());
+  }
+}
+
 // The points a prop may push at: on the faces of the movable parts that
 // touch no part in the assembled configuration (a prop there is in no later
 // part's way), as the scene would accept a fixel.
@@ -682,6 +707,20 @@ std::optional<Vector3> Search::Arrival(const std::vector<bool>& placed, int part
     if (free) return Vector3(-directions_[k]);
   }
   return std::nullopt;
+}
+
+// The parts not placed in `s` that could arrive there and cannot once
+// `part` is placed: it closes their last way in. Placed parts stay, so a
+// part that cannot arrive never will (each direction's blockers only grow).
+int Search::Stranded(const State& s, int part) const {
+  std::vector<bool> placed = s.placed;
+  placed[part] = true;
+  int out = 0;
+  for (int q : blocks_[part])
+    if (q != part && !s.placed[q] && !assembly_.part(q).fixed && !assembly_.part(q).tool &&
+        Arrival(s.placed, q) && !Arrival(placed, q))
+      ++out;
+  return out;
 }
 
 // The props of `part` worth trying in the state that does not stand, as its
@@ -802,6 +841,7 @@ std::optional<State> Search::Place(const State& s, int part, const Vector3& arri
     if (!has(s.supports, t)) step.added.push_back(Public(t));
   for (const Support& t : s.supports)
     if (!has(child.supports, t)) step.removed.push_back(Public(t));
+  child.stranded = s.stranded + Stranded(s, part);
   child.placements = s.placements + static_cast<int>(step.added.size());
   child.max_in_place = std::max(s.max_in_place, static_cast<int>(child.supports.size()));
   child.steps.push_back(std::move(step));
@@ -817,8 +857,11 @@ std::optional<State> Search::Place(const State& s, int part, const Vector3& arri
 // A child of pass 2 has a placement more than any of pass 1 and, since a
 // hold only ever adds support, never fewer holds than the same part placed
 // in pass 1 would keep: pass 1's children are the ones the beam wants.
-std::vector<State> Search::Expand(const State& s) {
-  std::vector<State> children;
+// The parts that can come next in `s`, with their arrival directions:
+// those that touch a placed or fixed part (or, when none does, any), lower
+// parts first (then names), none that closes another's last way in unless
+// every one does (Stranded).
+std::vector<std::pair<int, Vector3>> Search::Candidates(const State& s) const {
   std::vector<int> candidates, loose;
   for (int p : movable_) {
     if (s.placed[p]) continue;
@@ -831,17 +874,27 @@ std::vector<State> Search::Expand(const State& s) {
   // Lower parts first (then names): the order Better ranks children of one
   // state in when they need the same supports. A child that needs nothing
   // new is as good as a child of `s` gets, so once beam_width of them are
-  // found, the candidates after them cannot enter the beam.
+  // found, the candidates after them cannot enter the beam (Expand).
   const double tol = assembly_.length_tolerance();
   std::sort(candidates.begin(), candidates.end(), [&](int a, int b) {
     const double ha = up_.dot(assembly_.part(a).centroid), hb = up_.dot(assembly_.part(b).centroid);
     if (std::abs(ha - hb) > tol) return ha < hb;
     return assembly_.part(a).name < assembly_.part(b).name;
   });
-  std::vector<std::pair<int, Vector3>> arriving, fell;
+  // A part that would close the last way in of another is placed only
+  // when every part that can arrive would (then the order cannot be
+  // finished, and the search says how far it gets).
+  std::vector<std::pair<int, Vector3>> arriving, closing;
   for (int p : candidates)
     if (const std::optional<Vector3> arrival = Arrival(s.placed, p))
-      arriving.emplace_back(p, *arrival);
+      (Stranded(s, p) == 0 ? arriving : closing).emplace_back(p, *arrival);
+  return arriving.empty() ? closing : arriving;
+}
+
+std::vector<State> Search::Expand(const State& s) {
+  std::vector<State> children;
+  std::vector<std::pair<int, Vector3>> fell;
+  const std::vector<std::pair<int, Vector3>> arriving = Candidates(s);
   int unimprovable = 0;
   for (const auto& [p, arrival] : arriving) {
     if (Stopped() || unimprovable >= options_.beam_width) break;
@@ -868,9 +921,11 @@ std::vector<State> Search::Expand(const State& s) {
   return children;
 }
 
-// Fewer supports at once so far, fewer now, fewer placements, lower parts
-// first, then names.
+// Fewer parts stranded (an order that can be finished first), fewer
+// supports at once so far, fewer now, fewer placements, lower parts first,
+// then names.
 bool Search::Better(const State& a, const State& b) const {
+  if (a.stranded != b.stranded) return a.stranded < b.stranded;
   if (a.max_in_place != b.max_in_place) return a.max_in_place < b.max_in_place;
   if (a.supports.size() != b.supports.size()) return a.supports.size() < b.supports.size();
   if (a.placements != b.placements) return a.placements < b.placements;
@@ -1020,6 +1075,7 @@ State Search::Prefix(int steps) const {
   s.placed.assign(assembly_.num_parts(), false);
   for (int i = 0; i < steps; ++i) {
     const SequenceStep& step = best_.steps[i];
+    s.stranded += Stranded(s, step.part);
     s.placed[step.part] = true;
     for (const TemporarySupport& t : step.added) s.supports.push_back(Internal(t));
     for (const TemporarySupport& t : step.removed)
@@ -1174,52 +1230,133 @@ void Search::ExhaustiveLowerBound() {
 
 // Every state of the order checked again, afresh (no cache, no warm start),
 // by the check's verdict, with what each hold carries. Returns the first
-// step whose state does not stand (-1: none).
+// step whose state does not stand (-1: none). The states are independent:
+// they are checked on options_.threads threads, in order of their steps
+// (ConfirmStates), and read in that order.
 int Search::ConfirmAndMeasureHolds() {
-  int first_failing = -1;
   unconfirmed_from_ = -1;
-  std::vector<bool> placed(assembly_.num_parts(), false);
-  std::vector<Support> supports;
-  const int scene_fixtures = static_cast<int>(assembly_.fixtures().size());
-  for (size_t i = 0; i < best_.steps.size(); ++i) {
-    SequenceStep& step = best_.steps[i];
-    if (options_.checkpoint) options_.checkpoint();
-    if (ConfirmationOutOfTime()) {
-      unconfirmed_from_ = static_cast<int>(i);
+  // Each step's parts and supports, and the scene with its supports (one
+  // per distinct set, kept apart from the search's cache while the threads
+  // read them).
+  const int steps = static_cast<int>(best_.steps.size());
+  std::vector<std::vector<bool>> placed(steps);
+  std::vector<std::vector<Support>> supports(steps);
+  std::map<std::pair<std::vector<int>, std::vector<int>>, Assembly> scenes;
+  std::vector<const Assembly*> scene(steps);
+  std::vector<bool> now(assembly_.num_parts(), false);
+  std::vector<Support> in_place;
+  for (int i = 0; i < steps; ++i) {
+    const SequenceStep& step = best_.steps[i];
+    now[step.part] = true;
+    for (const TemporarySupport& t : step.added) in_place.push_back(Internal(t));
+    for (const TemporarySupport& t : step.removed)
+      in_place.erase(std::find(in_place.begin(), in_place.end(), Internal(t)));
+    placed[i] = now;
+    supports[i] = in_place;
+    auto key = std::make_pair(HeldOf(in_place), PropsOf(in_place));
+    if (key.first.empty() && key.second.empty()) {
+      scene[i] = &assembly_;
+      continue;
+    }
+    auto it = scenes.find(key);
+    if (it == scenes.end())
+      it = scenes.emplace(key, Assembly(SupportAssembly(key.first, key.second))).first;
+    scene[i] = &it->second;
+  }
+  const std::vector<char> done = ConfirmStates(steps, [&](int i) {
+    MeasureStep(AnalyzeConfiguration(*scene[i], ConfigOf(placed[i]), options_.stability),
+                supports[i], best_.steps[i]);
+  });
+  int first_failing = -1;
+  for (int i = 0; i < steps; ++i) {
+    if (!done[i]) {
+      unconfirmed_from_ = i;
       return first_failing;
     }
-    placed[step.part] = true;
-    for (const TemporarySupport& t : step.added) supports.push_back(Internal(t));
-    for (const TemporarySupport& t : step.removed)
-      supports.erase(std::find(supports.begin(), supports.end(), Internal(t)));
-    const std::vector<int> held = HeldOf(supports), props = PropsOf(supports);
-    const StabilityResult r =
-        AnalyzeConfiguration(SupportAssembly(held, props), ConfigOf(placed), options_.stability);
-    step.stability = r.stability;
-    step.stands =
-        r.stable() && (!options_.require_strong || r.stability == StabilityProof::kStrong);
-    if (options_.record_contacts) step.contacts = r.contacts;
-    step.in_place.clear();
-    for (const Support& s : supports) {
-      TemporarySupport t = Public(s);
-      if (s.kind == TemporaryKind::kProp) {
-        // Its push: the fixel's contact (the scene's fixtures, then the
-        // props in index order).
-        const int fixture =
-            scene_fixtures +
-            static_cast<int>(std::lower_bound(props.begin(), props.end(), s.prop) - props.begin());
-        for (const ContactReport& c : r.contacts)
-          if (c.contact.part_b == kWorld && c.contact.feature == ContactFeature::kFixture &&
-              c.contact.index_a == fixture)
-            t.force += c.normal_force * c.contact.n_W;
-      } else {
-        std::tie(t.force, t.torque) = HoldWrench(assembly_, s.part, r);
-      }
-      step.in_place.push_back(t);
-    }
-    if (!step.stands && first_failing < 0) first_failing = static_cast<int>(i);
+    if (!best_.steps[i].stands && first_failing < 0) first_failing = i;
   }
   return first_failing;
+}
+
+// check(i) for i = 0 … n − 1 (each touching only what is its own), on
+// options_.threads threads taking the next step in turn; none taken once
+// the confirmation's time is up, and every one taken is done: which were
+// done is a prefix. The time and the caller's checkpoint are seen on this
+// thread only.
+std::vector<char> Search::ConfirmStates(int n, const std::function<void(int)>& check) {
+  std::vector<char> out(n, 0);
+  std::atomic<int> next{0};
+  std::atomic<bool> stop{false};
+  std::mutex failing;
+  std::exception_ptr failed;  // the first a thread threw
+  const auto take = [&]() -> int {
+    const int i = stop ? n : next++;
+    return i < n ? i : -1;
+  };
+  const int threads =
+      std::min(n, options_.threads > 0
+                      ? options_.threads
+                      : static_cast<int>(std::max(1U, std::thread::hardware_concurrency())));
+  std::vector<std::thread> others;
+  for (int t = 1; t < threads; ++t)
+    others.emplace_back([&] {
+      try {
+        for (int i = take(); i >= 0; i = take()) {
+          check(i);
+          out[i] = 1;
+        }
+      } catch (...) {
+        const std::lock_guard<std::mutex> lock(failing);
+        if (!failed) failed = std::current_exception();
+        stop = true;
+      }
+    });
+  try {
+    while (true) {
+      if (options_.checkpoint) options_.checkpoint();
+      if (ConfirmationOutOfTime()) stop = true;
+      const int i = take();
+      if (i < 0) break;
+      check(i);
+      out[i] = 1;
+    }
+  } catch (...) {
+    stop = true;
+    for (std::thread& t : others) t.join();
+    throw;
+  }
+  for (std::thread& t : others) t.join();
+  if (failed) std::rethrow_exception(failed);
+  return out;
+}
+
+// A confirmed step's verdict, contacts and the wrench of each support in
+// place, from its check `r`.
+void Search::MeasureStep(const StabilityResult& r, const std::vector<Support>& supports,
+                         SequenceStep& step) const {
+  const std::vector<int> props = PropsOf(supports);
+  const int scene_fixtures = static_cast<int>(assembly_.fixtures().size());
+  step.stability = r.stability;
+  step.stands = r.stable() && (!options_.require_strong || r.stability == StabilityProof::kStrong);
+  if (options_.record_contacts) step.contacts = r.contacts;
+  step.in_place.clear();
+  for (const Support& s : supports) {
+    TemporarySupport t = Public(s);
+    if (s.kind == TemporaryKind::kProp) {
+      // Its push: the fixel's contact (the scene's fixtures, then the
+      // props in index order).
+      const int fixture =
+          scene_fixtures +
+          static_cast<int>(std::lower_bound(props.begin(), props.end(), s.prop) - props.begin());
+      for (const ContactReport& c : r.contacts)
+        if (c.contact.part_b == kWorld && c.contact.feature == ContactFeature::kFixture &&
+            c.contact.index_a == fixture)
+          t.force += c.normal_force * c.contact.n_W;
+    } else {
+      std::tie(t.force, t.torque) = HoldWrench(assembly_, s.part, r);
+    }
+    step.in_place.push_back(t);
+  }
 }
 
 BuildSequence Search::Run() {
@@ -1229,6 +1366,7 @@ BuildSequence Search::Run() {
     return out_;
   }
   ComputeAdjacencyAndBlocking();
+  ComputeBlocks();
   // The search on the equilibrium LP, then its order confirmed state by
   // state by the check's verdict; where a state is rejected, the search
   // goes on from the state before it with the verdict itself (the repair).
@@ -1291,7 +1429,9 @@ BuildSequence FindBuildSequence(const Assembly& assembly, const SequenceOptions&
                           ? options.threads
                           : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
   if (threads >= 2) {
-    // Side by side: each search owns its LPs, caches and workspace.
+    // Side by side: each search owns its LPs, caches and workspace, and
+    // half the threads for its confirmation.
+    half.threads = with_props.threads = threads / 2;
     std::exception_ptr failed;
     std::thread side([&] {
       try {

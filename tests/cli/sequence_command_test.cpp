@@ -413,8 +413,9 @@ TEST(Sequence, StackAndWallNeedNoSupport) {
 }
 
 // The same document for 1 and 2 threads (with both kinds of support the
-// searches with holds alone and with both run side by side) and every core
-// (but the seconds).
+// searches with holds alone and with both run side by side; with one, the
+// order's states are confirmed on both threads) and every core (but the
+// seconds).
 TEST(Sequence, DeterministicWhateverTheThreads) {
   const auto doc = [](const std::string& args) {
     json d = Sequence(args);
@@ -428,6 +429,11 @@ TEST(Sequence, DeterministicWhateverTheThreads) {
     EXPECT_EQ(one, doc(model + " --temporary both --threads 2"));
     EXPECT_EQ(one, doc(model + " --temporary both"));
     EXPECT_EQ(one["temporary"]["kinds"], json({"hold", "prop"}));
+  }
+  for (const std::string& model :
+       {ArchFile(7) + " --directions axes", ExamplePath("pyramid14.json")}) {
+    SCOPED_TRACE(model);
+    EXPECT_EQ(doc(model + " --threads 1"), doc(model + " --threads 2"));
   }
 }
 

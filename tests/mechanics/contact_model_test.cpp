@@ -125,5 +125,41 @@ TEST(StewartTrinkle, GapsEnterAsDOverDtWhenAsked) {
   EXPECT_EQ(with.q(1), without.q(1));
 }
 
+// Compliant contacts (LcpBuildOptions::normal_compliance and
+// tangential_compliance): the matrix is the rigid one plus c_n on the
+// normal rows' diagonal and c_t d_kᵀd_j in each contact's friction block, in
+// the dense and the factored storage alike; and the box sinks into its
+// springs: w_n = J_n ν⁺ + c_n p_n = 0 with the impulses carrying the weight,
+// so ν⁺_y = −c_n p_n and m ν⁺_y = 2 p_n − m g Δt, p_n = m g Δt / (2 + m c_n).
+TEST(StewartTrinkle, CompliantContactsAddTheirSpringsToTheMatrix) {
+  BoxOnTable box;
+  box.mu = 0.3;
+  const double dt = 0.5, cn = 0.2, ct = 0.05;
+  LcpBuildOptions rigid{Formulation::kStewartTrinkle, dt, false};
+  rigid.storage = LcpStorage::kDense;
+  LcpBuildOptions soft = rigid;
+  soft.normal_compliance = cn;
+  soft.tangential_compliance = ct;
+  soft.storage = LcpStorage::kBoth;
+  const ContactLcp a = BuildContactLcp(box.Bodies(), box.Contacts(), rigid);
+  const ContactLcp b = BuildContactLcp(box.Bodies(), box.Contacts(), soft);
+  ASSERT_EQ(b.size(), 8);
+  MatrixX springs = MatrixX::Zero(8, 8);
+  springs(0, 0) = springs(1, 1) = cn;
+  for (int f = 0; f < 2; ++f)  // 2-D: d = ±t, d_kᵀd_j = ±1
+    springs.block(2 + 2 * f, 2 + 2 * f, 2, 2) << ct, -ct, -ct, ct;
+  EXPECT_LT((b.M - a.M - springs).cwiseAbs().maxCoeff(), 1e-14);
+  EXPECT_LT((b.factored.ToDense() - b.M).cwiseAbs().maxCoeff(), 1e-14);
+  EXPECT_EQ(b.q, a.q);
+  const LcpResult sol = SolveLemke(b.M, b.q);
+  ASSERT_EQ(sol.status, LcpStatus::kSolved);
+  const double pn = box.m * box.g * dt / (2 + box.m * cn);
+  EXPECT_NEAR(sol.z(0), pn, 1e-12);
+  EXPECT_NEAR(sol.z(1), pn, 1e-12);
+  const ContactSolution s = RecoverSolution(b, sol.z);
+  EXPECT_NEAR(s.body_motion[0].y(), -cn * pn, 1e-12);
+  EXPECT_NEAR(s.body_motion[0].x(), 0.0, 1e-12);
+}
+
 }  // namespace
 }  // namespace cairn

@@ -116,6 +116,14 @@ struct LcpBuildOptions {
   LcpStorage storage = LcpStorage::kAuto;
   int dimension = 2;   ///< 2 or 3: chooses the friction directions
   int directions = 4;  ///< D, friction directions per contact in 3-D (ignored in 2-D)
+  /// Compliant contacts (Stewart–Trinkle only): the normal rows get
+  /// `normal_compliance` on their diagonal (w_n = … + c_n p_n) and each
+  /// contact's friction rows `tangential_compliance` · d_kᵀd_j (w_k = … +
+  /// c_t Σ_j d_kᵀd_j β_j): springs of stiffness 1/c in series with the rigid
+  /// contact (velocity per impulse, s/kg; 0: rigid). The loaded-from-rest
+  /// collapse step (loaded_from_rest.cpp) uses them.
+  double normal_compliance = 0.0;
+  double tangential_compliance = 0.0;
 };
 
 /// The LCP of one component, and what is needed to read its solution.

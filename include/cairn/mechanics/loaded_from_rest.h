@@ -78,6 +78,8 @@ struct LoadFromRestOptions {
   /// The largest LCP LoadFromRest solves (variables); above it the answer is
   /// "not run" (a work budget: the tableau is dense here).
   int max_variables = 1500;
+  /// Lemke's method on the loading LCP; max_pivots ≤ 0 means 10 per variable
+  /// (a path that ends takes at most 5 on the cross vault's states).
   LemkeParameters lemke;
 };
 
