@@ -130,6 +130,22 @@ void BuildStaticLcp(const ContactLcp& lcp, const std::vector<Eigen::Matrix<doubl
   }
 }
 
+// Lemke's method on the loading LCP: dense up to kMaxDenseLcp variables,
+// factored above. M is sparse (the skew coupling of the bodies' free
+// directions and the contacts' blocks), so the factored solver's pivots
+// cost O(k²) in the basic unknowns k rather than the dense tableau's O(n²),
+// and its perturbed paths settle the degenerate ties (the many coplanar
+// contacts of a joint) on which the dense lexicographic rule stalls to its
+// pivot limit: on the Armadillo's states, 14 of 126 components stalled
+// dense, and the factored paths all ended (docs/benchmarks.md, "Build orders
+// … fifth stop"). Where both end they agree.
+LcpResult SolveLoading(const MatrixX& M, const VectorX& q, const LemkeParameters& lemke) {
+  const Eigen::Index n = q.size();
+  if (n <= kMaxDenseLcp) return SolveLemke(M, q, lemke);
+  const FactoredLcpMatrix sparse(SparseMatrixX(n, 0), SparseMatrixX(0, 0), M.sparseView());
+  return SolveLemkeFactored(sparse, q, lemke);
+}
+
 // The forces, slips and displacements of a solution z, and the equilibrium's
 // residual (force units).
 void ReadState(const ContactLcp& lcp, const std::vector<Eigen::Matrix<double, 6, -1>>& B,
@@ -245,12 +261,12 @@ LoadedFromRest LoadFromRest(const ContactLcp& lcp, const LoadFromRestOptions& op
   MatrixX M;
   VectorX q;
   BuildStaticLcp(lcp, B, L, kn, kt, M, q);
-  LcpResult r = SolveLemke(M, q, lemke);
+  LcpResult r = SolveLoading(M, q, lemke);
   out.pivots = r.pivots;
   if (r.status == LcpStatus::kPivotLimit || r.status == LcpStatus::kNumericalFailure) {
     L.shifted = true;  // the other form of the free displacements (Layout)
     BuildStaticLcp(lcp, B, L, kn, kt, M, q);
-    r = SolveLemke(M, q, lemke);
+    r = SolveLoading(M, q, lemke);
     out.pivots += r.pivots;
   }
   if (r.status == LcpStatus::kRayTermination) {

@@ -131,6 +131,39 @@ TEST(LoadedFromRest, ABoxOnTheGroundStandsOnItsWeight) {
   EXPECT_LT(r.equilibrium_residual, 1e-5);
 }
 
+// Three boxes stacked in 3-D, each offset along x on the one below (an LCP
+// of more than kMaxDenseLcp variables: solved in factored form). Stacked
+// within the edges, it stands, each interface carrying the weight above it;
+// with the top box's centroid past the edge of the one below, the top tips:
+// it gives way, and the collapse step says the top box moves most.
+TEST(LoadedFromRest, AStackOfBoxesStandsOrTipsByItsCentroids) {
+  for (const double offset : {0.3, 0.7}) {
+    SCOPED_TRACE(offset);
+    AssemblyDef def;
+    def.friction = 0.5;
+    def.parts = {Box3("ground", {-3, -3, -1}, {3, 3, 0}, true), Box3("a", {0, 0, 0}, {1, 1, 0.5}),
+                 Box3("b", {0.3, 0, 0.5}, {1.3, 1, 1}),
+                 Box3("c", {0.3 + offset, 0, 1}, {1.3 + offset, 1, 1.5})};
+    const Assembly a = Assembly::Create(def, "stack");
+    const ContactLcp lcp = OnlyComponent(a);
+    const LoadedFromRest r = LoadFromRest(lcp);
+    ASSERT_GT(r.variables, kMaxDenseLcp);
+    const double W = Weight(a, 1);  // the three weigh the same
+    if (offset < 0.5) {             // c's centroid at 0.8 + offset over b's top [0.3, 1.3]
+      ASSERT_EQ(r.outcome, LoadedFromRest::Outcome::kStands) << r.message;
+      EXPECT_NEAR(r.normal_force.sum(), (3 + 2 + 1) * W, 1e-6 * W);
+      EXPECT_LT(r.equilibrium_residual, 1e-6);
+    } else {
+      ASSERT_EQ(r.outcome, LoadedFromRest::Outcome::kGivesWay) << r.message;
+      ASSERT_EQ(r.displacement.size(), 3u);
+      int fastest = 0;
+      for (int b = 0; b < 3; ++b)
+        if (r.displacement[b].norm() > r.displacement[fastest].norm()) fastest = b;
+      EXPECT_EQ(a.part(lcp.bodies[fastest].part).name, "c");
+    }
+  }
+}
+
 // Every stiffness × 10: the same outcome and the same forces (the problem is
 // homogeneous in the stiffness); only the displacements shrink tenfold.
 TEST(LoadedFromRest, NoAnswerDependsOnTheAbsoluteStiffness) {
