@@ -630,8 +630,9 @@ LcpResult SolveLemkeScaled(const MatrixX& M, const VectorX& q, const LemkeParame
   // kRayRetryPivots times the first path's pivots and n more: the perturbed
   // problem's path is the same one with its ties untied, no longer than the
   // first where the ray was spurious (measured: docs/benchmarks.md,
-  // "Lemke's retry after a ray"), and a ray that is the answer (a collapse
-  // loaded from rest) would otherwise cost the whole pivot budget again.
+  // "`bench/sequence_bench.sh`, fifth stop"), and a ray that is the answer (a
+  // collapse loaded from rest) would otherwise cost the whole pivot budget
+  // again.
   if (result.status == LcpStatus::kNumericalFailure || result.status == LcpStatus::kPivotLimit ||
       result.status == LcpStatus::kRayTermination) {
     VectorX q_pert = q;

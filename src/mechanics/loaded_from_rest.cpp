@@ -35,9 +35,10 @@ constexpr double kCollapseShare = 1e-3;
 constexpr int kCollapsePivotsPerVariable = 10;
 // The loading LCP's Lemke pivots, per LCP variable, when the caller sets no
 // budget (dimensionless): paths that end take at most 5 on the cross vault's
-// states (docs/benchmarks.md, "Loading from rest"); one that stalls gets
-// twice that, not SolveLemke's default 50, which cost seconds for each of
-// the few stalled ones (each form and its perturbed retry).
+// states (docs/benchmarks.md, "`bench/sequence_bench.sh`, fifth stop"); one
+// that stalls gets twice that, not SolveLemke's default 50, which cost
+// seconds for each of the few stalled ones (each form and its perturbed
+// retry).
 constexpr int kLoadPivotsPerVariable = 10;
 
 // The unknowns of the loaded-from-rest LCP, in order: the free displacement
@@ -137,8 +138,8 @@ void BuildStaticLcp(const ContactLcp& lcp, const std::vector<Eigen::Matrix<doubl
 // and its perturbed paths settle the degenerate ties (the many coplanar
 // contacts of a joint) on which the dense lexicographic rule stalls to its
 // pivot limit: on the Armadillo's states, 14 of 126 components stalled
-// dense, and the factored paths all ended (docs/benchmarks.md, "Build orders
-// … fifth stop"). Where both end they agree.
+// dense, and the factored paths all ended (docs/benchmarks.md,
+// "`bench/sequence_bench.sh`, fifth stop"). Where both end they agree.
 LcpResult SolveLoading(const MatrixX& M, const VectorX& q, const LemkeParameters& lemke) {
   const Eigen::Index n = q.size();
   if (n <= kMaxDenseLcp) return SolveLemke(M, q, lemke);

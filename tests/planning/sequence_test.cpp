@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "cairn/io/scene_reader.h"
@@ -14,6 +15,22 @@ namespace cairn {
 namespace {
 
 using testing::ExamplePath;
+
+// A 2-D part of the polygon given (counter-clockwise).
+PartDef part(const std::string& name, bool fixed, std::vector<Vector2> polygon) {
+  PartDef p;
+  p.name = name;
+  p.fixed = fixed;
+  p.polygon = std::move(polygon);
+  return p;
+}
+
+// `s` is complete and places the parts named, in that order.
+void ExpectOrder(const Assembly& a, const BuildSequence& s, const std::vector<std::string>& names) {
+  ASSERT_TRUE(s.complete) << s.message;
+  ASSERT_EQ(s.steps.size(), names.size());
+  for (size_t i = 0; i < names.size(); ++i) EXPECT_EQ(a.part(s.steps[i].part).name, names[i]) << i;
+}
 
 // Three offset blocks on a table: each stands on the one below, so the order
 // bottom-up needs no hold, and a block alone on the table stands: bound 0.
@@ -87,13 +104,6 @@ TEST(FindBuildSequence, TheCachesCapChangesNoAnswer) {
 TEST(FindBuildSequence, AStateTheLpPassesAndTheVerdictRejectsIsRepaired) {
   AssemblyDef def;
   def.friction = 0.5;
-  const auto part = [](const std::string& name, bool fixed, std::vector<Vector2> polygon) {
-    PartDef p;
-    p.name = name;
-    p.fixed = fixed;
-    p.polygon = std::move(polygon);
-    return p;
-  };
   def.parts = {part("ground", true, {{-5, -1}, {5, -1}, {5, 0}, {-5, 0}}),
                part("left", true, {{-2, 0}, {-1, 0}, {-1, 3}, {-2, 3}}),
                part("right", true, {{1, 1}, {2, 1}, {2, 3}, {1, 3}}),
@@ -103,10 +113,7 @@ TEST(FindBuildSequence, AStateTheLpPassesAndTheVerdictRejectsIsRepaired) {
   SequenceOptions options;
   options.directions = {Vector3(0, 1, 0), Vector3(1, 0, 0), Vector3(-1, 0, 0)};
   const BuildSequence s = FindBuildSequence(a, options);
-  ASSERT_TRUE(s.complete) << s.message;
-  ASSERT_EQ(s.steps.size(), 2u);
-  EXPECT_EQ(a.part(s.steps[0].part).name, "b_key");
-  EXPECT_EQ(a.part(s.steps[1].part).name, "a_plug");
+  ExpectOrder(a, s, {"b_key", "a_plug"});
   EXPECT_EQ(s.repairs, 1);
   EXPECT_GE(s.verdict_rejections, 1);
   EXPECT_EQ(s.max_in_place, 0);
@@ -148,13 +155,6 @@ TEST(FindBuildSequence, AStateTheLpPassesAndTheVerdictRejectsIsRepaired) {
 TEST(FindBuildSequence, APartIsNotPlacedWhereItClosesAnothersLastWayIn) {
   AssemblyDef def;
   def.friction = 0.5;
-  const auto part = [](const std::string& name, bool fixed, std::vector<Vector2> polygon) {
-    PartDef p;
-    p.name = name;
-    p.fixed = fixed;
-    p.polygon = std::move(polygon);
-    return p;
-  };
   def.parts = {part("ground", true, {{-5, -1}, {8, -1}, {8, 0}, {-5, 0}}),
                part("pedestal", true, {{3, 0}, {4, 0}, {4, 2}, {3, 2}}),
                part("post", false, {{0, 0}, {2, 0}, {3.5, 4}, {1.5, 4}}),
@@ -165,10 +165,7 @@ TEST(FindBuildSequence, APartIsNotPlacedWhereItClosesAnothersLastWayIn) {
   SequenceOptions options;
   options.beam_width = 1;  // greedy: no other state kept to fall back on
   const BuildSequence s = FindBuildSequence(a, options);
-  ASSERT_TRUE(s.complete) << s.message;
-  ASSERT_EQ(s.steps.size(), 2u);
-  EXPECT_EQ(a.part(s.steps[0].part).name, "block");
-  EXPECT_EQ(a.part(s.steps[1].part).name, "post");
+  ExpectOrder(a, s, {"block", "post"});
   EXPECT_EQ(s.max_in_place, 0);
   EXPECT_TRUE(s.optimal());
   for (const SequenceStep& step : s.steps) EXPECT_TRUE(step.stands);
