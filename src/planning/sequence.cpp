@@ -208,6 +208,7 @@ class Search {
                    std::optional<SubsetEquilibrium::Basis>* end = nullptr);
   Configuration ConfigOf(const std::vector<bool>& placed) const;
   const Assembly& SupportAssembly(const std::vector<int>& held, const std::vector<int>& props);
+  Assembly WithSupports(const std::vector<int>& held, const std::vector<int>& props) const;
   TemporarySupport Public(const Support& t) const;
   std::string SupportNames(std::vector<Support> supports) const;
   Support Internal(const TemporarySupport& t) const;
@@ -336,12 +337,17 @@ const Assembly& Search::SupportAssembly(const std::vector<int>& held,
   auto it = support_assemblies_.find(key);
   if (it != support_assemblies_.end()) return it->second;
   if (support_assemblies_.size() >= kMaxHeldAssemblies) support_assemblies_.clear();
+  return support_assemblies_.emplace(key, WithSupports(held, props)).first->second;
+}
+
+// The scene with the parts `held` fixed and the props `props` as fixels.
+Assembly Search::WithSupports(const std::vector<int>& held, const std::vector<int>& props) const {
   std::vector<FixtureDef> fixels;
   for (int k : props)
     fixels.push_back({assembly_.part(props_[k].part).name, props_[k].point, props_[k].normal});
   Assembly a = held.empty() ? assembly_ : assembly_.WithHeld(held);
   if (!fixels.empty()) a = a.WithFixtures(fixels);
-  return support_assemblies_.emplace(key, std::move(a)).first->second;
+  return a;
 }
 
 Configuration Search::ConfigOf(const std::vector<bool>& placed) const {
@@ -1235,14 +1241,10 @@ void Search::ExhaustiveLowerBound() {
 // (ConfirmStates), and read in that order.
 int Search::ConfirmAndMeasureHolds() {
   unconfirmed_from_ = -1;
-  // Each step's parts and supports, and the scene with its supports (one
-  // per distinct set, kept apart from the search's cache while the threads
-  // read them).
+  // Each step's parts and supports.
   const int steps = static_cast<int>(best_.steps.size());
   std::vector<std::vector<bool>> placed(steps);
   std::vector<std::vector<Support>> supports(steps);
-  std::map<std::pair<std::vector<int>, std::vector<int>>, Assembly> scenes;
-  std::vector<const Assembly*> scene(steps);
   std::vector<bool> now(assembly_.num_parts(), false);
   std::vector<Support> in_place;
   for (int i = 0; i < steps; ++i) {
@@ -1253,19 +1255,17 @@ int Search::ConfirmAndMeasureHolds() {
       in_place.erase(std::find(in_place.begin(), in_place.end(), Internal(t)));
     placed[i] = now;
     supports[i] = in_place;
-    auto key = std::make_pair(HeldOf(in_place), PropsOf(in_place));
-    if (key.first.empty() && key.second.empty()) {
-      scene[i] = &assembly_;
-      continue;
-    }
-    auto it = scenes.find(key);
-    if (it == scenes.end())
-      it = scenes.emplace(key, Assembly(SupportAssembly(key.first, key.second))).first;
-    scene[i] = &it->second;
   }
+  // Each thread builds the scene with its state's supports (the search's
+  // cache of them is not shared): a copy alive per thread at most.
   const std::vector<char> done = ConfirmStates(steps, [&](int i) {
-    MeasureStep(AnalyzeConfiguration(*scene[i], ConfigOf(placed[i]), options_.stability),
-                supports[i], best_.steps[i]);
+    const std::vector<int> held = HeldOf(supports[i]), props = PropsOf(supports[i]);
+    const std::optional<Assembly> scene = held.empty() && props.empty()
+                                              ? std::nullopt
+                                              : std::optional<Assembly>(WithSupports(held, props));
+    MeasureStep(
+        AnalyzeConfiguration(scene ? *scene : assembly_, ConfigOf(placed[i]), options_.stability),
+        supports[i], best_.steps[i]);
   });
   int first_failing = -1;
   for (int i = 0; i < steps; ++i) {

@@ -120,7 +120,7 @@ struct LcpBuildOptions {
   /// `normal_compliance` on their diagonal (w_n = … + c_n p_n) and each
   /// contact's friction rows `tangential_compliance` · d_kᵀd_j (w_k = … +
   /// c_t Σ_j d_kᵀd_j β_j): springs of stiffness 1/c in series with the rigid
-  /// contact (velocity per impulse, s/kg; 0: rigid). The loaded-from-rest
+  /// contact (velocity per impulse, 1/kg; 0: rigid). The loaded-from-rest
   /// collapse step (loaded_from_rest.cpp) uses them.
   double normal_compliance = 0.0;
   double tangential_compliance = 0.0;

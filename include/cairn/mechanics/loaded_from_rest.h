@@ -76,7 +76,7 @@ struct LoadFromRestOptions {
   /// beyond round-off (the file comment): tests scale it by 10.
   double stiffness_scale = 1.0;
   /// The largest LCP LoadFromRest solves (variables); above it the answer is
-  /// "not run" (a work budget: the tableau is dense here).
+  /// "not run" (a work budget).
   int max_variables = 1500;
   /// Lemke's method on the loading LCP; max_pivots ≤ 0 means 10 per variable
   /// (a path that ends takes at most 5 on the cross vault's states).
