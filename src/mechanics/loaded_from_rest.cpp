@@ -67,7 +67,7 @@ struct Layout {
 // transpose in the equilibrium rows: column r of the ξ' rows gets −rowᵀ, of
 // the s row +Σ rowᵀ.
 void AddCoupling(const JacobianRow& row, const std::vector<Eigen::Matrix<double, 6, -1>>& B,
-                 const Layout& L, int r, MatrixX& M) {
+                 const Layout& L, int r, std::vector<Eigen::Triplet<double>>& M) {
   for (int s = 0; s < 2; ++s) {
     const int b = row.body[s];
     if (b < 0) continue;
@@ -75,10 +75,10 @@ void AddCoupling(const JacobianRow& row, const std::vector<Eigen::Matrix<double,
     for (int i = 0; i < g.size(); ++i) {
       const int x = L.body_offset[b] + i;
       const int minus = L.shifted ? L.second() : L.second() + x;
-      M(r, L.first() + x) += g[i];
-      M(r, minus) -= g[i];
-      M(L.first() + x, r) -= g[i];
-      M(minus, r) += g[i];
+      M.emplace_back(r, L.first() + x, g[i]);
+      M.emplace_back(r, minus, -g[i]);
+      M.emplace_back(L.first() + x, r, -g[i]);
+      M.emplace_back(minus, r, g[i]);
     }
   }
 }
@@ -94,12 +94,13 @@ double Reach(const ContactLcp& lcp) {
   return r > 0 ? r : 1.0;
 }
 
-// The LCP of the file comment, ξ shifted (Layout).
+// The LCP of the file comment, ξ shifted (Layout). M is sparse: the skew
+// coupling of the free directions and the contacts' blocks.
 void BuildStaticLcp(const ContactLcp& lcp, const std::vector<Eigen::Matrix<double, 6, -1>>& B,
-                    const Layout& L, double kn, double kt, MatrixX& M, VectorX& q) {
+                    const Layout& L, double kn, double kt, SparseMatrixX& sparse, VectorX& q) {
   const int nb = static_cast<int>(lcp.bodies.size());
   const int n = L.size();
-  M = MatrixX::Zero(n, n);
+  std::vector<Eigen::Triplet<double>> M;  // entries, summed where they repeat
   q = VectorX::Zero(n);
   // Equilibrium rows: w_ξ' = −Bᵀ(F + Jᵀ z) ≥ 0, w_s = Σ Bᵀ(F + Jᵀ z) ≥ 0.
   for (int b = 0; b < nb; ++b) {
@@ -112,7 +113,7 @@ void BuildStaticLcp(const ContactLcp& lcp, const std::vector<Eigen::Matrix<doubl
   // Normal laws: w_n = J_n u + f_n / k_n.
   for (int c = 0; c < L.nc; ++c) {
     AddCoupling(lcp.normal_rows[c], B, L, L.normal(c), M);
-    M(L.normal(c), L.normal(c)) = 1.0 / kn;
+    M.emplace_back(L.normal(c), L.normal(c), 1.0 / kn);
   }
   // Tangential laws: w_β = J_D u + GᵀG β / k_t + E γ, w_γ = μ f_n − Eᵀ β.
   for (int c = 0; c < L.nc; ++c) {
@@ -123,12 +124,14 @@ void BuildStaticLcp(const ContactLcp& lcp, const std::vector<Eigen::Matrix<doubl
       AddCoupling(lcp.direction_rows[L.D * f + k], B, L, r, M);
       const Vector3& dk = lcp.friction_directions[L.D * f + k];
       for (int j = 0; j < L.D; ++j)
-        M(r, L.beta(f, j)) = dk.dot(lcp.friction_directions[L.D * f + j]) / kt;
-      M(r, L.gamma(f)) = 1.0;
-      M(L.gamma(f), r) = -1.0;
+        M.emplace_back(r, L.beta(f, j), dk.dot(lcp.friction_directions[L.D * f + j]) / kt);
+      M.emplace_back(r, L.gamma(f), 1.0);
+      M.emplace_back(L.gamma(f), r, -1.0);
     }
-    M(L.gamma(f), L.normal(c)) = lcp.contacts[c].mu;
+    M.emplace_back(L.gamma(f), L.normal(c), lcp.contacts[c].mu);
   }
+  sparse.resize(n, n);
+  sparse.setFromTriplets(M.begin(), M.end());
 }
 
 // Lemke's method on the loading LCP: dense up to kMaxDenseLcp variables,
@@ -140,11 +143,11 @@ void BuildStaticLcp(const ContactLcp& lcp, const std::vector<Eigen::Matrix<doubl
 // pivot limit: on the Armadillo's states, 14 of 126 components stalled
 // dense, and the factored paths all ended (docs/benchmarks.md,
 // "`bench/sequence_bench.sh`, fifth stop"). Where both end they agree.
-LcpResult SolveLoading(const MatrixX& M, const VectorX& q, const LemkeParameters& lemke) {
+LcpResult SolveLoading(const SparseMatrixX& M, const VectorX& q, const LemkeParameters& lemke) {
   const Eigen::Index n = q.size();
-  if (n <= kMaxDenseLcp) return SolveLemke(M, q, lemke);
-  const FactoredLcpMatrix sparse(SparseMatrixX(n, 0), SparseMatrixX(0, 0), M.sparseView());
-  return SolveLemkeFactored(sparse, q, lemke);
+  if (n <= kMaxDenseLcp) return SolveLemke(MatrixX(M), q, lemke);
+  const FactoredLcpMatrix factored(SparseMatrixX(n, 0), SparseMatrixX(0, 0), M);
+  return SolveLemkeFactored(factored, q, lemke);
 }
 
 // The forces, slips and displacements of a solution z, and the equilibrium's
@@ -259,7 +262,7 @@ LoadedFromRest LoadFromRest(const ContactLcp& lcp, const LoadFromRestOptions& op
 
   LemkeParameters lemke = options.lemke;
   if (lemke.max_pivots <= 0) lemke.max_pivots = kLoadPivotsPerVariable * (n + 1);
-  MatrixX M;
+  SparseMatrixX M;
   VectorX q;
   BuildStaticLcp(lcp, B, L, kn, kt, M, q);
   LcpResult r = SolveLoading(M, q, lemke);

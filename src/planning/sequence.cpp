@@ -174,6 +174,7 @@ class Search {
   void MeasureStep(const StabilityResult& r, const std::vector<Support>& supports,
                    SequenceStep& step) const;
   State Prefix(int steps) const;
+  void Apply(const SequenceStep& step, std::vector<Support>& supports) const;
   bool Confirmed(const State& s);
   bool AnyArrives(const std::vector<State>& beam) const;
   void WithOneSupportMore(const std::vector<State>& beam, const std::vector<State>& turned_down,
@@ -1075,6 +1076,13 @@ bool Search::Confirmed(const State& s) {
   return stands;
 }
 
+// The supports in place after `step`, from those before it.
+void Search::Apply(const SequenceStep& step, std::vector<Support>& supports) const {
+  for (const TemporarySupport& t : step.added) supports.push_back(Internal(t));
+  for (const TemporarySupport& t : step.removed)
+    supports.erase(std::find(supports.begin(), supports.end(), Internal(t)));
+}
+
 // The state after the first `steps` steps of best_.
 State Search::Prefix(int steps) const {
   State s;
@@ -1083,9 +1091,7 @@ State Search::Prefix(int steps) const {
     const SequenceStep& step = best_.steps[i];
     s.stranded += Stranded(s, step.part);
     s.placed[step.part] = true;
-    for (const TemporarySupport& t : step.added) s.supports.push_back(Internal(t));
-    for (const TemporarySupport& t : step.removed)
-      s.supports.erase(std::find(s.supports.begin(), s.supports.end(), Internal(t)));
+    Apply(step, s.supports);
     s.placements += static_cast<int>(step.added.size());
     s.max_in_place = std::max(s.max_in_place, static_cast<int>(s.supports.size()));
     s.height += up_.dot(assembly_.part(step.part).centroid);
@@ -1250,9 +1256,7 @@ int Search::ConfirmAndMeasureHolds() {
   for (int i = 0; i < steps; ++i) {
     const SequenceStep& step = best_.steps[i];
     now[step.part] = true;
-    for (const TemporarySupport& t : step.added) in_place.push_back(Internal(t));
-    for (const TemporarySupport& t : step.removed)
-      in_place.erase(std::find(in_place.begin(), in_place.end(), Internal(t)));
+    Apply(step, in_place);
     placed[i] = now;
     supports[i] = in_place;
   }
