@@ -12,6 +12,13 @@ namespace {
 
 constexpr double kEps = std::numeric_limits<double>::epsilon();
 
+// C₀ is factored sparse from this order up when at most this share of its
+// entries are nonzero (dimensionless). Below, the dense LU's blocked kernels
+// win; the loading LCP's bases have a few entries a column (docs/benchmarks.md,
+// "`bench/sequence_bench.sh`, sixth stop").
+constexpr int kSparseFromOrder = 128;
+constexpr double kSparseDensity = 0.05;
+
 // An LU with partial pivoting is taken as singular when its smallest pivot is
 // below order · ε · the largest entry: below the roundoff of the entries.
 bool Regular(const Eigen::PartialPivLU<MatrixX>& lu, const MatrixX& a) {
@@ -58,19 +65,59 @@ bool BlockLu::Factor(const std::vector<int>& rows, const std::vector<int>& cols)
   col0_of_.assign(a_.num_cols(), -1);
   for (int s = 0; s < k; ++s) row0_of_[rows[s]] = s;
   for (int p = 0; p < k; ++p) col0_of_[cols[p]] = p;
-  MatrixX c0(k, k);
-  for (int p = 0; p < k; ++p) {
-    a_.Column(cols[p], &line_);
-    for (int s = 0; s < k; ++s) c0(s, p) = line_[rows[s]];
-  }
   border_cols_.clear();
   border_rows_.clear();
   w_.clear();
   ut_.clear();
   s_.resize(0, 0);
+  sparse0_ = false;
   if (k == 0) return true;
+  if (k >= kSparseFromOrder && FactorSparse(k)) return true;
+  MatrixX c0(k, k);
+  for (int p = 0; p < k; ++p) {
+    a_.Column(cols0_[p], &line_);
+    for (int s = 0; s < k; ++s) c0(s, p) = line_[rows0_[s]];
+  }
   lu0_.compute(c0);
   return Regular(lu0_, c0);
+}
+
+// C₀ by the sparse LU, when it is sparse enough (kSparseDensity) and the
+// factors are regular (the same test as the dense LU's, on U's diagonal,
+// which SparseLU keeps in the supernodes of L). False: the dense LU decides.
+bool BlockLu::FactorSparse(int k) {
+  std::vector<Eigen::Triplet<double>> entries;
+  double largest = 0;
+  const size_t most = static_cast<size_t>(kSparseDensity * k * static_cast<double>(k));
+  for (int p = 0; p < k; ++p) {
+    a_.Column(cols0_[p], &line_);
+    for (int s = 0; s < k; ++s)
+      if (const double v = line_[rows0_[s]]; v != 0.0) {
+        if (entries.size() >= most) return false;
+        entries.emplace_back(s, p, v);
+        largest = std::max(largest, std::abs(v));
+      }
+  }
+  Eigen::SparseMatrix<double> c0(k, k);
+  c0.setFromTriplets(entries.begin(), entries.end());
+  sparse_lu0_.compute(c0);
+  if (sparse_lu0_.info() != Eigen::Success) return false;
+  double u_min = std::numeric_limits<double>::infinity();
+  const auto& l = sparse_lu0_.matrixL().m_mapL;
+  for (int j = 0; j < k; ++j)
+    for (typename std::decay_t<decltype(l)>::InnerIterator it(l, j); it; ++it)
+      if (it.index() == j) {
+        u_min = std::min(u_min, std::abs(it.value()));
+        break;
+      }
+  if (!(u_min > k * kEps * largest && std::isfinite(u_min))) return false;
+  sparse0_ = true;
+  return true;
+}
+
+VectorX BlockLu::Solve0(const VectorX& b) const {
+  if (sparse0_) return sparse_lu0_.solve(b);
+  return lu0_.solve(b);
 }
 
 void BlockLu::AddColumn(int key) {
@@ -121,7 +168,7 @@ void BlockLu::PushBorderColumn(int key) {
   } else {
     v[-1 - key] = 1.0;
   }
-  VectorX w = k0 > 0 ? VectorX(lu0_.solve(v)) : VectorX();
+  VectorX w = k0 > 0 ? Solve0(v) : VectorX();
   // S(:, new) = D(:, new) − Uᵀ w; D is A(row, key) for an added row and
   // an added column, else 0.
   const int m_rows = static_cast<int>(border_rows_.size());
@@ -192,7 +239,7 @@ void BlockLu::Solve(const std::vector<int>& rows, const std::vector<int>& cols, 
     const int at = row_at_[rows0_[s0]];
     b0_[s0] = at >= 0 ? b[at] : 0.0;
   }
-  VectorX xh = k0 > 0 ? VectorX(lu0_.solve(b0_)) : VectorX();
+  VectorX xh = k0 > 0 ? Solve0(b0_) : VectorX();
   y_.resize(m);
   if (m > 0) {
     c_.resize(m);

@@ -32,11 +32,20 @@
 // when m grows past MaxBorder(k) (where the refactor O(k³) and the S
 // factorisations balance, at most 64: measured) or when the solutions drift.
 //
+// C₀ itself is factored densely (partial pivoting), or, when it is large and
+// sparse (the loading LCP's basis, whose matrix is the bodies' skew coupling
+// and the contacts' blocks: a few entries a column), by a sparse LU with a
+// fill-reducing column order (Eigen's SparseLU: COLAMD, supernodes, partial
+// pivoting), whose factors and solves cost about nnz(L + U) rather than k³
+// and k².
+//
 // Unlike an explicit inverse updated by Sherman–Morrison, the factors of C₀
 // are never modified, so rounding does not accumulate in them from pivot to
 // pivot: the error of a solve is that of C₀'s LU and of S's, both backward
 // stable with partial pivoting as long as S is not nearly singular.
 #include <Eigen/Dense>
+#include <Eigen/SparseCore>
+#include <Eigen/SparseLU>
 #include <vector>
 
 #include "cairn/core/types.h"
@@ -77,6 +86,8 @@ class BlockLu {
   void Solve(const std::vector<int>& rows, const std::vector<int>& cols, const VectorX& b,
              VectorX* x);
 
+  // Whether the last Factor factored C₀ sparse.
+  bool sparse() const { return sparse0_; }
   // The order m of the border (of S).
   int border() const { return static_cast<int>(border_cols_.size()); }
   // The border size past which a refactor of C₀ is cheaper than going on.
@@ -97,7 +108,12 @@ class BlockLu {
   const Entries& a_;
   std::vector<int> rows0_, cols0_;      // R₀, Z₀ by position in C₀
   std::vector<int> row0_of_, col0_of_;  // key → position in R₀ / Z₀, or −1
+  // C₀'s factors: dense, or sparse (sparse0_) when FactorSparse chose it.
+  bool FactorSparse(int k);
+  VectorX Solve0(const VectorX& b) const;
+  bool sparse0_ = false;
   Eigen::PartialPivLU<MatrixX> lu0_;
+  Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>> sparse_lu0_;
   std::vector<int> border_cols_, border_rows_;  // keys as above
   std::vector<VectorX> w_;                      // W(:, j) = C₀⁻¹ V(:, j)
   std::vector<VectorX> ut_;                     // Uᵀ(r, :), length k₀

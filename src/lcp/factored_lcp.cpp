@@ -885,6 +885,12 @@ LcpResult SolveLemkeFactored(const FactoredLcpMatrix& M, const VectorX& q,
         RunAttempt(pb, from, static_cast<uint64_t>(round), round < 3 ? delta : 0.0, limit, &result);
     result.pivots += a.pivots;
     if (Concludes(pb, a, from_warm, &result, &ray)) return result;
+    // Without retries, a ray ends the solve, a warm path's too (it is taken
+    // as the answer, which it does not prove).
+    if (!params.retry_after_ray && (ray || a.end == PathEnd::kRay)) {
+      ray = true;
+      break;
+    }
   }
   if (ray) {
     result.status = LcpStatus::kRayTermination;

@@ -634,7 +634,7 @@ LcpResult SolveLemkeScaled(const MatrixX& M, const VectorX& q, const LemkeParame
   // collapse loaded from rest) would otherwise cost the whole pivot budget
   // again.
   if (result.status == LcpStatus::kNumericalFailure || result.status == LcpStatus::kPivotLimit ||
-      result.status == LcpStatus::kRayTermination) {
+      (result.status == LcpStatus::kRayTermination && params.retry_after_ray)) {
     VectorX q_pert = q;
     for (Eigen::Index i = 0; i < n; ++i)
       q_pert[i] += internal::PerturbationSize(pb.tol, params.solution_tolerance) * pb.scale *

@@ -46,6 +46,17 @@ constexpr double kUncheckedColumnSlack = 1e-5;
 // row balances (dimensionless; the simplex's own tolerance is 1e-10).
 constexpr double kBalanceSlack = 1e-9;
 
+// The fake bound Clp's dual simplex puts on the forces (unbounded above)
+// while it works (force units, against the default 10¹⁰): where the warm
+// basis leaves forces at a fake bound, Clp ends with its primal simplex,
+// refactoring at every check. On the cross vault's states of 160 blocks
+// and more that cleanup was most of a 400 ms solve; with this bound the
+// whole vault's search took 124 s against 175 s, the same order
+// (docs/benchmarks.md, "`bench/sequence_bench.sh`, sixth stop"). Below
+// 10²⁰, where Clp takes the bound as infinite and goes to its primal
+// simplex at once.
+constexpr double kDualBound = 1e18;
+
 // The certificates kept per hint (Solve): the mechanisms of the last few
 // states that failed when that part was placed.
 constexpr size_t kCertificatesPerHint = 4;
@@ -99,6 +110,7 @@ SubsetEquilibrium::SubsetEquilibrium(const ContactLcp& lcp) : impl_(std::make_un
   m.rows.reverseOrderedCopyOf(m.columns);
   m.lp.setLogLevel(0);
   m.lp.setPrimalTolerance(kSimplexPrimalTolerance);
+  m.lp.setDualBound(kDualBound);
   // Empty: each solve brings in the rows and columns of its state.
   const CoinPackedMatrix none(true, 0, 0, 0, nullptr, nullptr, nullptr, nullptr);
   m.lp.loadProblem(none, nullptr, nullptr, nullptr, nullptr, nullptr);

@@ -170,7 +170,9 @@ class Search {
   void ArgueLowerBound();
   void ExhaustiveLowerBound();
   int ConfirmAndMeasureHolds();
-  std::vector<char> ConfirmStates(int n, const std::function<void(int)>& check);
+  std::vector<char> ConfirmStates(int n, const std::function<void(int, int)>& check);
+  // The threads the confirmation runs on (options_.threads, or the machine's).
+  int Threads() const;
   void MeasureStep(const StabilityResult& r, const std::vector<Support>& supports,
                    SequenceStep& step) const;
   State Prefix(int steps) const;
@@ -203,7 +205,7 @@ class Search {
                                                         const std::vector<int>& component) const;
   Check Evaluate(const std::vector<bool>& placed, const std::vector<Support>& supports,
                  const SubsetEquilibrium::Basis* start = nullptr,
-                 std::optional<SubsetEquilibrium::Basis>* end = nullptr);
+                 std::optional<SubsetEquilibrium::Basis>* end = nullptr, bool filtered = false);
   Check FilterByLp(const std::vector<bool>& placed, const std::vector<int>& held, bool& unsure,
                    const SubsetEquilibrium::Basis* start = nullptr,
                    std::optional<SubsetEquilibrium::Basis>* end = nullptr);
@@ -270,8 +272,25 @@ class Search {
   // True while the lower bound is computed: the LPs' claims of infeasibility
   // are proofs (SubsetEquilibrium::set_checked).
   bool proving_ = false;
-  // How states are decided, in the caches' keys.
-  const char* Mode() const { return full_ ? "|full" : proving_ ? "|proof" : "|lp"; }
+  // True while the beam searches: the verdict may reject a state the full
+  // one accepts, never the reverse (StabilityOptions::conservative), which
+  // the confirmation of the order then passes. Off for the assembled
+  // state's check and the lower bound, whose answers are proofs.
+  bool conservative_ = false;
+  // How states are decided, in the caches' keys: by the filter, or by the
+  // verdict (full_).
+  std::string FilterMode() const {
+    return std::string(proving_ ? "|proof" : "|lp") + (conservative_ ? "c" : "");
+  }
+  std::string Mode() const {
+    return full_ ? std::string("|full") + (conservative_ ? "c" : "") : FilterMode();
+  }
+  // The verdict's options as the search stands (conservative_).
+  StabilityOptions Verdict() const {
+    StabilityOptions o = options_.stability;
+    o.conservative = conservative_;
+    return o;
+  }
 };
 
 Search::Search(const Assembly& assembly, const SequenceOptions& options)
@@ -536,9 +555,24 @@ const Check& Search::ComponentStands(const std::vector<bool>& placed,
   for (int p : component) only[p] = true;
   for (const Support& t : own)
     if (t.kind == TemporaryKind::kHold) only[t.part] = placed[t.part];
+  // The verdict's first stage is the filter: where the filter has decided
+  // the component (its answer kept in the filter's mode), a rejection
+  // stands, and a pass leaves the verdict alone to decide.
+  bool filtered = false;
+  if (full_) {
+    const auto lp = component_memo_.find(key + FilterMode());
+    if (lp != component_memo_.end()) {
+      if (!lp->second.stands) {
+        const Check rejected = lp->second;  // a copy: the cache may clear
+        if (component_memo_.size() >= options_.max_cached_states) component_memo_.clear();
+        return component_memo_.emplace(memo_key, rejected).first->second;
+      }
+      filtered = true;
+    }
+  }
   const std::optional<SubsetEquilibrium::Basis> start = StartingBasis(supports, component);
   std::optional<SubsetEquilibrium::Basis> end;
-  Check c = Evaluate(only, own, start ? &*start : nullptr, &end);
+  Check c = Evaluate(only, own, start ? &*start : nullptr, &end, filtered);
   if (end) {
     if (bases_.size() >= kMaxBases) bases_.clear();
     bases_[key] = std::move(*end);
@@ -554,18 +588,18 @@ const Check& Search::ComponentStands(const std::vector<bool>& placed,
 // what no props can save; the verdict decides the rest.
 Check Search::Evaluate(const std::vector<bool>& placed, const std::vector<Support>& supports,
                        const SubsetEquilibrium::Basis* start,
-                       std::optional<SubsetEquilibrium::Basis>* end) {
+                       std::optional<SubsetEquilibrium::Basis>* end, bool filtered) {
   const std::vector<int> held = HeldOf(supports), props = PropsOf(supports);
   std::vector<int> held_or_propped = held;
   for (int k : props) held_or_propped.push_back(props_[k].part);
   std::sort(held_or_propped.begin(), held_or_propped.end());
   bool unsure = false;
-  Check c = FilterByLp(placed, held_or_propped, unsure, start, end);
+  Check c = filtered ? Check{} : FilterByLp(placed, held_or_propped, unsure, start, end);
   if (c.moving.empty() && !full_ && !unsure && !subsets_.empty() && props.empty()) {
     c.stands = true;  // the filter's answer; the order's states are confirmed
   } else if (c.moving.empty()) {
     const StabilityResult r = AnalyzeConfiguration(SupportAssembly(held, props), ConfigOf(placed),
-                                                   options_.stability, nullptr, &workspace_);
+                                                   Verdict(), nullptr, &workspace_);
     c.stands = r.stable() && (!options_.require_strong || r.stability == StabilityProof::kStrong);
     c.moving = r.moving;
   }
@@ -945,6 +979,11 @@ bool Search::Better(const State& a, const State& b) const {
 // The beam from `start` (its steps kept) to the last part, or as far as it
 // gets: best_ is its best state.
 void Search::RunBeam(const State& start) {
+  conservative_ = true;
+  struct Reset {
+    bool& conservative;
+    ~Reset() { conservative = false; }
+  } reset{conservative_};
   std::vector<State> beam = {start};
   const size_t n = movable_.size();
   out_.complete = false;
@@ -1261,14 +1300,20 @@ int Search::ConfirmAndMeasureHolds() {
     supports[i] = in_place;
   }
   // Each thread builds the scene with its state's supports (the search's
-  // cache of them is not shared): a copy alive per thread at most.
-  const std::vector<char> done = ConfirmStates(steps, [&](int i) {
+  // cache of them is not shared): a copy alive per thread at most. Each
+  // has a workspace that keeps the components it solved (reuse mode: cold
+  // solves, so the answers are fresh checks' whichever thread met them
+  // first): the states it takes share most of them.
+  std::vector<StabilityWorkspace> kept(static_cast<size_t>(Threads()));
+  for (StabilityWorkspace& w : kept) w.set_reuse_solutions(true);
+  const std::vector<char> done = ConfirmStates(steps, [&](int i, int worker) {
     const std::vector<int> held = HeldOf(supports[i]), props = PropsOf(supports[i]);
     const std::optional<Assembly> scene = held.empty() && props.empty()
                                               ? std::nullopt
                                               : std::optional<Assembly>(WithSupports(held, props));
     MeasureStep(
-        AnalyzeConfiguration(scene ? *scene : assembly_, ConfigOf(placed[i]), options_.stability),
+        AnalyzeConfiguration(scene ? *scene : assembly_, ConfigOf(placed[i]), options_.stability,
+                             nullptr, &kept[static_cast<size_t>(worker)]),
         supports[i], best_.steps[i]);
   });
   int first_failing = -1;
@@ -1282,12 +1327,17 @@ int Search::ConfirmAndMeasureHolds() {
   return first_failing;
 }
 
-// check(i) for i = 0 … n − 1 (each touching only what is its own), on
+int Search::Threads() const {
+  return options_.threads > 0 ? options_.threads
+                              : static_cast<int>(std::max(1U, std::thread::hardware_concurrency()));
+}
+
+// check(i, worker) for i = 0 … n − 1 (each touching only what is its own), on
 // options_.threads threads taking the next step in turn; none taken once
 // the confirmation's time is up, and every one taken is done: which were
 // done is a prefix. The time and the caller's checkpoint are seen on this
 // thread only.
-std::vector<char> Search::ConfirmStates(int n, const std::function<void(int)>& check) {
+std::vector<char> Search::ConfirmStates(int n, const std::function<void(int, int)>& check) {
   std::vector<char> out(n, 0);
   std::atomic<int> next{0};
   std::atomic<bool> stop{false};
@@ -1297,16 +1347,13 @@ std::vector<char> Search::ConfirmStates(int n, const std::function<void(int)>& c
     const int i = stop ? n : next++;
     return i < n ? i : -1;
   };
-  const int threads =
-      std::min(n, options_.threads > 0
-                      ? options_.threads
-                      : static_cast<int>(std::max(1U, std::thread::hardware_concurrency())));
+  const int threads = std::min(n, Threads());
   std::vector<std::thread> others;
   for (int t = 1; t < threads; ++t)
-    others.emplace_back([&] {
+    others.emplace_back([&, t] {
       try {
         for (int i = take(); i >= 0; i = take()) {
-          check(i);
+          check(i, t);
           out[i] = 1;
         }
       } catch (...) {
@@ -1321,7 +1368,7 @@ std::vector<char> Search::ConfirmStates(int n, const std::function<void(int)>& c
       if (ConfirmationOutOfTime()) stop = true;
       const int i = take();
       if (i < 0) break;
-      check(i);
+      check(i, 0);
       out[i] = 1;
     }
   } catch (...) {

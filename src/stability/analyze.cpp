@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <deque>
 #include <limits>
 #include <numeric>
 #include <tuple>
@@ -19,6 +20,15 @@ namespace cairn {
 
 // The workspace's contents: the last Lemke basis of each component structure
 // and the last rest-hypothesis LP basis.
+// The loadings from rest a workspace keeps for warm starts (a state's
+// components and those of the few states before it; each about 10 KB a
+// hundred contacts).
+constexpr size_t kKeptLoadings = 32;
+
+// The component solutions a workspace in reuse mode keeps (a build order's
+// states have a few components each, most shared with the state before).
+constexpr size_t kKeptSolutions = 256;
+
 struct StabilityWorkspace::Impl {
   /// One component structure and its last basis.
   struct Entry {
@@ -37,6 +47,17 @@ struct StabilityWorkspace::Impl {
   std::unordered_map<std::uint64_t, RestLpBasis> rest_bases;
   /// The contacts of the part pairs that did not move (DetectContacts).
   PairContactCache contacts;
+  /// The last components loaded from rest that stood, most recent first
+  /// (at most kKeptLoadings): the one sharing the most bodies with a
+  /// component starts its loading (LoadFromRestOptions::warm_start).
+  std::deque<LoadingBasis> loadings;
+  /// Reuse mode (set_reuse_solutions): each component's data (SolutionKey)
+  /// and solution, by the data's hash; at most kKeptSolutions (then the
+  /// store starts afresh).
+  bool reuse = false;
+  std::unordered_multimap<std::uint64_t, std::pair<std::vector<double>, ComponentSolution>>
+      solutions;
+  int reused = 0;
 };
 
 StabilityWorkspace::StabilityWorkspace() : impl_(std::make_unique<Impl>()) {}
@@ -50,6 +71,8 @@ int StabilityWorkspace::TakeWarmStarts() {
   return n;
 }
 int StabilityWorkspace::num_structures() const { return static_cast<int>(impl_->bases.size()); }
+void StabilityWorkspace::set_reuse_solutions(bool on) { impl_->reuse = on; }
+int StabilityWorkspace::reused() const { return impl_->reused; }
 
 const char* to_string(MotionKind kind) {
   switch (kind) {
@@ -331,6 +354,70 @@ std::uint64_t BodiesHash(const ContactLcp& lcp) {
   h(static_cast<int>(lcp.bodies.size()));
   for (const BodyDynamics& b : lcp.bodies) h(b.part);
   return h.h;
+}
+
+// The kept loading (StabilityWorkspace::Impl::loadings) sharing the most
+// bodies with `lcp`, at least half of them (the most recent of equals), or
+// null.
+const LoadingBasis* NearestLoading(const std::deque<LoadingBasis>& kept, const ContactLcp& lcp) {
+  std::vector<int> parts;
+  for (const BodyDynamics& b : lcp.bodies) parts.push_back(b.part);
+  std::sort(parts.begin(), parts.end());
+  const LoadingBasis* best = nullptr;
+  size_t most = (parts.size() + 1) / 2;
+  for (const LoadingBasis& k : kept) {
+    size_t shared = 0;
+    for (int p : k.parts) shared += std::binary_search(parts.begin(), parts.end(), p) ? 1 : 0;
+    if (shared > most || (!best && shared == most && shared > 0)) {
+      best = &k;
+      most = shared;
+    }
+  }
+  return best;
+}
+
+// Everything a static check's solve of `lcp` depends on (reuse mode): the
+// verdict's options, each body's data and each contact's, as numbers. The
+// patches are numbered over the whole configuration: here in the order
+// the component meets them (which points share a patch is what counts).
+std::vector<double> SolutionKey(const ContactLcp& lcp, const StabilityOptions& o) {
+  std::vector<double> k = {static_cast<double>(lcp.size()),
+                           static_cast<double>(lcp.formulation),
+                           lcp.build.dt,
+                           static_cast<double>(o.rule),
+                           static_cast<double>(o.prove_strong),
+                           static_cast<double>(o.conservative),
+                           static_cast<double>(lcp.num_directions)};
+  const auto add = [&k](const auto& m) {
+    for (Eigen::Index i = 0; i < m.size(); ++i) k.push_back(m.data()[i]);
+  };
+  for (const BodyDynamics& b : lcp.bodies) {
+    k.insert(k.end(), {static_cast<double>(b.part), b.mass, static_cast<double>(b.planar),
+                       static_cast<double>(b.motion)});
+    add(b.inertia), add(b.p_WBcm), add(b.F_ext), add(b.nu_prev), add(b.guide);
+    add(b.nu_prescribed);
+  }
+  std::unordered_map<int, int> patch;
+  for (const Contact& c : lcp.contacts) {
+    const int own =
+        c.patch < 0 ? -1 : patch.emplace(c.patch, static_cast<int>(patch.size())).first->second;
+    k.insert(k.end(), {static_cast<double>(c.part_a), static_cast<double>(c.part_b), c.gap, c.mu,
+                       static_cast<double>(c.feature), static_cast<double>(c.index_a),
+                       static_cast<double>(c.index_b), static_cast<double>(own)});
+    add(c.p_WC), add(c.n_W);
+  }
+  return k;
+}
+
+// 64-bit FNV-1a of the key's bytes.
+std::uint64_t SolutionHash(const std::vector<double>& key) {
+  std::uint64_t h = 0xcbf29ce484222325ULL;
+  const auto* bytes = reinterpret_cast<const unsigned char*>(key.data());
+  for (size_t i = 0; i < key.size() * sizeof(double); ++i) {
+    h ^= bytes[i];
+    h *= 0x100000001b3ULL;
+  }
+  return h;
 }
 
 bool KeyMatches(const std::vector<int>& key, const ContactLcp& lcp) {
@@ -633,12 +720,18 @@ class ConfigurationAnalysis {
     else if (s.mechanism && s.mechanism->found)
       phys = VirtualMotion(lcp, s.mechanism->nu);
     if (!phys) {
-      if (s.decided_by != DecidedBy::kJammed) any_undecided_ = true;
+      // No motion known: undecided, unless the verdict is that every part
+      // gives way (a conservative verdict that did not seek how).
+      if (s.gives_way_unexplained)
+        any_moving_ = true;
+      else if (s.decided_by != DecidedBy::kJammed)
+        any_undecided_ = true;
       for (int p : comp.parts) {
         PartMotion m;
         m.part = p;
         m.component = ci;
         m.role = RoleOf(drive_, p);
+        m.moving = s.gives_way_unexplained && m.role == PartRole::kJudged;
         result_.parts.push_back(m);
       }
       result_.components.push_back(report);
@@ -660,6 +753,7 @@ class ConfigurationAnalysis {
     ctx.static_check = static_check_;
     ctx.rule = options_.rule;
     ctx.prove_strong = options_.prove_strong;
+    ctx.conservative = options_.conservative;
     // Whether an LCP solution moves a part that must stay put.
     ctx.moves = [this](const ContactLcp& l, const VectorX& z) {
       const ContactSolution sol = RecoverSolution(l, z);
@@ -690,6 +784,8 @@ class ConfigurationAnalysis {
     // on the whole component (Jenga: 18 ms against 10). Small components
     // keep Lemke's forces where it finds rest (SolveComponent).
     if (!ctx.has_driven && AllAtRest(lcp)) ctx.static_check = true;
+    if (workspace_ && workspace_->impl().reuse && ctx.static_check && !drive_)
+      return Reused(lcp, ctx);
     std::uint64_t hash = 0;
     LcpBasis* basis = nullptr;
     if (workspace_) {
@@ -698,7 +794,9 @@ class ConfigurationAnalysis {
       ctx.warm_start = basis;
       if (ctx.rest_first) ctx.rest_warm = &workspace_->impl().rest_bases[BodiesHash(lcp)];
     }
+    if (workspace_) ctx.loading_warm = NearestLoading(workspace_->impl().loadings, lcp);
     ComponentSolution s = SolveComponent(lcp, ctx);
+    if (workspace_ && s.loaded && s.loaded->basis) KeepLoading(std::move(*s.loaded->basis));
     if (workspace_ && s.decided_by == DecidedBy::kLemke) {
       // A warm start returns the basis it was given: nothing to store.
       if (!basis)
@@ -713,6 +811,42 @@ class ConfigurationAnalysis {
       if (eq.solved) s.equilibrium = eq;
     }
     return s;
+  }
+
+  // Reuse mode (StabilityWorkspace::set_reuse_solutions): the kept
+  // solution of the same data, else a cold solve, kept.
+  ComponentSolution Reused(const ContactLcp& lcp, const SolveContext& ctx) {
+    StabilityWorkspace::Impl& w = workspace_->impl();
+    std::vector<double> key = SolutionKey(lcp, options_);
+    const std::uint64_t hash = SolutionHash(key);
+    const auto [first, last] = w.solutions.equal_range(hash);
+    for (auto it = first; it != last; ++it)
+      if (it->second.first == key) {
+        ++w.reused;
+        return it->second.second;
+      }
+    ComponentSolution s = SolveComponent(lcp, ctx);
+    if (w.solutions.size() >= kKeptSolutions) w.solutions.clear();
+    w.solutions.emplace(hash, std::make_pair(std::move(key), s));
+    return s;
+  }
+
+  // A loading that stood, kept for the warm start of the next ones (the
+  // oldest dropped beyond kKeptLoadings; one of the same bodies replaced).
+  void KeepLoading(LoadingBasis&& basis) {
+    std::deque<LoadingBasis>& kept = workspace_->impl().loadings;
+    std::vector<int> parts = basis.parts;
+    std::sort(parts.begin(), parts.end());
+    for (auto it = kept.begin(); it != kept.end(); ++it) {
+      std::vector<int> other = it->parts;
+      std::sort(other.begin(), other.end());
+      if (other == parts) {
+        kept.erase(it);
+        break;
+      }
+    }
+    kept.push_front(std::move(basis));
+    if (kept.size() > kKeptLoadings) kept.pop_back();
   }
 
   // The component's report, the jammed parts and the diagnostics line.

@@ -311,6 +311,16 @@ void ExplainByPartsThatGiveWay(const ContactLcp& lcp, const SolveContext& ctx,
 // An equilibrium exists and strong stability is not proved: the rule decides
 // (VerdictRule). `rest`: a verified LCP solution at rest (Lemke's), or null;
 // `moving`: a verified LCP solution in which a part moves, or null.
+// Loading from rest as the context asks: a conservative verdict takes the
+// loading LCP's first secondary ray as its answer.
+LoadFromRestOptions LoadingOptions(const SolveContext& ctx) {
+  LoadFromRestOptions o;
+  o.lemke.retry_after_ray = !ctx.conservative;
+  o.explain = !ctx.conservative;
+  o.warm_start = ctx.loading_warm;
+  return o;
+}
+
 void DecideOpenCase(const ContactLcp& lcp, const SolveContext& ctx, const VectorX* rest,
                     const VectorX* moving, ComponentSolution& out) {
   // A rigid solution at rest for the report: Lemke's, else the equilibrium's.
@@ -323,7 +333,7 @@ void DecideOpenCase(const ContactLcp& lcp, const SolveContext& ctx, const Vector
     stand(rest ? DecidedBy::kLemke : DecidedBy::kEquilibrium);
     return;
   }
-  if (!out.loaded) out.loaded = LoadFromRest(lcp);  // (DecideWeakOrStrong may have loaded it)
+  if (!out.loaded) out.loaded = LoadFromRest(lcp, LoadingOptions(ctx));  // (or DecideWeakOrStrong)
   const LoadedFromRest& loaded = *out.loaded;
   switch (loaded.outcome) {
     case LoadedFromRest::Outcome::kStands:
@@ -333,9 +343,14 @@ void DecideOpenCase(const ContactLcp& lcp, const SolveContext& ctx, const Vector
     case LoadedFromRest::Outcome::kGivesWay:
       out.notes.push_back("it gives way when loaded from rest on compliant contacts");
       if (moving && Accept(lcp, *moving, ctx.lemke, DecidedBy::kLoadedFromRest, out)) return;
-      if (!loaded.displacement.empty()) {
+      if (!loaded.displacement.empty() || ctx.conservative) {
         out.decided_by = DecidedBy::kLoadedFromRest;
-        out.collapse = CollapseMotion(lcp, loaded);
+        if (loaded.displacement.empty()) {
+          out.gives_way_unexplained = true;
+          out.notes.push_back("how it moves was not sought (a conservative verdict)");
+        } else {
+          out.collapse = CollapseMotion(lcp, loaded);
+        }
         return;
       }
       ExplainByPartsThatGiveWay(lcp, ctx, out);
@@ -380,12 +395,18 @@ void DecideWeakOrStrong(const ContactLcp& lcp, const SolveContext& ctx, bool lem
   if (!ctx.prove_strong) {
     bool stands = ctx.rule == VerdictRule::kEquilibrium;
     if (!stands) {
-      out.loaded = LoadFromRest(lcp);
+      out.loaded = LoadFromRest(lcp, LoadingOptions(ctx));
       stands = out.loaded->outcome != LoadedFromRest::Outcome::kGivesWay;
     }
     if (stands) {
       out.stability = StabilityProof::kNotCertified;
       out.notes.push_back("strong stability not sought (only the verdict)");
+      DecideOpenCase(lcp, ctx, rest, nullptr, out);
+      return;
+    }
+    if (ctx.conservative) {  // no proof of strong stability sought: it falls
+      out.stability = StabilityProof::kNotCertified;
+      out.notes.push_back("strong stability not sought (a conservative verdict)");
       DecideOpenCase(lcp, ctx, rest, nullptr, out);
       return;
     }

@@ -4,6 +4,7 @@
 // boxes. Each verdict is set against a closed-form threshold, on both sides.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <string>
@@ -383,6 +384,77 @@ TEST(Jamming3d, ACubeWedgedBetweenWallsIsWeaklyStable) {
   const StabilityResult floor = Analyze3d(Assembly::Create(def));
   EXPECT_TRUE(floor.stable());
   EXPECT_FALSE(floor.weakly_stable);
+}
+
+// The conservative verdict (StabilityOptions::conservative) never says a
+// scene stands where the full verdict says it falls: on a stack of three
+// boxes whose top one stands within b's top face or tips past it, and on a
+// block jammed between two walls (friction could hold it, nothing squeezes
+// it) with another on it. Where loading from rest decides that it gives
+// way, every part of the component counts as moving (how is not sought).
+TEST(ConservativeVerdict, NeverStandsWhereTheFullVerdictFalls) {
+  std::vector<Assembly> scenes;
+  for (const double offset : {0.3, 0.7}) {
+    AssemblyDef def;
+    def.friction = 0.5;
+    def.parts = {Box3("ground", {-3, -3, -1}, {3, 3, 0}, true), Box3("a", {0, 0, 0}, {1, 1, 0.5}),
+                 Box3("b", {0.3, 0, 0.5}, {1.3, 1, 1}),
+                 Box3("c", {0.3 + offset, 0, 1}, {1.3 + offset, 1, 1.5})};
+    scenes.push_back(Assembly::Create(def, "stack"));
+  }
+  AssemblyDef jammed = testing::JammedBlock(1.0);
+  jammed.parts.push_back(testing::Box("on it", 0, 1, 1, 2));
+  scenes.push_back(Assembly::Create(jammed, "jammed"));
+  for (const Assembly& a : scenes) {
+    SCOPED_TRACE(a.name());
+    StabilityOptions full, quick;
+    full.prove_strong = quick.prove_strong = false;
+    quick.conservative = true;
+    const StabilityResult f = AnalyzeConfiguration(a, Configuration::Assembled(a), full);
+    const StabilityResult q = AnalyzeConfiguration(a, Configuration::Assembled(a), quick);
+    ASSERT_NE(q.verdict, Verdict::kSolverFailure) << q.diagnostics;
+    EXPECT_TRUE(!q.stable() || f.stable());
+    if (a.name() != "jammed") {  // decided by the equilibrium: the same verdict
+      EXPECT_EQ(q.stable(), f.stable());
+      continue;
+    }
+    ASSERT_EQ(q.components.size(), 1u);
+    ASSERT_TRUE(q.components[0].loaded_from_rest.has_value());
+    EXPECT_EQ(*q.components[0].loaded_from_rest, LoadedFromRest::Outcome::kGivesWay);
+    EXPECT_FALSE(q.stable());
+    EXPECT_EQ(q.moving, (std::vector<int>{2, 3}));
+  }
+}
+
+// Reuse mode (StabilityWorkspace::set_reuse_solutions): a scene with one
+// more component (a box apart) than the one analysed before answers the
+// shared component from the kept solution, and every contact force is the
+// fresh check's, exactly.
+TEST(ReuseSolutions, ASharedComponentIsAnsweredAsAFreshCheckAnswersIt) {
+  AssemblyDef def;
+  def.friction = 0.5;
+  def.parts = {Box3("ground", {-5, -5, -1}, {5, 5, 0}, true), Box3("a", {0, 0, 0}, {1, 1, 0.5}),
+               Box3("b", {0.3, 0, 0.5}, {1.3, 1, 1})};
+  const Assembly two = Assembly::Create(def, "two");
+  def.parts.push_back(Box3("apart", {3, 3, 0}, {4, 4, 1}));
+  const Assembly three = Assembly::Create(def, "three");
+  StabilityOptions o;
+  o.prove_strong = false;
+  StabilityWorkspace w;
+  w.set_reuse_solutions(true);
+  AnalyzeConfiguration(two, Configuration::Assembled(two), o, nullptr, &w);
+  EXPECT_EQ(w.reused(), 0);
+  const StabilityResult kept =
+      AnalyzeConfiguration(three, Configuration::Assembled(three), o, nullptr, &w);
+  EXPECT_EQ(w.reused(), 1);  // a and b's component; the box apart is new
+  const StabilityResult fresh = AnalyzeConfiguration(three, Configuration::Assembled(three), o);
+  ASSERT_TRUE(fresh.stable());
+  EXPECT_EQ(kept.verdict, fresh.verdict);
+  ASSERT_EQ(kept.contacts.size(), fresh.contacts.size());
+  for (size_t c = 0; c < kept.contacts.size(); ++c) {
+    EXPECT_EQ(kept.contacts[c].normal_force, fresh.contacts[c].normal_force) << c;
+    EXPECT_EQ(kept.contacts[c].friction_force, fresh.contacts[c].friction_force) << c;
+  }
 }
 
 }  // namespace

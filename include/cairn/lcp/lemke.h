@@ -62,6 +62,12 @@ struct LemkeParameters {
   /// with status kSolved satisfies IsLcpSolution(M, q, z, solution_tolerance ·
   /// max(1, ‖q‖∞)).
   double solution_tolerance = 1e-8;
+  /// Whether a secondary ray sends the solve on to its other paths (the
+  /// perturbed ones) before it is reported. On degenerate contact LCPs a
+  /// perturbed path can end on a ray when a solution exists (factored_lcp.h),
+  /// so without the retries a ray only says "no solution found on the first
+  /// path": for callers that may answer conservatively.
+  bool retry_after_ray = true;
 };
 
 /// A complementary basis: basic_z[i] is true when z_i is basic (so w_i = 0),

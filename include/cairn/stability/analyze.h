@@ -245,6 +245,17 @@ class StabilityWorkspace {
   /// Component structures with a stored basis.
   int num_structures() const;
 
+  /// Reuse mode, for static checks of scenes that differ only in which
+  /// parts are present, fixed or held (the states of a build order), all
+  /// with the same options: no warm start is offered (every solve is the
+  /// cold one a fresh check makes), and each component's solution is kept
+  /// by the component's whole data (its bodies, contacts and the verdict's
+  /// options, compared exactly), so that a component met again is not
+  /// solved again. The answers are those of fresh checks.
+  void set_reuse_solutions(bool on);
+  /// Components answered from the kept solutions (reuse mode).
+  int reused() const;
+
   /// The stored bases and LP hints (defined in analyze.cpp only).
   struct Impl;
   Impl& impl() { return *impl_; }
@@ -292,6 +303,11 @@ struct StabilityOptions {
   /// Static checks: decide `stability` as far as the search's budget allows
   /// (SolveContext::prove_strong); off, only the verdict is sought.
   bool prove_strong = true;
+  /// Static checks with prove_strong off: a cheaper verdict that may say a
+  /// component falls where the full one says it stands, never the reverse
+  /// (SolveContext::conservative). For searches that confirm their answer
+  /// with the full verdict (cairn sequence's beam).
+  bool conservative = false;
 };
 
 /// The contact LCP of every contact-graph component of `config`: the first

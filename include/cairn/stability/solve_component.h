@@ -119,6 +119,14 @@ struct SolveContext {
   /// complete search runs only where its proof could change the verdict:
   /// where loading from rest gives way. The verdict is the same either way.
   bool prove_strong = true;
+  /// With prove_strong off: the verdict may say "falls" where the full one
+  /// says "stands", never the reverse, for less work where loading from
+  /// rest gives way (the rejections of a search, each costing several times
+  /// an acceptance): the loading LCP's first secondary ray is its answer
+  /// (no retry along the perturbed paths, which can find a solution the
+  /// first path missed), and no search for a proof of strong stability
+  /// follows (which would make the component stand).
+  bool conservative = false;
   /// Along paths: try the rest hypothesis LP first (3-D, friction, a driven
   /// part, no carried one).
   bool rest_first = false;
@@ -131,6 +139,7 @@ struct SolveContext {
   std::function<bool(const ContactLcp&, const VectorX&)> moves;
   /// Warm starts (may be null).
   const LcpBasis* warm_start = nullptr;
+  const LoadingBasis* loading_warm = nullptr;  ///< loading from rest's
   RestLpBasis* rest_warm = nullptr;
 };
 
@@ -163,6 +172,9 @@ struct ComponentSolution {
   /// collapse motion from the loading step (its displacements, scaled so the
   /// fastest body moves by 1: a direction), decided_by kLoadedFromRest.
   std::vector<Vector6> collapse;
+  /// A conservative verdict (SolveContext::conservative): it gives way when
+  /// loaded from rest, and how was not sought: every body counts as moving.
+  bool gives_way_unexplained = false;
   /// The rigid LCP's probe found a solution in which a part moves (weak
   /// stability's evidence), even where the verdict is that it stands; the
   /// local indices of the bodies it moves.
