@@ -2,8 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <map>
-#include <tuple>
 
 namespace cairn {
 
@@ -145,85 +143,11 @@ void BuildStaticLcp(const ContactLcp& lcp, const std::vector<Eigen::Matrix<doubl
 // pivot limit: on the Armadillo's states, 14 of 126 components stalled
 // dense, and the factored paths all ended (docs/benchmarks.md,
 // "`bench/sequence_bench.sh`, fifth stop"). Where both end they agree.
-LcpResult SolveLoading(const SparseMatrixX& M, const VectorX& q, const LemkeParameters& lemke,
-                       const LcpBasis* warm) {
+LcpResult SolveLoading(const SparseMatrixX& M, const VectorX& q, const LemkeParameters& lemke) {
   const Eigen::Index n = q.size();
-  if (n <= kMaxDenseLcp) return SolveLemke(MatrixX(M), q, lemke, warm);
+  if (n <= kMaxDenseLcp) return SolveLemke(MatrixX(M), q, lemke);
   const FactoredLcpMatrix factored(SparseMatrixX(n, 0), SparseMatrixX(0, 0), M);
-  return SolveLemkeFactored(factored, q, lemke, warm);
-}
-
-// A contact's identity across components: its parts and point, exactly.
-using ContactKey = std::tuple<int, int, double, double, double>;
-ContactKey KeyOf(int part_a, int part_b, const Vector3& p) {
-  return {part_a, part_b, p.x(), p.y(), p.z()};
-}
-
-// The basis `b` of the unshifted LCP (Layout) by body and contact.
-LoadingBasis BasisOf(const ContactLcp& lcp, const Layout& L, const LcpBasis& b) {
-  LoadingBasis out;
-  const int nb = static_cast<int>(lcp.bodies.size());
-  for (int i = 0; i < nb; ++i) {
-    out.parts.push_back(lcp.bodies[i].part);
-    std::vector<bool>& flags = out.body.emplace_back();
-    for (int side = 0; side < 2; ++side)
-      for (int j = L.body_offset[i]; j < L.body_offset[i + 1]; ++j)
-        flags.push_back(b.basic_z[(side == 0 ? L.first() : L.second()) + j]);
-  }
-  for (int c = 0; c < L.nc; ++c) {
-    LoadingBasis::ContactBasis& cb = out.contacts.emplace_back();
-    cb.part_a = lcp.contacts[c].part_a;
-    cb.part_b = lcp.contacts[c].part_b;
-    cb.point = lcp.contacts[c].p_WC;
-    cb.basic.push_back(b.basic_z[L.normal(c)]);
-    const int f = L.nf > 0 ? lcp.friction_of[c] : -1;
-    if (f < 0) continue;
-    for (int k = 0; k < L.D; ++k) cb.basic.push_back(b.basic_z[L.beta(f, k)]);
-    cb.basic.push_back(b.basic_z[L.gamma(f)]);
-  }
-  return out;
-}
-
-// `warm` mapped onto the unshifted LCP of `lcp` (Layout): the flags of the
-// bodies (by part) and contacts (by ContactKey) it shares with `lcp`;
-// elsewhere every unknown nonbasic but the normal force of a new contact
-// (most contacts of a part that joins carry some of its weight).
-LcpBasis WarmBasis(const ContactLcp& lcp, const Layout& L, const LoadingBasis& warm) {
-  LcpBasis out;
-  out.basic_z.assign(L.size(), false);
-  std::map<int, int> body_of;
-  for (size_t i = 0; i < warm.parts.size(); ++i) body_of[warm.parts[i]] = static_cast<int>(i);
-  for (size_t i = 0; i < lcp.bodies.size(); ++i) {
-    const auto it = body_of.find(lcp.bodies[i].part);
-    const int k = L.body_offset[i + 1] - L.body_offset[i];
-    if (it == body_of.end() || warm.body[it->second].size() != static_cast<size_t>(2 * k)) continue;
-    const std::vector<bool>& flags = warm.body[it->second];
-    for (int j = 0; j < k; ++j) {
-      out.basic_z[L.first() + L.body_offset[i] + j] = flags[j];
-      out.basic_z[L.second() + L.body_offset[i] + j] = flags[k + j];
-    }
-  }
-  std::map<ContactKey, int> contact_of;
-  for (size_t c = 0; c < warm.contacts.size(); ++c) {
-    const LoadingBasis::ContactBasis& cb = warm.contacts[c];
-    contact_of[KeyOf(cb.part_a, cb.part_b, cb.point)] = static_cast<int>(c);
-  }
-  for (int c = 0; c < L.nc; ++c) {
-    const Contact& contact = lcp.contacts[c];
-    const int f = L.nf > 0 ? lcp.friction_of[c] : -1;
-    const size_t flags = f < 0 ? 1 : static_cast<size_t>(L.D) + 2;
-    const auto it = contact_of.find(KeyOf(contact.part_a, contact.part_b, contact.p_WC));
-    if (it == contact_of.end() || warm.contacts[it->second].basic.size() != flags) {
-      out.basic_z[L.normal(c)] = true;
-      continue;
-    }
-    const std::vector<bool>& basic = warm.contacts[it->second].basic;
-    out.basic_z[L.normal(c)] = basic[0];
-    if (f < 0) continue;
-    for (int k = 0; k < L.D; ++k) out.basic_z[L.beta(f, k)] = basic[1 + k];
-    out.basic_z[L.gamma(f)] = basic[1 + L.D];
-  }
-  return out;
+  return SolveLemkeFactored(factored, q, lemke);
 }
 
 // The forces, slips and displacements of a solution z, and the equilibrium's
@@ -341,14 +265,12 @@ LoadedFromRest LoadFromRest(const ContactLcp& lcp, const LoadFromRestOptions& op
   SparseMatrixX M;
   VectorX q;
   BuildStaticLcp(lcp, B, L, kn, kt, M, q);
-  const std::optional<LcpBasis> warm =
-      options.warm_start ? std::optional(WarmBasis(lcp, L, *options.warm_start)) : std::nullopt;
-  LcpResult r = SolveLoading(M, q, lemke, warm ? &*warm : nullptr);
+  LcpResult r = SolveLoading(M, q, lemke);
   out.pivots = r.pivots;
   if (r.status == LcpStatus::kPivotLimit || r.status == LcpStatus::kNumericalFailure) {
     L.shifted = true;  // the other form of the free displacements (Layout)
     BuildStaticLcp(lcp, B, L, kn, kt, M, q);
-    r = SolveLoading(M, q, lemke, nullptr);
+    r = SolveLoading(M, q, lemke);
     out.pivots += r.pivots;
   }
   if (r.status == LcpStatus::kRayTermination) {
@@ -384,8 +306,6 @@ LoadedFromRest LoadFromRest(const ContactLcp& lcp, const LoadFromRestOptions& op
     return out;
   }
   out.outcome = LoadedFromRest::Outcome::kStands;
-  out.warm_start_used = warm && r.warm_start_used;
-  if (!L.shifted) out.basis = BasisOf(lcp, L, r.basis);
   return out;
 }
 

@@ -51,7 +51,7 @@ constexpr double kBalanceSlack = 1e-9;
 // basis leaves forces at a fake bound, Clp ends with its primal simplex,
 // refactoring at every check. On the cross vault's states of 160 blocks
 // and more that cleanup was most of a 400 ms solve; with this bound the
-// whole vault's search took 124 s against 175 s, the same order
+// LPs of a whole vault run took 79 s against 158 s, the same order
 // (docs/benchmarks.md, "`bench/sequence_bench.sh`, sixth stop"). Below
 // 10²⁰, where Clp takes the bound as infinite and goes to its primal
 // simplex at once.

@@ -4,7 +4,6 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
-#include <deque>
 #include <limits>
 #include <numeric>
 #include <tuple>
@@ -20,11 +19,6 @@ namespace cairn {
 
 // The workspace's contents: the last Lemke basis of each component structure
 // and the last rest-hypothesis LP basis.
-// The loadings from rest a workspace keeps for warm starts (a state's
-// components and those of the few states before it; each about 10 KB a
-// hundred contacts).
-constexpr size_t kKeptLoadings = 32;
-
 // The component solutions a workspace in reuse mode keeps (a build order's
 // states have a few components each, most shared with the state before).
 constexpr size_t kKeptSolutions = 256;
@@ -47,10 +41,6 @@ struct StabilityWorkspace::Impl {
   std::unordered_map<std::uint64_t, RestLpBasis> rest_bases;
   /// The contacts of the part pairs that did not move (DetectContacts).
   PairContactCache contacts;
-  /// The last components loaded from rest that stood, most recent first
-  /// (at most kKeptLoadings): the one sharing the most bodies with a
-  /// component starts its loading (LoadFromRestOptions::warm_start).
-  std::deque<LoadingBasis> loadings;
   /// Reuse mode (set_reuse_solutions): each component's data (SolutionKey)
   /// and solution, by the data's hash; at most kKeptSolutions (then the
   /// store starts afresh).
@@ -354,26 +344,6 @@ std::uint64_t BodiesHash(const ContactLcp& lcp) {
   h(static_cast<int>(lcp.bodies.size()));
   for (const BodyDynamics& b : lcp.bodies) h(b.part);
   return h.h;
-}
-
-// The kept loading (StabilityWorkspace::Impl::loadings) sharing the most
-// bodies with `lcp`, at least half of them (the most recent of equals), or
-// null.
-const LoadingBasis* NearestLoading(const std::deque<LoadingBasis>& kept, const ContactLcp& lcp) {
-  std::vector<int> parts;
-  for (const BodyDynamics& b : lcp.bodies) parts.push_back(b.part);
-  std::sort(parts.begin(), parts.end());
-  const LoadingBasis* best = nullptr;
-  size_t most = (parts.size() + 1) / 2;
-  for (const LoadingBasis& k : kept) {
-    size_t shared = 0;
-    for (int p : k.parts) shared += std::binary_search(parts.begin(), parts.end(), p) ? 1 : 0;
-    if (shared > most || (!best && shared == most && shared > 0)) {
-      best = &k;
-      most = shared;
-    }
-  }
-  return best;
 }
 
 // Everything a static check's solve of `lcp` depends on (reuse mode): the
@@ -794,9 +764,7 @@ class ConfigurationAnalysis {
       ctx.warm_start = basis;
       if (ctx.rest_first) ctx.rest_warm = &workspace_->impl().rest_bases[BodiesHash(lcp)];
     }
-    if (workspace_) ctx.loading_warm = NearestLoading(workspace_->impl().loadings, lcp);
     ComponentSolution s = SolveComponent(lcp, ctx);
-    if (workspace_ && s.loaded && s.loaded->basis) KeepLoading(std::move(*s.loaded->basis));
     if (workspace_ && s.decided_by == DecidedBy::kLemke) {
       // A warm start returns the basis it was given: nothing to store.
       if (!basis)
@@ -829,24 +797,6 @@ class ConfigurationAnalysis {
     if (w.solutions.size() >= kKeptSolutions) w.solutions.clear();
     w.solutions.emplace(hash, std::make_pair(std::move(key), s));
     return s;
-  }
-
-  // A loading that stood, kept for the warm start of the next ones (the
-  // oldest dropped beyond kKeptLoadings; one of the same bodies replaced).
-  void KeepLoading(LoadingBasis&& basis) {
-    std::deque<LoadingBasis>& kept = workspace_->impl().loadings;
-    std::vector<int> parts = basis.parts;
-    std::sort(parts.begin(), parts.end());
-    for (auto it = kept.begin(); it != kept.end(); ++it) {
-      std::vector<int> other = it->parts;
-      std::sort(other.begin(), other.end());
-      if (other == parts) {
-        kept.erase(it);
-        break;
-      }
-    }
-    kept.push_front(std::move(basis));
-    if (kept.size() > kKeptLoadings) kept.pop_back();
   }
 
   // The component's report, the jammed parts and the diagnostics line.

@@ -317,7 +317,6 @@ LoadFromRestOptions LoadingOptions(const SolveContext& ctx) {
   LoadFromRestOptions o;
   o.lemke.retry_after_ray = !ctx.conservative;
   o.explain = !ctx.conservative;
-  o.warm_start = ctx.loading_warm;
   return o;
 }
 

@@ -184,36 +184,6 @@ TEST(LoadedFromRest, NoAnswerDependsOnTheAbsoluteStiffness) {
   }
 }
 
-// The stack of three above, started from the basis of the same stack
-// without its top block (a state one part smaller, as a build order meets
-// it): the cold start's answer and forces, in fewer pivots; where the top
-// block tips, a warm path is no proof, and the cold one says it gives way.
-TEST(LoadedFromRest, AWarmStartFromTheStateBeforeGivesTheColdAnswerInFewerPivots) {
-  for (const double offset : {0.3, 0.7}) {
-    SCOPED_TRACE(offset);
-    AssemblyDef def;
-    def.friction = 0.5;
-    def.parts = {Box3("ground", {-3, -3, -1}, {3, 3, 0}, true), Box3("a", {0, 0, 0}, {1, 1, 0.5}),
-                 Box3("b", {0.3, 0, 0.5}, {1.3, 1, 1})};
-    const Assembly two = Assembly::Create(def, "two");
-    def.parts.push_back(Box3("c", {0.3 + offset, 0, 1}, {1.3 + offset, 1, 1.5}));
-    const Assembly three = Assembly::Create(def, "three");
-    const LoadedFromRest before = LoadFromRest(OnlyComponent(two));
-    ASSERT_EQ(before.outcome, LoadedFromRest::Outcome::kStands) << before.message;
-    ASSERT_TRUE(before.basis.has_value());
-    const ContactLcp lcp = OnlyComponent(three);
-    LoadFromRestOptions warm;
-    warm.warm_start = &*before.basis;
-    const LoadedFromRest cold = LoadFromRest(lcp), started = LoadFromRest(lcp, warm);
-    ASSERT_EQ(started.outcome, cold.outcome) << started.message;
-    if (cold.outcome != LoadedFromRest::Outcome::kStands) continue;
-    EXPECT_LT(started.pivots, cold.pivots);
-    EXPECT_LT(started.equilibrium_residual, 1e-6);
-    const double W = cold.normal_force.sum();
-    EXPECT_NEAR(started.normal_force.sum(), W, 1e-6 * W);
-  }
-}
-
 // A conservative caller's options (LoadFromRestOptions::explain off, no
 // retry after a ray): the tipping stack gives way at once, with no
 // displacements, in no more pivots than the full answer.

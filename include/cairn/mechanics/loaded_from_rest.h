@@ -68,27 +68,6 @@ namespace cairn {
 /// at Poisson's ratio ν = 0.2 (dimensionless).
 inline constexpr double kTangentialStiffnessRatio = 2.0 * (1.0 - 0.2) / (2.0 - 0.2);
 
-/// The complementary basis of a loading LCP's solution, by body and contact
-/// rather than by position in the LCP, so that it can start the loading of
-/// another component that shares bodies and contacts with this one: a state
-/// one part larger along a build order, whose contacts mostly carry what
-/// they carried (the forces change, which of them are in compression or
-/// slipping mostly does not). Lemke's method then pivots where the new part
-/// changes that, not along the whole path from the cold start.
-struct LoadingBasis {
-  /// One contact: its parts and point (compared exactly: the same contact
-  /// detected again in the same configuration) and whether f_n, then each
-  /// of the D friction components β, then the slip γ are basic.
-  struct ContactBasis {
-    int part_a = -1, part_b = -1;
-    Vector3 point{0, 0, 0};
-    std::vector<bool> basic;
-  };
-  std::vector<int> parts;               ///< (nb) each body's part
-  std::vector<std::vector<bool>> body;  ///< (nb) ξ⁺ then ξ⁻ of its free directions: basic?
-  std::vector<ContactBasis> contacts;
-};
-
 /// Options of LoadFromRest.
 struct LoadFromRestOptions {
   /// κ = k_t / k_n (dimensionless, > 0).
@@ -106,12 +85,6 @@ struct LoadFromRestOptions {
   /// collapse step, often more work than the verdict). Off: `displacement`
   /// and `unbalanced` stay empty.
   bool explain = true;
-  /// Where Lemke's method starts (null: the cold start): the basis of a
-  /// component that shares bodies and contacts with this one, mapped onto
-  /// this one's (the rest of its unknowns start nonbasic, but the normal
-  /// forces of its new contacts). A warm path that fails is retried cold, so
-  /// the answer is the cold start's, found in fewer pivots.
-  const LoadingBasis* warm_start = nullptr;
 };
 
 /// The outcome of LoadFromRest.
@@ -137,9 +110,6 @@ struct LoadedFromRest {
   int pivots = 0;
   double stiffness = 0;  ///< k_n used, force/length (any positive value gives the same answer)
   std::string message;
-  /// kStands: the solution's basis, for a later warm start (LoadingBasis).
-  std::optional<LoadingBasis> basis;
-  bool warm_start_used = false;  ///< kStands: found from the warm start
 };
 
 /// "stands", "gives way", "not run", "failed".

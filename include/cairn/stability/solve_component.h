@@ -139,7 +139,6 @@ struct SolveContext {
   std::function<bool(const ContactLcp&, const VectorX&)> moves;
   /// Warm starts (may be null).
   const LcpBasis* warm_start = nullptr;
-  const LoadingBasis* loading_warm = nullptr;  ///< loading from rest's
   RestLpBasis* rest_warm = nullptr;
 };
 
