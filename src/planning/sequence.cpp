@@ -585,7 +585,8 @@ const Check& Search::ComponentStands(const std::vector<bool>& placed,
 // props: the filter, then (when it passes a state the confirmation rejected
 // once, or is unsure) the check's verdict. With props: the filter with the
 // propped parts held (a hold does all that props on its part can) rejects
-// what no props can save; the verdict decides the rest.
+// what no props can save; the verdict decides the rest. `filtered`: the
+// filter has passed the state already, and the verdict alone decides.
 Check Search::Evaluate(const std::vector<bool>& placed, const std::vector<Support>& supports,
                        const SubsetEquilibrium::Basis* start,
                        std::optional<SubsetEquilibrium::Basis>* end, bool filtered) {

@@ -308,11 +308,9 @@ void ExplainByPartsThatGiveWay(const ContactLcp& lcp, const SolveContext& ctx,
   }
 }
 
-// An equilibrium exists and strong stability is not proved: the rule decides
-// (VerdictRule). `rest`: a verified LCP solution at rest (Lemke's), or null;
-// `moving`: a verified LCP solution in which a part moves, or null.
 // Loading from rest as the context asks: a conservative verdict takes the
-// loading LCP's first secondary ray as its answer.
+// loading LCP's first secondary ray as its answer and does not seek how
+// the component gives way.
 LoadFromRestOptions LoadingOptions(const SolveContext& ctx) {
   LoadFromRestOptions o;
   o.lemke.retry_after_ray = !ctx.conservative;
@@ -320,6 +318,9 @@ LoadFromRestOptions LoadingOptions(const SolveContext& ctx) {
   return o;
 }
 
+// An equilibrium exists and strong stability is not proved: the rule decides
+// (VerdictRule). `rest`: a verified LCP solution at rest (Lemke's), or null;
+// `moving`: a verified LCP solution in which a part moves, or null.
 void DecideOpenCase(const ContactLcp& lcp, const SolveContext& ctx, const VectorX* rest,
                     const VectorX* moving, ComponentSolution& out) {
   // A rigid solution at rest for the report: Lemke's, else the equilibrium's.
