@@ -72,12 +72,12 @@ bool BlockLu::Factor(const std::vector<int>& rows, const std::vector<int>& cols)
   s_.resize(0, 0);
   sparse0_ = false;
   if (k == 0) return true;
-  if (k >= kSparseFromOrder && FactorSparse(k)) return true;
   MatrixX c0(k, k);
   for (int p = 0; p < k; ++p) {
     a_.Column(cols0_[p], &line_);
     for (int s = 0; s < k; ++s) c0(s, p) = line_[rows0_[s]];
   }
+  if (k >= kSparseFromOrder && FactorSparse(c0)) return true;
   lu0_.compute(c0);
   return Regular(lu0_, c0);
 }
@@ -85,22 +85,12 @@ bool BlockLu::Factor(const std::vector<int>& rows, const std::vector<int>& cols)
 // C₀ by the sparse LU, when it is sparse enough (kSparseDensity) and the
 // factors are regular (the same test as the dense LU's, on U's diagonal,
 // which SparseLU keeps in the supernodes of L). False: the dense LU decides.
-bool BlockLu::FactorSparse(int k) {
-  std::vector<Eigen::Triplet<double>> entries;
-  double largest = 0;
-  const size_t most = static_cast<size_t>(kSparseDensity * k * static_cast<double>(k));
-  for (int p = 0; p < k; ++p) {
-    a_.Column(cols0_[p], &line_);
-    for (int s = 0; s < k; ++s)
-      if (const double v = line_[rows0_[s]]; v != 0.0) {
-        if (entries.size() >= most) return false;
-        entries.emplace_back(s, p, v);
-        largest = std::max(largest, std::abs(v));
-      }
-  }
-  Eigen::SparseMatrix<double> c0(k, k);
-  c0.setFromTriplets(entries.begin(), entries.end());
-  sparse_lu0_.compute(c0);
+bool BlockLu::FactorSparse(const MatrixX& c0) {
+  const int k = static_cast<int>(c0.rows());
+  if (static_cast<double>((c0.array() != 0.0).count()) > kSparseDensity * k * k) return false;
+  const double largest = c0.cwiseAbs().maxCoeff();
+  const Eigen::SparseMatrix<double> sparse = c0.sparseView();
+  sparse_lu0_.compute(sparse);
   if (sparse_lu0_.info() != Eigen::Success) return false;
   double u_min = std::numeric_limits<double>::infinity();
   const auto& l = sparse_lu0_.matrixL().m_mapL;

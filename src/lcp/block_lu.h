@@ -109,7 +109,7 @@ class BlockLu {
   std::vector<int> rows0_, cols0_;      // R₀, Z₀ by position in C₀
   std::vector<int> row0_of_, col0_of_;  // key → position in R₀ / Z₀, or −1
   // C₀'s factors: dense, or sparse (sparse0_) when FactorSparse chose it.
-  bool FactorSparse(int k);
+  bool FactorSparse(const MatrixX& c0);
   VectorX Solve0(const VectorX& b) const;
   bool sparse0_ = false;
   Eigen::PartialPivLU<MatrixX> lu0_;

@@ -52,9 +52,9 @@ constexpr double kBalanceSlack = 1e-9;
 // refactoring at every check. On the cross vault's states of 160 blocks
 // and more that cleanup was most of a 400 ms solve; with this bound the
 // LPs of a whole vault run took 79 s against 158 s, the same order
-// (docs/benchmarks.md, "`bench/sequence_bench.sh`, sixth stop"). Below
-// 10²⁰, where Clp takes the bound as infinite and goes to its primal
-// simplex at once.
+// (docs/benchmarks.md, "`bench/sequence_bench.sh`, sixth stop"). It must
+// stay below 10²⁰, where Clp takes the bound as infinite and goes to its
+// primal simplex at once.
 constexpr double kDualBound = 1e18;
 
 // The certificates kept per hint (Solve): the mechanisms of the last few

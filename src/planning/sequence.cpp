@@ -141,6 +141,12 @@ struct Check {
   std::vector<int> moving;
 };
 
+// The threads to run on: `requested`, or (≤ 0) the machine's.
+int ThreadCount(int requested) {
+  return requested > 0 ? requested
+                       : static_cast<int>(std::max(1U, std::thread::hardware_concurrency()));
+}
+
 // The parts held (kHold) or the prop points (kProp) of `supports`, sorted.
 std::vector<int> SortedOf(const std::vector<Support>& supports, TemporaryKind kind) {
   std::vector<int> out;
@@ -171,8 +177,6 @@ class Search {
   void ExhaustiveLowerBound();
   int ConfirmAndMeasureHolds();
   std::vector<char> ConfirmStates(int n, const std::function<void(int, int)>& check);
-  // The threads the confirmation runs on (options_.threads, or the machine's).
-  int Threads() const;
   void MeasureStep(const StabilityResult& r, const std::vector<Support>& supports,
                    SequenceStep& step) const;
   State Prefix(int steps) const;
@@ -1305,7 +1309,7 @@ int Search::ConfirmAndMeasureHolds() {
   // has a workspace that keeps the components it solved (reuse mode: cold
   // solves, so the answers are fresh checks' whichever thread met them
   // first): the states it takes share most of them.
-  std::vector<StabilityWorkspace> kept(static_cast<size_t>(Threads()));
+  std::vector<StabilityWorkspace> kept(static_cast<size_t>(ThreadCount(options_.threads)));
   for (StabilityWorkspace& w : kept) w.set_reuse_solutions(true);
   const std::vector<char> done = ConfirmStates(steps, [&](int i, int worker) {
     const std::vector<int> held = HeldOf(supports[i]), props = PropsOf(supports[i]);
@@ -1328,11 +1332,6 @@ int Search::ConfirmAndMeasureHolds() {
   return first_failing;
 }
 
-int Search::Threads() const {
-  return options_.threads > 0 ? options_.threads
-                              : static_cast<int>(std::max(1U, std::thread::hardware_concurrency()));
-}
-
 // check(i, worker) for i = 0 … n − 1 (each touching only what is its own), on
 // options_.threads threads taking the next step in turn; none taken once
 // the confirmation's time is up, and every one taken is done: which were
@@ -1348,7 +1347,7 @@ std::vector<char> Search::ConfirmStates(int n, const std::function<void(int, int
     const int i = stop ? n : next++;
     return i < n ? i : -1;
   };
-  const int threads = std::min(n, Threads());
+  const int threads = std::min(n, ThreadCount(options_.threads));
   std::vector<std::thread> others;
   for (int t = 1; t < threads; ++t)
     others.emplace_back([&, t] {
@@ -1477,9 +1476,7 @@ BuildSequence FindBuildSequence(const Assembly& assembly, const SequenceOptions&
   with_props.props = true;
   with_props.status = options.status;
   BuildSequence holds, both;
-  const int threads = options.threads > 0
-                          ? options.threads
-                          : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+  const int threads = ThreadCount(options.threads);
   if (threads >= 2) {
     // Side by side: each search owns its LPs, caches and workspace, and
     // half the threads for its confirmation.

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <limits>
 #include <numeric>
 #include <tuple>
@@ -17,11 +18,12 @@
 
 namespace cairn {
 
-// The workspace's contents: the last Lemke basis of each component structure
-// and the last rest-hypothesis LP basis.
 // The component solutions a workspace in reuse mode keeps (a build order's
 // states have a few components each, most shared with the state before).
 constexpr size_t kKeptSolutions = 256;
+
+// The workspace's contents: the last Lemke basis of each component structure
+// and the last rest-hypothesis LP basis.
 
 struct StabilityWorkspace::Impl {
   /// One component structure and its last basis.
@@ -329,6 +331,13 @@ struct Fnv1a {
       h *= 0x100000001b3ULL;
     }
   }
+  // A double's 8 bytes, lowest first.
+  void operator()(double v) {
+    std::uint64_t u;
+    std::memcpy(&u, &v, sizeof u);
+    (*this)(static_cast<int>(u & 0xffffffffU));
+    (*this)(static_cast<int>(u >> 32));
+  }
 };
 
 // The hash of the component's structure (the key's integers).
@@ -379,15 +388,10 @@ std::vector<double> SolutionKey(const ContactLcp& lcp, const StabilityOptions& o
   return k;
 }
 
-// 64-bit FNV-1a of the key's bytes.
 std::uint64_t SolutionHash(const std::vector<double>& key) {
-  std::uint64_t h = 0xcbf29ce484222325ULL;
-  const auto* bytes = reinterpret_cast<const unsigned char*>(key.data());
-  for (size_t i = 0; i < key.size() * sizeof(double); ++i) {
-    h ^= bytes[i];
-    h *= 0x100000001b3ULL;
-  }
-  return h;
+  Fnv1a h;
+  for (double v : key) h(v);
+  return h.h;
 }
 
 bool KeyMatches(const std::vector<int>& key, const ContactLcp& lcp) {
