@@ -219,7 +219,7 @@ StaticEquilibrium FindStaticEquilibrium(const ContactLcp& lcp, const Equilibrium
   // accepted only when it passes the re-check; anything else goes on to the
   // simplex, which also proves infeasibility.
   const LpMethod first = FirstLpMethod(LpForm::kFeasibility, ncols);
-  if (first != LpMethod::kDualSimplex && options.max_iterations <= 0) {
+  if (first != LpMethod::kDualSimplex && options.max_iterations <= 0 && !options.vertex) {
     ClpSimplex lp;
     Load(e, lp);
     clp::SolveByBarrier(lp, first, kBarrierIterations);

@@ -18,6 +18,7 @@
 #include <utility>
 #include <vector>
 
+#include "cairn/mechanics/loaded_from_rest.h"
 #include "cairn/mechanics/subset_equilibrium.h"
 #include "cairn/planning/blocking.h"
 #include "cairn/planning/fixtures.h"
@@ -65,6 +66,11 @@ constexpr size_t kMaxBases = 10000;
 // few repairs cost less than a verdict at every depth (the 28-voussoir
 // arch: 0.7 s against 1.7 s).
 constexpr size_t kConfirmBeamFromParts = 60;
+
+// The factor by which the loading LCP counted on the assembled contacts
+// must exceed loading from rest's budget for the beam to take the verdict
+// to be the equilibrium (VerdictIsTheEquilibrium; dimensionless).
+constexpr double kLoadingBudgetMargin = 1.25;
 
 // The most parts the check says move that are tried as the hold that makes a
 // new state stand (after the part just placed).
@@ -203,6 +209,8 @@ class Search {
   const Check& ComponentStands(const std::vector<bool>& placed,
                                const std::vector<Support>& supports,
                                const std::vector<int>& component);
+  bool VerdictIsTheEquilibrium(const std::vector<int>& component,
+                               const std::vector<bool>& present) const;
   std::pair<std::vector<Support>, std::string> ComponentKey(
       const std::vector<Support>& supports, const std::vector<int>& component) const;
   std::optional<SubsetEquilibrium::Basis> StartingBasis(const std::vector<Support>& supports,
@@ -227,8 +235,16 @@ class Search {
   const SequenceOptions& options_;
   Vector3 up_;
   std::vector<int> movable_;
-  std::vector<TemporaryKind> kinds_;             // the kinds of support allowed, holds first
-  std::vector<std::vector<int>> touching_;       // per part: the parts it touches assembled
+  std::vector<TemporaryKind> kinds_;        // the kinds of support allowed, holds first
+  std::vector<std::vector<int>> touching_;  // per part: the parts it touches assembled
+  // The assembled contact points: their parts (a part < 0: a fixture) and
+  // whether they have friction; the friction directions D per contact.
+  struct AssembledContact {
+    int a = -1, b = -1;
+    bool frictional = false;
+  };
+  std::vector<AssembledContact> assembled_contacts_;
+  int friction_directions_ = 0;
   std::vector<Vector3> directions_;              // removal directions
   std::vector<BlockingGraph> graphs_;            // per direction, to infinity
   std::vector<std::vector<int>> blocks_;         // per part: the parts it blocks in some direction
@@ -405,8 +421,18 @@ Check Search::FilterByLp(const std::vector<bool>& placed, const std::vector<int>
     // failed with in a state before is tried first (no simplex when it
     // still moves). A proof checks every warm claim of infeasibility.
     subsets_[k].set_checked(proving_);
+    // The body the state changed at: the part placed, or the part a
+    // support taken out held or propped.
+    int focus = -1;
+    if (const int n = assembly_.num_parts(); from_.hint >= 0) {
+      const int part = from_.hint < n       ? from_.hint
+                       : from_.hint < 2 * n ? from_.hint - n
+                                            : props_[from_.hint - 2 * n].part;
+      const auto at = std::find(parts.begin(), parts.end(), part);
+      if (at != parts.end()) focus = static_cast<int>(at - parts.begin());
+    }
     const SubsetEquilibrium::Answer answer =
-        subsets_[k].Solve(present, free, start, proving_ ? -1 : from_.hint);
+        subsets_[k].Solve(present, free, start, proving_ ? -1 : from_.hint, focus);
     if (end && answer.solved && answer.exists) *end = subsets_[k].CurrentBasis();
     // After the first: from a kept basis, the last solve's, or a kept proof.
     if (subset_solves_[k]++ > 0) ++out_.warm_starts;
@@ -562,14 +588,18 @@ const Check& Search::ComponentStands(const std::vector<bool>& placed,
   // The verdict's first stage is the filter: where the filter has decided
   // the component (its answer kept in the filter's mode), a rejection
   // stands, and a pass leaves the verdict alone to decide.
+  // In the beam, where the verdict is the equilibrium (VerdictIsTheEquilibrium),
+  // it would solve the filter's LP again on the contacts found afresh: the
+  // filter's pass stands too (the order's confirmation then checks the state
+  // by the verdict, contacts found again).
   bool filtered = false;
   if (full_) {
     const auto lp = component_memo_.find(key + FilterMode());
     if (lp != component_memo_.end()) {
-      if (!lp->second.stands) {
-        const Check rejected = lp->second;  // a copy: the cache may clear
+      if (!lp->second.stands || (conservative_ && VerdictIsTheEquilibrium(component, only))) {
+        const Check answer = lp->second;  // a copy: the cache may clear
         if (component_memo_.size() >= options_.max_cached_states) component_memo_.clear();
-        return component_memo_.emplace(memo_key, rejected).first->second;
+        return component_memo_.emplace(memo_key, answer).first->second;
       }
       filtered = true;
     }
@@ -583,6 +613,29 @@ const Check& Search::ComponentStands(const std::vector<bool>& placed,
   }
   if (component_memo_.size() >= options_.max_cached_states) component_memo_.clear();
   return component_memo_.emplace(memo_key, std::move(c)).first->second;
+}
+
+// Whether the verdict on the free parts `component` (the parts `present`
+// there: the component and the holds it leans on) is whether a static
+// equilibrium exists: by `--rule equilibrium`, or where loading from rest
+// is beyond its budget (LoadFromRestOptions::max_variables), so that the
+// equilibrium decides (VerdictRule::kLoadedFromRest). Not with `--require
+// strong`. The loading LCP's size, 2 n_ξ + n_c + (D + 1) n_f (n_ξ the free
+// bodies' coordinates, n_c the contact points, n_f those with friction), is
+// counted on the assembled contacts, and must exceed the budget by
+// kLoadingBudgetMargin: contacts found afresh may be a few more or fewer.
+bool Search::VerdictIsTheEquilibrium(const std::vector<int>& component,
+                                     const std::vector<bool>& present) const {
+  if (options_.require_strong) return false;
+  if (options_.stability.rule == VerdictRule::kEquilibrium) return true;
+  const auto there = [&](int p) { return p < 0 || assembly_.part(p).fixed || present[p]; };
+  const auto in = [&](int p) { return std::binary_search(component.begin(), component.end(), p); };
+  const int per_body = assembly_.is_3d() ? 6 : 3;
+  long n = 2L * per_body * static_cast<long>(component.size());
+  for (const AssembledContact& c : assembled_contacts_)
+    if ((in(c.a) && there(c.b)) || (in(c.b) && there(c.a)))
+      n += 1 + (c.frictional ? friction_directions_ + 1 : 0);
+  return static_cast<double>(n) > kLoadingBudgetMargin * LoadFromRestOptions().max_variables;
 }
 
 // The check of the parts `placed` with `supports`, uncached. Without
@@ -688,7 +741,9 @@ void Search::ComputeAdjacencyAndBlocking() {
   std::vector<Contact> contacts;
   for (const ContactLcp& lcp : BuildComponentLcps(assembly_, config, options_.stability)) {
     contacts.insert(contacts.end(), lcp.contacts.begin(), lcp.contacts.end());
+    friction_directions_ = lcp.num_directions;
     for (const Contact& c : lcp.contacts) {
+      assembled_contacts_.push_back({c.part_a, c.part_b, c.mu > 0});
       if (c.part_a < 0 || c.part_b < 0) continue;  // a fixture
       touching_[c.part_a].push_back(c.part_b);
       touching_[c.part_b].push_back(c.part_a);

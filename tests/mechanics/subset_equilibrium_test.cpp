@@ -14,6 +14,7 @@
 #include "cairn/io/scene_reader.h"
 #include "cairn/mechanics/static_equilibrium.h"
 #include "cairn/stability/analyze.h"
+#include "scene_builders.h"
 #include "test_paths.h"
 
 namespace cairn {
@@ -134,6 +135,52 @@ TEST(SubsetEquilibrium, AKeptProofAnswersOnlyTheStatesItStillProves) {
   free[B] = false;  // held: C stands on it
   const SubsetEquilibrium::Answer held = lp.Solve(present, free, nullptr, kHint);
   EXPECT_TRUE(held.exists && !held.reused);
+}
+
+// A column of 12 blocks on a fixed base, and a 13th on top whose centre is
+// past the edge of the one under it (it tips whatever the column does), or
+// within it (the whole stands).
+Assembly ColumnWithTop(bool overhangs) {
+  AssemblyDef def;
+  def.friction = 0.5;
+  def.parts.push_back(testing::Box3("ground", {-2, -2, -1}, {2, 2, 0}, true));
+  for (int i = 0; i < 12; ++i)
+    def.parts.push_back(
+        testing::Box3("b" + std::to_string(i), {-0.5, -0.5, double(i)}, {0.5, 0.5, double(i + 1)}));
+  const double x0 = overhangs ? 0.2 : -0.3;  // the top block's centre: x0 + 0.5
+  def.parts.push_back(testing::Box3("top", {x0, -0.5, 12}, {x0 + 1, 0.5, 13}));
+  return Assembly::Create(def, "column");
+}
+
+// The proof near the focus (Solve's `focus`): the top block that tips is
+// proved to fall by the LP of itself alone, the block under it held; the
+// proof moves only it, and the cold LP of the whole agrees. Focused on the
+// bottom block, no neighbourhood small enough holds a proof, and the whole
+// LP decides. Where the top block stands, no proof is claimed.
+TEST(SubsetEquilibrium, AProofNearThePartPlacedComesFromItsNeighbourhoodsLp) {
+  for (bool overhangs : {true, false}) {
+    SCOPED_TRACE(overhangs ? "overhanging" : "standing");
+    const Assembly a = ColumnWithTop(overhangs);
+    const std::vector<ContactLcp> lcps = BuildComponentLcps(a, Configuration::Assembled(a));
+    ASSERT_EQ(lcps.size(), 1u);
+    const std::vector<int> body = BodyOfPart(a, lcps[0]);
+    const int top = body[a.FindPart("top")], bottom = body[a.FindPart("b0")];
+    SubsetEquilibrium near(lcps[0]), far(lcps[0]), whole(lcps[0]);
+    const std::vector<bool> all(13, true);
+    const SubsetEquilibrium::Answer at_top = near.Solve(all, all, nullptr, -1, top);
+    const SubsetEquilibrium::Answer at_bottom = far.Solve(all, all, nullptr, -1, bottom);
+    const SubsetEquilibrium::Answer cold = whole.Solve(all, all);
+    ASSERT_TRUE(at_top.solved && at_bottom.solved && cold.solved);
+    EXPECT_EQ(cold.exists, !overhangs);
+    EXPECT_EQ(at_top.exists, cold.exists);
+    EXPECT_EQ(at_bottom.exists, cold.exists);
+    EXPECT_EQ(at_top.local, overhangs);
+    EXPECT_FALSE(at_bottom.local);
+    if (overhangs) {
+      EXPECT_EQ(at_top.iterations, 0);  // the whole LP was not solved
+      EXPECT_EQ(at_top.unbalanced, std::vector<int>{top});
+    }
+  }
 }
 
 // The cross vault of compas_assembly (μ 0.84): its assembled contact LPs
@@ -260,8 +307,9 @@ TEST(SubsetEquilibrium, AWalkThroughTheCrossVaultsStatesAsFreshLps) {
 // what is there, each solve starting from the basis of the state it came
 // from (the part's rows and columns added), with the part as the hint, so
 // that a part that cannot yet be placed is answered by its kept proof. On
-// the cross vault, 150 states: every answer, warm or proved by a kept
-// certificate, is the cold solve's. Unchecked (the filter's setting), a warm
+// the cross vault, 150 states: every answer, warm, proved by a kept
+// certificate or by the LP of the placed part's neighbourhood, is the cold
+// solve's. Unchecked (the filter's setting), a warm
 // "infeasible" is believed without its proof: it may be wrong, and is
 // counted (the search's order is confirmed by the verdict, its lower bound
 // computed checked).
@@ -271,13 +319,14 @@ TEST(SubsetEquilibrium, StartingFromTheStateBeforeAndFromKeptProofsOnTheCrossVau
   ASSERT_EQ(v.lcps.size(), 1u);
   const Assembly& a = v.a;
   const ContactLcp& lcp = v.lcps[0];
-  SubsetEquilibrium checked(lcp), unchecked(lcp), cold(lcp);
+  SubsetEquilibrium checked(lcp), unchecked(lcp), cold(lcp), focused(lcp);
   unchecked.set_checked(false);
   const int nb = checked.num_bodies();
   std::mt19937 rng(11);
   std::vector<bool> present(nb, false);
   SubsetEquilibrium::Basis basis, unchecked_basis;  // of the last state that stands
   int feasible = 0, infeasible = 0, reused = 0, unchecked_wrong = 0, unchecked_reused = 0;
+  int local = 0;
   for (int state = 0; state < 150; ++state) {
     std::vector<int> next;
     for (int b = 0; b < nb; ++b) {
@@ -296,6 +345,8 @@ TEST(SubsetEquilibrium, StartingFromTheStateBeforeAndFromKeptProofsOnTheCrossVau
     with[b] = true;
     const SubsetEquilibrium::Answer answer = checked.Solve(with, with, &basis, b);
     const SubsetEquilibrium::Answer fast = unchecked.Solve(with, with, &unchecked_basis, b);
+    // Focused on the part placed (checked, with no hint: no kept proofs).
+    const SubsetEquilibrium::Answer near = focused.Solve(with, with, &basis, -1, b);
     cold.ForgetBasis();
     const SubsetEquilibrium::Answer from_slack = cold.Solve(with, with);
     ASSERT_TRUE(from_slack.solved) << "state " << state;
@@ -304,6 +355,11 @@ TEST(SubsetEquilibrium, StartingFromTheStateBeforeAndFromKeptProofsOnTheCrossVau
           << "state " << state << " (reused " << answer.reused << ")";
     }
     if (fast.solved && fast.exists != from_slack.exists) ++unchecked_wrong;
+    if (near.solved) {
+      EXPECT_EQ(near.exists, from_slack.exists)
+          << "state " << state << " (local " << near.local << ")";
+    }
+    local += near.local;
     reused += answer.reused;
     unchecked_reused += fast.reused;
     (from_slack.exists ? feasible : infeasible)++;
@@ -318,6 +374,7 @@ TEST(SubsetEquilibrium, StartingFromTheStateBeforeAndFromKeptProofsOnTheCrossVau
   EXPECT_GT(reused, 10);  // kept proofs answer the parts tried again
   EXPECT_GT(unchecked_reused, 10);
   EXPECT_LE(unchecked_wrong, 3);
+  EXPECT_GT(local, 10);  // proofs near the part placed answer most that fail
 }
 
 }  // namespace

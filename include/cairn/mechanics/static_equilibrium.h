@@ -107,6 +107,10 @@ struct EquilibriumOptions {
   /// their cost on very large components. With a budget only the dual simplex
   /// runs (the interior-point method is slow to prove infeasibility).
   int max_iterations = 0;
+  /// The simplex only, even on large components: a vertex, whose amounts
+  /// the basis gives to roundoff, where the interior-point method's answer
+  /// balances only to its tolerance.
+  bool vertex = false;
 };
 
 /// Solves the equilibrium LP of one component (see the file comment). Uses the

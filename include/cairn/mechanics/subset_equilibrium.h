@@ -25,6 +25,15 @@
 /// a proof is kept by the solve's hint and tried first on the next solves
 /// with that hint: a mechanism the parts added since do not stop is proved
 /// again by a product, without a simplex.
+///
+/// A part that cannot be placed usually fails near where it goes: with a
+/// `focus` (the part placed), the LP of the free bodies a few contacts from
+/// it, every body around them held, is solved first (a few dozen rows, from
+/// the slack basis). Holding the rest only helps the region stand, so a ray
+/// of the region's LP that Proves accepts is a proof for the whole LP; on
+/// the cross vault such proofs answer almost every state that fails, where
+/// the whole LP's warm simplex took a thousand pivots, and the whole LP is
+/// left for the states that stand.
 
 #include <memory>
 #include <vector>
@@ -57,6 +66,8 @@ class SubsetEquilibrium {
     bool cold = false;
     /// Proved by the certificate of an earlier solve (no simplex).
     bool reused = false;
+    /// Proved by the LP of a few bodies around the focus, the others held.
+    bool local = false;
   };
 
   /// A basis of a solve, by the component's generators and rows (not the
@@ -76,8 +87,12 @@ class SubsetEquilibrium {
   /// the columns it did not hold at 0), else from the last solve's basis.
   /// A proof of infeasibility found with a `hint` ≥ 0 (for instance the
   /// part just placed) is tried first by the next solves with that hint.
+  /// With a `focus` body (free; for instance the part just placed), a proof
+  /// that moves only bodies near it is looked for first, by the LPs of the
+  /// bodies a few contacts from it with every other body held (a few dozen
+  /// rows).
   Answer Solve(const std::vector<bool>& present, const std::vector<bool>& free,
-               const Basis* start = nullptr, int hint = -1);
+               const Basis* start = nullptr, int hint = -1, int focus = -1);
 
   /// Whether a warm claim of infeasibility must come with a Farkas
   /// certificate (default; else it is solved again from the slack basis).
