@@ -28,8 +28,9 @@
 ///
 /// A part that cannot be placed usually fails near where it goes: with a
 /// `focus` (the part placed), the LP of the free bodies a few contacts from
-/// it, every body around them held, is solved first (a few dozen rows, from
-/// the slack basis). Holding the rest only helps the region stand, so a ray
+/// it, every body around them held, is solved before the whole LP or at its
+/// pauses (a few dozen rows, from the slack basis). Holding the rest only
+/// helps the region stand, so a ray
 /// of the region's LP that Proves accepts is a proof for the whole LP; on
 /// the cross vault such proofs answer almost every state that fails, where
 /// the whole LP's warm simplex took a thousand pivots, and the whole LP is
@@ -88,9 +89,9 @@ class SubsetEquilibrium {
   /// A proof of infeasibility found with a `hint` ≥ 0 (for instance the
   /// part just placed) is tried first by the next solves with that hint.
   /// With a `focus` body (free; for instance the part just placed), a proof
-  /// that moves only bodies near it is looked for first, by the LPs of the
+  /// that moves only bodies near it is looked for too, by the LPs of the
   /// bodies a few contacts from it with every other body held (a few dozen
-  /// rows).
+  /// rows): before the whole LP on large states, at its pauses on small ones.
   Answer Solve(const std::vector<bool>& present, const std::vector<bool>& free,
                const Basis* start = nullptr, int hint = -1, int focus = -1);
 
