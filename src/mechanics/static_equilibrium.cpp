@@ -242,6 +242,24 @@ StaticEquilibrium FindStaticEquilibrium(const ContactLcp& lcp, const Equilibrium
         return out;
       }
     }
+    // Nor is there a mechanism: the feasible set may be nearly a point (a
+    // friction factor at its critical value, where the dual simplex from
+    // the slack basis took 9 s on the Armadillo vault). The interior-point
+    // method run to its end and its crossover to a vertex, at the simplex's
+    // primal tolerance: at Clp's default (1e-7) the vertex balanced only to
+    // 5·10⁻⁸ of the loads there and failed the LCP check at rest; at this
+    // one it balances to roundoff (3 s in all, `docs/margin.md`).
+    ClpSimplex vertex;
+    Load(e, vertex);
+    vertex.setPrimalTolerance(kSimplexPrimalTolerance);
+    clp::SolveByBarrier(vertex, LpMethod::kBarrierCrossover);
+    if (clp::StatusOf(vertex) == clp::Status::kOptimal &&
+        ReadEquilibrium(lcp, e, vertex.primalColumnSolution(), ncols, out)) {
+      out.solved = out.exists = true;
+      out.method = "barrier with crossover";
+      out.iterations = vertex.numberIterations();
+      return out;
+    }
   }
 
   // 2. The dual simplex from the slack basis (dual feasible: no costs), which

@@ -259,6 +259,29 @@ TEST(CheckVerdict, AnInteriorPointsForcesThatFailTheCheckAtRestGiveWayToTheVerte
       << diagnostics;
 }
 
+// The cross vault at its critical friction (`cairn margin`: μ* = 0.5471339;
+// the check stands from there): its equilibrium LP's feasible set is nearly
+// a point. The interior-point method's first 60 iterations give no point
+// that passes the re-check, the mechanism LP finds none; the method run on
+// with its crossover to a vertex at the simplex's tolerance decides it (the
+// dual simplex from the slack basis took three times as long; on the
+// Armadillo at its μ*, 9 s against 3 s).
+TEST(CheckVerdict, AtTheCriticalFrictionTheVertexOfTheInteriorPointDecides) {
+  const std::string vault =
+      testing::SharedDir() + "/datasets/compas_assembly/crossvault_assembly.json";
+  if (testing::SharedDir().empty() || !std::filesystem::exists(vault))
+    GTEST_SKIP() << "the shared data (CAIRN_SHARED_DIR) is absent";
+  const CliRun r = Cairn("check " + vault + " --format compas --friction 0.547133863767352 --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err << r.out.substr(0, 2000);
+  const nlohmann::json doc = nlohmann::json::parse(r.out);
+  EXPECT_EQ(doc["verdict"], "stable");
+  EXPECT_EQ(doc["static_equilibrium"], true);
+  const std::string diagnostics = doc["diagnostics"];
+  EXPECT_NE(diagnostics.find("the static equilibrium (barrier with crossover) solves the LCP"),
+            std::string::npos)
+      << diagnostics;
+}
+
 // The lines of `text` that list a contact or a pair ("X pushes Y").
 size_t PushLines(const std::string& text) {
   std::istringstream in(text);
