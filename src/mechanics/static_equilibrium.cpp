@@ -219,17 +219,22 @@ StaticEquilibrium FindStaticEquilibrium(const ContactLcp& lcp, const Equilibrium
   // accepted only when it passes the re-check; anything else goes on to the
   // simplex, which also proves infeasibility.
   const LpMethod first = FirstLpMethod(LpForm::kFeasibility, ncols);
+  // An interior-point answer, taken when it is an optimum whose forces pass
+  // the re-check.
+  const auto balances = [&](const ClpSimplex& lp, const char* method) {
+    if (clp::StatusOf(lp) != clp::Status::kOptimal ||
+        !ReadEquilibrium(lcp, e, lp.primalColumnSolution(), ncols, out))
+      return false;
+    out.solved = out.exists = true;
+    out.method = method;
+    out.iterations = lp.numberIterations();
+    return true;
+  };
   if (first != LpMethod::kDualSimplex && options.max_iterations <= 0 && !options.vertex) {
     ClpSimplex lp;
     Load(e, lp);
     clp::SolveByBarrier(lp, first, kBarrierIterations);
-    if (clp::StatusOf(lp) == clp::Status::kOptimal &&
-        ReadEquilibrium(lcp, e, lp.primalColumnSolution(), ncols, out)) {
-      out.solved = out.exists = true;
-      out.method = "barrier";
-      out.iterations = lp.numberIterations();
-      return out;
-    }
+    if (balances(lp, "barrier")) return out;
     // Not proven feasible. The dual simplex is slow to prove infeasibility
     // here (minutes on the cross vault at μ 0.3); the elastic LP, whose dual
     // is the mechanism, decides it in a barrier's time.
@@ -253,13 +258,7 @@ StaticEquilibrium FindStaticEquilibrium(const ContactLcp& lcp, const Equilibrium
     Load(e, vertex);
     vertex.setPrimalTolerance(kSimplexPrimalTolerance);
     clp::SolveByBarrier(vertex, LpMethod::kBarrierCrossover);
-    if (clp::StatusOf(vertex) == clp::Status::kOptimal &&
-        ReadEquilibrium(lcp, e, vertex.primalColumnSolution(), ncols, out)) {
-      out.solved = out.exists = true;
-      out.method = "barrier with crossover";
-      out.iterations = vertex.numberIterations();
-      return out;
-    }
+    if (balances(vertex, "barrier with crossover")) return out;
   }
 
   // 2. The dual simplex from the slack basis (dual feasible: no costs), which
