@@ -11,6 +11,7 @@
 #include "cairn/io/scene_reader.h"
 #include "cairn/report/check_report.h"
 #include "cairn/report/html_report.h"
+#include "cairn/report/words.h"
 #include "cairn/stability/analyze.h"
 #include "fuzz_input.h"
 
@@ -49,7 +50,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     cairn::ReportOptions options;
     options.scene_file = file;
     const nlohmann::json doc = cairn::StabilityToJson(a, config, r, options);
-    const std::string page = cairn::CheckPage(a, doc, options);
+    const std::string page = cairn::CheckPage(a, doc, cairn::CheckStory(a, r), options);
     const std::string block =
         RawElement(page, "<script id=\"cairn-data\" type=\"application/json\">", "script");
     const nlohmann::json back = nlohmann::json::parse(block, nullptr, /*allow_exceptions=*/false);

@@ -2,6 +2,7 @@
 
 #include "cairn/report/check_report.h"
 #include "cairn/report/html_report.h"
+#include "cairn/report/words.h"
 #include "cairn/stability/analyze.h"
 
 namespace cairn::app {
@@ -24,7 +25,8 @@ CommandResult CheckDocument(const Model& model, const CheckQuery& query, const M
              : query.require_strong && result.stability != StabilityProof::kStrong ? kExitNotStrong
                                                                                    : kExitStable;
   out.text = StabilityToText(assembly, config, result, report);
-  if (query.page) out.page = CheckPage(assembly, out.document, report);
+  if (query.page)
+    out.page = CheckPage(assembly, out.document, CheckStory(assembly, result), report);
   return out;
 }
 

@@ -384,7 +384,7 @@ void TextMotions(const Assembly& assembly, const StabilityResult& result,
     ++shown;
     const Part& p = assembly.part(m.part);
     const char* what = st ? "velocity" : "acceleration";
-    os << "  " << p.name << ' ' << DescribeMotion(m, dim);
+    os << "  " << p.name << ' ' << DescribeMotion(m, dim, assembly.gravity());
     os << ": centroid " << what << ' ' << FormatPoint(m.linear, dim) << ", angular "
        << (dim == 2 ? Fmt("%.4g", m.angular.z()) : FormatPoint(m.angular, dim)) << '\n';
   }

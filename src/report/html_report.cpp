@@ -316,12 +316,14 @@ std::string HtmlPage(const json& data) {
   return page;
 }
 
-std::string CheckPage(const Assembly& assembly, const json& doc, const ReportOptions& options) {
+std::string CheckPage(const Assembly& assembly, const json& doc,
+                      const std::vector<std::string>& story, const ReportOptions& options) {
   return HtmlPage({{"cairn_page", 1},
                    {"kind", "check"},
                    {"title", Title(assembly, options)},
                    {"scene", SceneData(assembly, options)},
-                   {"result", doc}});
+                   {"result", doc},
+                   {"story", story}});
 }
 
 std::string SimulationPage(const Assembly& assembly, const SimulationResult& result,

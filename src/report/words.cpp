@@ -1,13 +1,19 @@
 #include "cairn/report/words.h"
 
+#include <algorithm>
 #include <sstream>
 
 #include "cairn/core/format.h"
 
 namespace cairn {
 
-std::string DescribeMotion(const PartMotion& m, int dimension) {
+std::string DescribeMotion(const PartMotion& m, int dimension, const Vector3& gravity) {
   std::string out = to_string(m.kind);
+  if (m.kind == MotionKind::kSlides && gravity.norm() > 0 && m.linear.norm() > 0) {
+    const double down = m.linear.normalized().dot(gravity.normalized());
+    if (down >= kVerticalWord) out += " down";
+    if (down <= -kVerticalWord) out += " up";
+  }
   if (m.kind == MotionKind::kTips && m.pivot && dimension == 2)
     out += " about " + FormatPoint(*m.pivot, dimension) +
            (m.angular.z() > 0 ? " counter-clockwise" : " clockwise");
@@ -29,7 +35,8 @@ void WriteWhat(const Assembly& a, const MotionFailure& f, std::ostringstream& os
         os << a.NameList(f.pushers) << " pushes " << a.NameList(f.pushed) << ": ";
       for (size_t i = 0; i < f.motions.size(); ++i) {
         const PartMotion& m = f.motions[i];
-        os << (i ? "; " : "") << a.part(m.part).name << ' ' << DescribeMotion(m, a.dimension());
+        os << (i ? "; " : "") << a.part(m.part).name << ' '
+           << DescribeMotion(m, a.dimension(), a.gravity());
       }
       break;
     case MotionVerdict::kUnsupported:
@@ -49,6 +56,37 @@ void WriteWhat(const Assembly& a, const MotionFailure& f, std::ostringstream& os
 }
 
 }  // namespace
+
+namespace {
+
+// Why the parts of a component move, from what decided it.
+std::string WhyItMoves(const ComponentReport& c) {
+  if (c.static_equilibrium && !*c.static_equilibrium) return "because no equilibrium exists";
+  if (c.loaded_from_rest && *c.loaded_from_rest == LoadedFromRest::Outcome::kGivesWay)
+    return "because, loaded from rest, nothing produces the forces the equilibrium needs";
+  if (c.static_equilibrium && *c.static_equilibrium)
+    return "although an equilibrium exists: only forces nothing produces from rest hold it "
+           "(jammed)";
+  return "";
+}
+
+}  // namespace
+
+std::vector<std::string> CheckStory(const Assembly& assembly, const StabilityResult& result) {
+  std::vector<std::string> lines;
+  for (const PartMotion& m : result.parts) {
+    if (!m.moving) continue;
+    std::string line = assembly.part(m.part).name + ' ' +
+                       DescribeMotion(m, assembly.dimension(), assembly.gravity());
+    for (const ComponentReport& c : result.components) {
+      if (std::find(c.parts.begin(), c.parts.end(), m.part) == c.parts.end()) continue;
+      const std::string why = WhyItMoves(c);
+      if (!why.empty()) line += ", " + why;
+    }
+    lines.push_back(line);
+  }
+  return lines;
+}
 
 std::string DescribeFailure(const Assembly& a, const MotionFailure& f) {
   std::ostringstream os;

@@ -13,6 +13,7 @@
 #include "cairn/report/check_report.h"
 #include "cairn/report/plan_report.h"
 #include "cairn/report/simulation_report.h"
+#include "cairn/report/words.h"
 #include "example_scene.h"
 #include "test_paths.h"
 
@@ -74,9 +75,13 @@ TEST(CheckPage, CarriesTheShapesAndTheCheckDocumentUnchanged) {
   options.without = {a.FindPart("C")};
   const StabilityResult r = AnalyzeConfiguration(a, config, {});
   const json doc = StabilityToJson(a, config, r, options);
-  const json data = PageData(CheckPage(a, doc, options));
+  const json data = PageData(CheckPage(a, doc, CheckStory(a, r), options));
   EXPECT_EQ(data["kind"], "check");
   EXPECT_EQ(data["result"], doc);
+  // The story: the parts that move, in the text summary's words.
+  EXPECT_EQ(data["story"],
+            json::array({"B tips about (1, 1.25) clockwise, because no equilibrium exists",
+                         "D tips about (1, 2.5) clockwise, because no equilibrium exists"}));
   const json& parts = data["scene"]["parts"];
   ASSERT_EQ(parts.size(), static_cast<size_t>(a.num_parts()));
   for (int i = 0; i < a.num_parts(); ++i) {
@@ -103,7 +108,7 @@ TEST(CheckPage, TheTrianglesOfA3dPartEncloseItsVolume) {
   const Assembly& a = jenga.assembly;
   const Configuration config = Configuration::Assembled(a);
   const StabilityResult r = AnalyzeConfiguration(a, config, {});
-  const json data = PageData(CheckPage(a, StabilityToJson(a, config, r, {}), {}));
+  const json data = PageData(CheckPage(a, StabilityToJson(a, config, r, {}), {}, {}));
   for (int i = 0; i < a.num_parts(); i += 7) {
     const json& p = data["scene"]["parts"][i];
     const std::vector<double> v = p["vertices"].get<std::vector<double>>();

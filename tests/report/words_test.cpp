@@ -47,6 +47,15 @@ TEST(DescribeMotion, TipsAboutAnAxisIn3DAndSlidesAlongAUnitDirection) {
   slide.kind = MotionKind::kSlides;
   slide.linear = Vector3(3, 4, 1e-20);  // dust prints as 0
   EXPECT_EQ(DescribeMotion(slide, 3), "slides along (0.6, 0.8, 0)");
+  // With gravity: more than 15° off the horizontal, down or up; less, not.
+  const Vector3 g(0, 0, -9.81);
+  EXPECT_EQ(DescribeMotion(slide, 3, g), "slides along (0.6, 0.8, 0)");
+  slide.linear = Vector3(0.6, 0, -0.8);
+  EXPECT_EQ(DescribeMotion(slide, 3, g), "slides down along (0.6, 0, -0.8)");
+  slide.linear = Vector3(0.6, 0, 0.8);
+  EXPECT_EQ(DescribeMotion(slide, 3, g), "slides up along (0.6, 0, 0.8)");
+  slide.linear = Vector3(0.99, 0, -0.14);  // 8° down
+  EXPECT_EQ(DescribeMotion(slide, 3, g), DescribeMotion(slide, 3));
   EXPECT_EQ(DescribeMotion(PartMotion{}, 2), "at rest");
 }
 
@@ -59,9 +68,9 @@ TEST(DescribeFailure, NamesWhoPushesWhomAndHowEachPartMoves) {
   ASSERT_TRUE(r.failure);
   const std::string words = DescribeFailure(a, *r.failure);
   // C and D ride up with B (analytic: parts resting on a rigidly lifted one).
-  EXPECT_EQ(
-      words,
-      "t = 0 s (step 1, tick 0): B pushes C, D: C slides along (0, 1); D slides along (0, 1)");
+  EXPECT_EQ(words,
+            "t = 0 s (step 1, tick 0): B pushes C, D: C slides up along (0, 1); D slides up along "
+            "(0, 1)");
   EXPECT_EQ(r.failure->step, 0);  // the index counts from 0, the words from 1
 
   MotionFailure noted = *r.failure;

@@ -20,6 +20,9 @@ const $ = (tag, attrs = {}, ...children) => {
   for (const c of children) e.append(c);
   return e;
 };
+// On a stable check, this many of the largest resultants per pair of parts
+// are named on the drawing.
+const kMostLoadedJoints = 3;
 const fmt = (x, digits = 4) => (typeof x === 'number' ? Number(x.toPrecision(digits)).toString() : String(x));
 const vec = (v) => '(' + pad3(v).slice(0, v && v.length === 2 ? 2 : 3).map((x) => fmt(x)).join(', ') + ')';
 
@@ -119,17 +122,39 @@ class Page {
     this.infoEl = $('div', { id: 'info' }, 'Hover or click a part or a contact point.');
     this.side.append($('h2', {}, 'What happens'), this.storyEl);
     this.extraSide = $('div', {});
-    this.side.append(this.extraSide, $('h2', {}, 'Selected'), this.infoEl, $('h2', {}, 'Legend'), this.legend());
+    this.legendEl = $('div', { class: 'legend', id: 'legend' });
+    this.side.append(this.extraSide, $('h2', {}, 'Selected'), this.infoEl, $('h2', {}, 'Legend'), this.legendEl);
   }
 
-  legend() {
+  // The roles the page draws at some point (for the legend): the scene's
+  // own, and those of the result's frames, steps and supports.
+  rolesPresent() {
+    const roles = new Set(this.scene.parts.map((p) => (p.fixed ? 'fixed' : p.tool ? 'tool' : 'judged')));
+    const d = this.data, r = this.result;
+    if (d.kind === 'check' && (r.moving || []).length) roles.add('failed');
+    for (const f of d.frames || []) for (const [, role] of f.roles || []) roles.add(role);
+    if (d.kind === 'simulate' && r.failure) roles.add('failed');
+    if (d.kind === 'plan' && (r.sequences || []).length) roles.add('gripped');
+    if (d.kind === 'sequence' && (r.steps || []).length) roles.add('gripped');
+    const supports = (r.steps || []).flatMap((s) => s.temporary_in_place || []);
+    if (supports.some((t) => t.kind === 'hold')) roles.add('held');
+    if ((this.scene.fixtures || []).length || supports.some((t) => t.kind === 'prop') ||
+        (r.sequences || []).some((s) => (s.fixels || []).length)) roles.add('fixel');
+    return roles;
+  }
+
+  // The legend: only the roles present, then the forces as drawn.
+  fillLegend() {
     const row = (color, text) => $('div', {}, $('span', { class: 'sw', style: 'background:' + color }), text);
-    const el = $('div', { class: 'legend' },
-      row(kColors.fixed, 'fixed'), row(kColors.judged, 'must stay put'),
-      row(kColors.gripped, 'gripped (moved by the gripper)'), row(kColors.carried, 'carried along'),
-      row(kColors.tool, 'tool'), row(kColors.failed, 'moves: fails'), row(kColors.fixel, 'fixel or prop'),
-      row(kColors.held, 'held (a temporary hold)'),
-      row(kColors.normal, 'normal force on the part'), row(kColors.friction, 'friction force on the part'));
+    const words = [['fixed', 'fixed'], ['judged', 'must stay put'], ['gripped', 'gripped (moved by the gripper)'],
+                   ['carried', 'carried along'], ['tool', 'tool'], ['failed', 'moves: fails'], ['fixel', 'fixel or prop'],
+                   ['held', 'held (a temporary hold)']];
+    const present = this.rolesPresent();
+    const el = this.legendEl;
+    el.replaceChildren(...words.filter(([role]) => present.has(role)).map(([role, text]) => row(kColors[role], text)));
+    const ramp = $('span', { class: 'sw', style: 'width:26px;background:linear-gradient(90deg,' + kColors.pairLight + ',' + kColors.pairDark + ')' });
+    el.append($('div', {}, ramp, 'per pair of parts: the resultant of its contact forces, at its centre of pressure (darker: larger)'),
+              row(kColors.normal, 'normal force at a contact point'), row(kColors.friction, 'friction force at a contact point'));
     this.scaleNote = $('div', { class: 'note', id: 'force-scale' });
     const gain = $('input', { type: 'range', min: '-3', max: '3', step: '0.1', value: '0', id: 'gain' });
     gain.addEventListener('input', () => {
@@ -141,13 +166,19 @@ class Page {
     forces.addEventListener('change', () => { this.view.showForces = forces.checked; this.view.drawContacts(); });
     const friction = $('input', { type: 'checkbox', checked: '' });
     friction.addEventListener('change', () => { this.view.showFriction = friction.checked; this.view.drawContacts(); });
+    const points = $('input', { type: 'checkbox', id: 'every-point' });
+    points.addEventListener('change', () => { this.view.forceMode = points.checked ? 'points' : 'pairs'; this.view.drawContacts(); });
+    const idle = $('input', { type: 'checkbox', id: 'idle' });
+    idle.addEventListener('change', () => { this.view.showIdle = idle.checked; this.view.drawContacts(); });
     el.append(this.scaleNote, $('label', { class: 'ctl' }, 'arrow length', gain),
-              $('label', { class: 'ctl' }, forces, 'forces'), $('label', { class: 'ctl' }, friction, 'friction'));
-    return el;
+              $('label', { class: 'ctl' }, forces, 'forces'), $('label', { class: 'ctl' }, friction, 'friction at contact points'),
+              $('label', { class: 'ctl' }, points, 'every contact point (else one arrow per pair; click a part for its points)'),
+              $('label', { class: 'ctl' }, idle, 'contacts that carry nothing'));
   }
 
   updateScaleNote() {
     const v = this.view;
+    if (!this.scaleNote) return;
     const len = v.forceReference * v.forceScale * v.arrowGain;
     this.scaleNote.textContent = 'An arrow ' + fmt(len, 3) + ' scene units long is ' + fmt(v.forceReference, 3) + ' ' + this.unit +
       ' (the largest normal force shown; the heaviest movable part weighs ' + fmt(this.scene.force_reference, 3) + ').';
@@ -186,13 +217,30 @@ class Page {
   select(hit) {
     this.selected = hit;
     this.infoEl.textContent = hit ? this.describe(hit) : 'Hover or click a part or a contact point.';
+    // A part selected: its contact points with their own arrows.
+    const part = hit && hit.part !== undefined ? hit.part : -1;
+    if (part !== this.view.selectedPart) {
+      this.view.selectedPart = part;
+      this.view.drawContacts();
+    }
     if (hit && hit.contact !== undefined && this.chart) {
       const c = this.view.contacts;
       this.chart.select(c.a[hit.contact], c.b[hit.contact]);
     }
+    if (hit && hit.pair !== undefined && this.chart) {
+      const q = this.view.pairs[hit.pair];
+      this.chart.select(q.pushed, q.pusher);
+    }
   }
 
   describe(hit) {
+    const name = (i) => (i >= 0 ? this.names[i] : 'the fixed world');
+    if (hit.pair !== undefined) {
+      const q = this.view.pairs[hit.pair];
+      return [name(q.pusher) + ' pushes ' + name(q.pushed) + ' (' + q.contacts.length + ' contact' + (q.contacts.length === 1 ? '' : 's') + ')',
+              'resultant on ' + name(q.pushed) + ': ' + vec(q.force.toArray()) + ', magnitude ' + fmt(q.magnitude) + ' ' + this.unit,
+              'centre of pressure: ' + vec(q.point.toArray())].join('\n');
+    }
     if (hit.part !== undefined) {
       const p = this.scene.parts[hit.part];
       const role = this.view.parts[hit.part].role || '';
@@ -203,7 +251,6 @@ class Page {
       return lines.join('\n');
     }
     const c = this.view.contacts, k = hit.contact;
-    const name = (i) => (i >= 0 ? this.names[i] : 'the fixed world');
     const ft = [c.ft[3 * k], c.ft[3 * k + 1], c.ft[3 * k + 2]];
     const flags = c.flags[k];
     return [
@@ -222,8 +269,15 @@ class Page {
     else if (this.data.kind === 'plan') this.startPlan();
     else if (this.data.kind === 'sequence') this.startSequence();
     else this.startCheck();
+    this.fillLegend();
     this.updateScaleNote();
-    // Ready once the first frame is drawn (scripts and tests wait on it).
+    // The first frame is drawn now, at the canvas' size with the side panel
+    // and footer filled, before the page's load event (a screenshot taken
+    // then has it); ready once a frame has been drawn by the browser's own
+    // loop too (scripts and tests wait on it).
+    this.view.resize();
+    this.openingCamera();
+    this.view.render();
     requestAnimationFrame(() => {
       this.view.render();
       requestAnimationFrame(() => {
@@ -231,6 +285,52 @@ class Page {
         document.body.dataset.cairnReady = 'true';
       });
     });
+  }
+
+  // The parts in focus: those that fail, are gripped or held, or carry a
+  // fixel or prop, at the roles and supports drawn now.
+  focusParts() {
+    const v = this.view, out = new Set();
+    v.parts.forEach((p, i) => { if (['failed', 'gripped', 'held'].includes(p.role) && p.group.visible) out.add(i); });
+    for (const f of v.fixelParts || []) if (f >= 0) out.add(f);
+    return [...out];
+  }
+
+  // The opening camera (3-D): framed on the parts in focus and the parts
+  // they touch, with the parts in front of them see-through. On a stable
+  // check, the whole scene, with its most loaded joints named.
+  openingCamera() {
+    const focus = this.focusParts();
+    this.updateLabels();
+    if (!focus.length || this.scene.dimension !== 3) return;
+    const c = this.view.contacts, near = new Set(focus);
+    for (let k = 0; k < c.a.length; ++k) {
+      if (focus.includes(c.a[k]) && c.b[k] >= 0) near.add(c.b[k]);
+      if (focus.includes(c.b[k]) && c.a[k] >= 0) near.add(c.a[k]);
+    }
+    this.view.frameParts([...near]);
+  }
+
+  // Labels: every part that moves, is gripped or held, or carries a
+  // support; on a stable check, the kMostLoadedJoints largest resultants.
+  updateLabels() {
+    const v = this.view, labels = [];
+    const focus = this.focusParts();
+    for (const i of focus) labels.push({ part: i, text: this.names[i], kind: v.parts[i].role === 'judged' ? 'fixel' : v.parts[i].role });
+    v.setFocus(focus);
+    if (!focus.length && this.data.kind === 'check' && this.result.stable) {
+      const name = (i) => (i >= 0 ? this.names[i] : 'the world');
+      // The largest, each at least a tenth of the scene from those named.
+      const named = [];
+      for (const q of [...(v.pairs || [])].sort((x, y) => y.magnitude - x.magnitude)) {
+        if (named.length >= kMostLoadedJoints || !(q.magnitude > 0)) break;
+        if (named.some((p) => p.distanceTo(q.point) < 0.1 * this.scene.size)) continue;
+        named.push(q.point);
+        labels.push({ point: q.point.toArray(), kind: 'joint',
+                      text: name(q.pusher) + ' pushes ' + name(q.pushed) + ': ' + fmt(q.magnitude, 3) + ' ' + this.unit });
+      }
+    }
+    v.setLabels(labels);
   }
 
   motionsOfCheck() {
@@ -252,7 +352,10 @@ class Page {
     const story = [];
     story.push((r.stable ? 'Stable' : 'Not stable') + (r.stability ? ' (' + r.stability + ')' : '') +
                (absent.length ? ' without ' + absent.map((i) => this.names[i]).join(', ') : '') + '.');
-    for (const m of this.motions) story.push(this.names[m.part] + ' ' + motionWords(m) + '.');
+    // The parts that move, how and why, in the words of the text summary
+    // (the command writes them: CheckStory).
+    if (this.data.story) story.push(...this.data.story.map((l) => l + '.'));
+    else for (const m of this.motions) story.push(this.names[m.part] + ' ' + motionWords(m) + '.');
     story.push(...analysisWords(r));
     this.setStory(story);
     this.setSolverNotes(r.diagnostics);
@@ -368,6 +471,7 @@ class Page {
     this.timeEl.textContent = 't = ' + fmt(fr.time, 4) + ' s · step ' + (fr.step + 1) + ' · tick ' + fr.tick +
       (k === this.failureFrame ? ' · FAILS' : '');
     this.chart.setFrame(k);
+    if (this.legendEl.childElementCount) this.updateLabels();
     if (this.selected) this.infoEl.textContent = this.selected.part !== undefined ? this.describe(this.selected) : this.infoEl.textContent;
   }
 
@@ -506,6 +610,7 @@ class Page {
     this.view.setContacts(node && frac === 0 ? node : emptyContacts());
     this.view.setMotions([]);
     [...this.stepList.children].forEach((li, j) => li.classList.toggle('now', j === k && !done));
+    if (this.legendEl.childElementCount) this.updateLabels();
     this.timeEl.textContent = done ? 'done' : 'step ' + (k + 1) + ' of ' + n + ': ' + step.remove.join('+') + (frac === 0 ? ' (at rest: forces shown)' : '');
   }
 
@@ -619,6 +724,7 @@ class Page {
     this.view.setContacts(c);
     this.view.setMotions([]);
     this.stepItems.forEach((li, j) => li.classList.toggle('now', arriving ? j === k : j === k - 1));
+    if (this.legendEl.childElementCount) this.updateLabels();
     this.timeEl.textContent = arriving ? 'step ' + (k + 1) + ' of ' + n + ': ' + arriving.place + ' comes in'
       : k === 0 ? 'the fixed parts' : 'after step ' + k + ' of ' + n + ' (' + supports.length + ' support' + (supports.length === 1 ? '' : 's') + ' in place; forces shown)';
   }
@@ -667,6 +773,20 @@ class Page {
       // Where a part is drawn on the canvas (CSS pixels from the canvas' top left).
       partScreen: (name) => page.view.screenOf(page.view.parts[page.indexOf(name)].group.position.toArray()),
       contactCount: () => page.view.contacts.a.length,
+      // Force arrows drawn, and the pairs of parts with a contact force.
+      arrowCount: () => page.view.arrowCount(),
+      // Where pair j's resultant is drawn (its centre of pressure), and its parts.
+      pairScreen: (j) => page.view.screenOf(page.view.pairs[j].point.toArray()),
+      pairParts: (j) => [page.view.pairs[j].pushed, page.view.pairs[j].pusher].map((i) => (i >= 0 ? page.names[i] : null)),
+      pairCount: () => (page.view.pairs || []).filter((q) => q.magnitude > 0).length,
+      setForceMode: (mode) => { page.view.forceMode = mode; page.view.drawContacts(); },
+      // The names on the drawing, and the parts drawn see-through.
+      labels: () => [...document.querySelectorAll('#view .label')].filter((e) => e.style.display !== 'none').map((e) => e.textContent),
+      xrayParts: () => page.view.xrayParts().map((i) => page.names[i]),
+      // The pixels where a part shows on the canvas (those that change when
+      // it is hidden), and how many of them are in the failing colour's hue
+      // (red well above green and blue).
+      visiblePixels: (name) => page.view.visiblePixels(page.indexOf(name)),
       // Where contact k is drawn, and the parts it is between (by name).
       contactScreen: (k) => page.view.screenOf(page.view.contacts.p.slice(3 * k, 3 * k + 3)),
       contactParts: (k) => [page.view.contacts.a[k], page.view.contacts.b[k]].map((i) => (i >= 0 ? page.names[i] : null)),

@@ -14,6 +14,11 @@ import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
 import { kColors } from './style.js';
 
 const kUp = new THREE.Vector3(0, 0, 1);
+// The opacity of a part drawn see-through because it hides a part in focus.
+const kXrayOpacity = 0.16;
+// A part in focus is sampled at its centroid and at most this many of its
+// mesh's vertices to find the parts in front of it.
+const kXraySamples = 24;
 
 // Contacts in the page's compact form: flat arrays, one entry (or triple) per
 // contact. `a`, `b` are part indices (-1: the fixed world, e.g. a fixel).
@@ -71,11 +76,14 @@ function partGeometry(part, dim) {
 // stay one draw call each. They are drawn over the parts (no depth test): a
 // force between two faces is inside the solids.
 class ArrowSet {
-  constructor(color, capacity, headSize) {
+  // With `colored`, each arrow takes its own colour (set's third element).
+  constructor(color, capacity, headSize, colored = false) {
     this.color = color;
     this.headSize = headSize;
-    const over = { color, depthTest: false, transparent: true, opacity: 0.9 };
-    this.lines = new THREE.LineSegments(new THREE.BufferGeometry(), new THREE.LineBasicMaterial(over));
+    this.colored = colored;
+    const over = { color: colored ? 0xffffff : color, depthTest: false, transparent: true, opacity: 0.9 };
+    this.lines = new THREE.LineSegments(new THREE.BufferGeometry(),
+                                        new THREE.LineBasicMaterial({ ...over, vertexColors: colored }));
     this.lines.renderOrder = 20;
     const cone = new THREE.ConeGeometry(0.35, 1, 10).translate(0, -0.5, 0);
     this.heads = new THREE.InstancedMesh(cone, new THREE.MeshBasicMaterial(over), capacity);
@@ -84,8 +92,10 @@ class ArrowSet {
     this.group = new THREE.Group();
     this.group.add(this.lines, this.heads);
   }
-  set(arrows) {  // [[from Vector3, to Vector3], ...]
+  // [[from Vector3, to Vector3, colour (THREE.Color, when colored), head scale], ...]
+  set(arrows) {
     const pos = new Float32Array(arrows.length * 6);
+    const rgb = this.colored ? new Float32Array(arrows.length * 6) : null;
     const m = new THREE.Matrix4(), q = new THREE.Quaternion(), d = new THREE.Vector3();
     const yAxis = new THREE.Vector3(0, 1, 0);
     if (arrows.length > this.heads.instanceMatrix.count) {
@@ -96,19 +106,26 @@ class ArrowSet {
       this.heads.renderOrder = 20;
       this.group.add(this.heads);
     }
-    arrows.forEach(([from, to], k) => {
+    arrows.forEach(([from, to, color, scale = 1], k) => {
       from.toArray(pos, 6 * k);
       to.toArray(pos, 6 * k + 3);
       d.subVectors(to, from);
       const len = d.length();
-      const h = Math.min(this.headSize, 0.45 * len);
+      const h = Math.min(this.headSize * scale, 0.45 * len);
       q.setFromUnitVectors(yAxis, len > 0 ? d.divideScalar(len) : yAxis);
       m.compose(to, q, new THREE.Vector3(h, h, h));
       this.heads.setMatrixAt(k, m);
+      if (rgb) {
+        color.toArray(rgb, 6 * k);
+        color.toArray(rgb, 6 * k + 3);
+        this.heads.setColorAt(k, color);
+      }
     });
     this.lines.geometry.dispose();
     this.lines.geometry = new THREE.BufferGeometry();
     this.lines.geometry.setAttribute('position', new THREE.BufferAttribute(pos, 3));
+    if (rgb) this.lines.geometry.setAttribute('color', new THREE.BufferAttribute(rgb, 3));
+    if (rgb && this.heads.instanceColor) this.heads.instanceColor.needsUpdate = true;
     this.heads.count = arrows.length;
     this.heads.instanceMatrix.needsUpdate = true;
     this.heads.computeBoundingSphere();
@@ -130,6 +147,9 @@ export class SceneView {
     this.arrowGain = 1;      // the user's slider
     this.showForces = true;
     this.showFriction = true;
+    this.forceMode = 'pairs';  // drawContacts
+    this.showIdle = false;
+    this.selectedPart = -1;
     this.needsRender = true;
     this.buildCamera();
     this.buildLights();
@@ -202,7 +222,9 @@ export class SceneView {
       this.camera.aspect = w / h;
     }
     this.camera.updateProjectionMatrix();
-    this.requestRender();
+    // A new size clears the canvas: draw again now, not at the next frame,
+    // so that no frame (and no screenshot) shows it empty.
+    this.render();
   }
 
   // --- parts ---------------------------------------------------------------
@@ -241,6 +263,7 @@ export class SceneView {
       p.group.position.set(p.centroid.x + tx, p.centroid.y + ty, p.centroid.z + tz);
       p.group.quaternion.set(qx, qy, qz, qw);
     }
+    if (this.focus && this.focus.size) this.updateXray();
     this.requestRender();
   }
 
@@ -252,13 +275,21 @@ export class SceneView {
 
   setRoles(roleOf) {  // roleOf(i) -> key of kColors
     this.parts.forEach((p, i) => {
-      const role = roleOf(i);
-      p.role = role;
-      p.material.color.set(kColors[role] || kColors.judged);
-      p.material.transparent = role === 'ghost';
-      p.material.opacity = role === 'ghost' ? 0.25 : 1;
+      p.role = roleOf(i);
+      this.applyLook(p);
     });
     this.requestRender();
+  }
+
+  // A part's colour by its role; see-through when it hides a part in focus
+  // (x-ray: setFocus) or is a ghost.
+  applyLook(p) {
+    p.material.color.set(kColors[p.role] || kColors.judged);
+    const see = p.role === 'ghost' || p.xray;
+    p.material.transparent = see;
+    p.material.opacity = p.role === 'ghost' ? 0.25 : p.xray ? kXrayOpacity : 1;
+    p.material.depthWrite = !p.xray;
+    p.group.children[1].material.opacity = p.xray ? 0.2 : 0.55;
   }
 
   partPosition(i) {
@@ -275,6 +306,7 @@ export class SceneView {
     this.mark = Math.min(0.006 * this.size, 0.02 * typical);
     const head = Math.min(this.size * 0.018, 0.08 * typical);
     this.normals = new ArrowSet(kColors.normal, 64, head);
+    this.resultants = new ArrowSet(kColors.pairDark, 64, head, true);
     this.frictions = new ArrowSet(kColors.friction, 64, head);
     const dot = new THREE.SphereGeometry(1, 8, 6);
     this.dots = new THREE.InstancedMesh(dot, new THREE.MeshBasicMaterial({ color: 0x1d1f23 }), 64);
@@ -283,7 +315,7 @@ export class SceneView {
     this.fixelArrows = new ArrowSet(kColors.fixel, 8, head * 1.3);
     this.motionMarks = new THREE.Group();
     this.overlay = new THREE.Group();
-    this.overlay.add(this.normals.group, this.frictions.group, this.dots, this.motionArrows.group,
+    this.overlay.add(this.resultants.group, this.normals.group, this.frictions.group, this.dots, this.motionArrows.group,
                      this.fixelArrows.group, this.motionMarks);
     this.overlay.renderOrder = 10;
     this.scene.add(this.overlay);
@@ -302,39 +334,108 @@ export class SceneView {
     this.drawContacts();
   }
 
+  // Per pair of parts, the resultant of its contacts' forces on the part
+  // pushed (a movable part before a fixed one, the world never, as the text
+  // summary says it), applied at the centre of pressure (the contact points
+  // weighted by their normal forces). `contacts`: the pair's contact indices.
+  pairResultants() {
+    const c = this.contacts, n = this.data.parts.length;
+    const rank = (i) => (i < 0 ? Infinity : this.data.parts[i].fixed ? n + i : i);
+    const pairs = new Map();
+    for (let k = 0; k < c.a.length; ++k) {
+      const aFirst = rank(c.a[k]) < rank(c.b[k]);
+      const pushed = aFirst ? c.a[k] : c.b[k], pusher = aFirst ? c.b[k] : c.a[k];
+      const key = pushed + ',' + pusher;
+      let q = pairs.get(key);
+      if (!q) pairs.set(key, (q = { pushed, pusher, force: new THREE.Vector3(), weighted: new THREE.Vector3(),
+                                    mean: new THREE.Vector3(), fn: 0, contacts: [] }));
+      const p = new THREE.Vector3(c.p[3 * k], c.p[3 * k + 1], c.p[3 * k + 2]);
+      const f = new THREE.Vector3(c.n[3 * k], c.n[3 * k + 1], c.n[3 * k + 2]).multiplyScalar(c.fn[k])
+        .add(new THREE.Vector3(c.ft[3 * k], c.ft[3 * k + 1], c.ft[3 * k + 2]));
+      q.force.addScaledVector(f, aFirst ? 1 : -1);
+      q.weighted.addScaledVector(p, Math.max(c.fn[k], 0));
+      q.mean.add(p);
+      q.fn += Math.max(c.fn[k], 0);
+      q.contacts.push(k);
+    }
+    return [...pairs.values()].map((q) => ({
+      pushed: q.pushed, pusher: q.pusher, force: q.force, magnitude: q.force.length(), contacts: q.contacts,
+      point: q.fn > 0 ? q.weighted.divideScalar(q.fn) : q.mean.divideScalar(q.contacts.length),
+    }));
+  }
+
+  // What is drawn of the contacts (forceMode):
+  //  - 'pairs' (the default): per pair of parts one arrow, the resultant at
+  //    its centre of pressure, coloured by magnitude (light to dark); the
+  //    selected part's contact points with their own arrows;
+  //  - 'points': every contact point with its normal and friction arrows.
+  // Contacts that carry nothing are hidden unless showIdle.
   drawContacts() {
     const c = this.contacts, count = c.a.length;
     const s = this.forceScale * this.arrowGain;
+    const lift = this.dim === 2 ? 0.002 * this.size : 0;
+    const tiny = 1e-9 * this.forceReference;
+    const carries = (k) => c.fn[k] > tiny || Math.hypot(c.ft[3 * k], c.ft[3 * k + 1], c.ft[3 * k + 2]) > tiny;
+    const at = (k) => new THREE.Vector3(c.p[3 * k], c.p[3 * k + 1], c.p[3 * k + 2] + lift);
     // Each force is drawn as the push it is: an arrow ending at the contact
     // point, pointing into the part it acts on (a).
-    const normals = [], frictions = [];
-    const lift = this.dim === 2 ? 0.002 * this.size : 0;
-    if (count > this.dots.instanceMatrix.count) {
-      this.overlay.remove(this.dots);
-      this.dots.dispose();
-      this.dots = new THREE.InstancedMesh(this.dots.geometry, this.dots.material, Math.max(count, 2 * this.dots.instanceMatrix.count));
-      this.overlay.add(this.dots);
-    }
-    const m = new THREE.Matrix4(), r = this.mark;
-    for (let k = 0; k < count; ++k) {
-      const p = new THREE.Vector3(c.p[3 * k], c.p[3 * k + 1], c.p[3 * k + 2] + lift);
-      m.makeScale(r, r, r).setPosition(p);
-      this.dots.setMatrixAt(k, m);
+    const normals = [], frictions = [], resultants = [];
+    this.dotItems = [];
+    const point = (k) => {
+      if (!carries(k) && !this.showIdle) return;
+      const p = at(k);
+      this.dotItems.push({ contact: k, p });
+      if (!this.showForces) return;
       const fn = c.fn[k];
-      if (this.showForces && fn * s > 1e-6 * this.size) {
+      if (fn * s > 1e-6 * this.size) {
         const n = new THREE.Vector3(c.n[3 * k], c.n[3 * k + 1], c.n[3 * k + 2]);
         normals.push([p.clone().addScaledVector(n, -fn * s), p]);
       }
       const ft = new THREE.Vector3(c.ft[3 * k], c.ft[3 * k + 1], c.ft[3 * k + 2]);
-      if (this.showForces && this.showFriction && ft.length() * s > 1e-6 * this.size)
-        frictions.push([p.clone().addScaledVector(ft, -s), p]);
+      if (this.showFriction && ft.length() * s > 1e-6 * this.size) frictions.push([p.clone().addScaledVector(ft, -s), p]);
+    };
+    this.pairs = this.pairResultants();
+    if (this.forceMode === 'points') {
+      for (let k = 0; k < count; ++k) point(k);
+    } else {
+      const largest = Math.max(0, ...this.pairs.map((q) => q.magnitude));
+      this.pairs.forEach((q, j) => {
+        if (!(q.magnitude > tiny) && !this.showIdle) return;
+        const p = q.point.clone();
+        p.z += lift;
+        this.dotItems.push({ pair: j, p });
+        if (!this.showForces || !(q.magnitude * s > 1e-6 * this.size)) return;
+        const t = largest > 0 ? q.magnitude / largest : 0;
+        const color = new THREE.Color(kColors.pairLight).lerp(new THREE.Color(kColors.pairDark), Math.sqrt(t));
+        resultants.push([p.clone().addScaledVector(q.force, -s), p, color, 0.6 + 0.8 * Math.sqrt(t)]);
+      });
+      const sel = this.selectedPart;
+      if (sel !== undefined && sel >= 0) for (let k = 0; k < count; ++k) if (c.a[k] === sel || c.b[k] === sel) point(k);
     }
-    this.dots.count = count;
+    const dots = this.dotItems.length;
+    if (dots > this.dots.instanceMatrix.count) {
+      this.overlay.remove(this.dots);
+      this.dots.dispose();
+      this.dots = new THREE.InstancedMesh(this.dots.geometry, this.dots.material, Math.max(dots, 2 * this.dots.instanceMatrix.count));
+      this.overlay.add(this.dots);
+    }
+    const m = new THREE.Matrix4(), r = this.mark;
+    this.dotItems.forEach((d, k) => {
+      m.makeScale(r, r, r).setPosition(d.p);
+      this.dots.setMatrixAt(k, m);
+    });
+    this.dots.count = dots;
     this.dots.instanceMatrix.needsUpdate = true;
     this.dots.computeBoundingSphere();
     this.normals.set(normals);
     this.frictions.set(frictions);
+    this.resultants.set(resultants);
     this.requestRender();
+  }
+
+  // The number of force arrows drawn (resultants, normal and friction arrows).
+  arrowCount() {
+    return this.resultants.heads.count + this.normals.heads.count + this.frictions.heads.count;
   }
 
   // motions: [{part, motion: "tips"|"slides"|"falls"|..., pivot, linear, angular}]
@@ -379,12 +480,160 @@ export class SceneView {
   }
 
   setFixels(fixels) {  // [{part, point, normal}]: arrows pushing into the part
+    this.fixelParts = (fixels || []).map((f) => (typeof f.part === 'number' ? f.part : -1));
     const arrows = (fixels || []).map((f) => {
       const p = new THREE.Vector3(...pad3(f.point)), n = new THREE.Vector3(...pad3(f.normal)).normalize();
       return [p.clone().addScaledVector(n, -0.08 * this.size), p];
     });
     this.fixelArrows.set(arrows);
     this.requestRender();
+  }
+
+  // --- labels, focus and x-ray ----------------------------------------------
+  // Names drawn over the canvas, each at a part's centroid ({part, text,
+  // kind}) or at a point ({point: [x, y, z], text, kind}); `kind` styles it.
+  setLabels(labels) {
+    if (!this.labelLayer) {
+      this.labelLayer = document.createElement('div');
+      this.labelLayer.className = 'labels';
+      this.container.append(this.labelLayer);
+    }
+    this.labels = labels.map((l) => {
+      const el = document.createElement('div');
+      el.className = 'label' + (l.kind ? ' ' + l.kind : '');
+      el.textContent = l.text;
+      return { ...l, el };
+    });
+    this.labelLayer.replaceChildren(...this.labels.map((l) => l.el));
+    this.placeLabels();
+    this.requestRender();
+  }
+
+  // Each label above its point, moved down past the labels placed before it
+  // where they would overlap.
+  placeLabels() {
+    const placed = [];
+    for (const l of this.labels || []) {
+      const part = l.part !== undefined ? this.parts[l.part] : null;
+      if (part && !part.group.visible) { l.el.style.display = 'none'; continue; }
+      const p = part ? part.group.position : new THREE.Vector3(...pad3(l.point));
+      const v = p.clone().project(this.camera);
+      if (v.z > 1 || Math.abs(v.x) > 1.2 || Math.abs(v.y) > 1.2) { l.el.style.display = 'none'; continue; }
+      const r = this.renderer.domElement;
+      l.el.style.display = 'block';
+      const w = l.el.offsetWidth, h = l.el.offsetHeight;
+      const x = ((v.x + 1) / 2) * r.clientWidth - w / 2;
+      let y = ((1 - v.y) / 2) * r.clientHeight - 1.35 * h;
+      for (let k = 0; k < 8 && placed.some((q) => Math.abs(q.x - x - w / 2) < (q.w + w) / 2 + 2 && Math.abs(q.y - y) < h + 1); ++k) y += h + 2;
+      placed.push({ x: x + w / 2, y, w });
+      l.el.style.transform = 'translate(' + x.toFixed(1) + 'px,' + y.toFixed(1) + 'px)';
+    }
+  }
+
+  // Turns the 3-D camera, keeping its direction, to frame the parts
+  // `indices` (at their poses now), with a margin.
+  frameParts(indices) {
+    if (this.dim !== 3) return;
+    const box = new THREE.Box3();
+    for (const i of indices) if (this.parts[i] && this.parts[i].group.visible) box.expandByObject(this.parts[i].mesh);
+    if (box.isEmpty()) return;
+    const center = box.getCenter(new THREE.Vector3());
+    const radius = Math.max(box.getSize(new THREE.Vector3()).length() / 2, 0.02 * this.radius);
+    const half = THREE.MathUtils.degToRad(this.camera.fov / 2);
+    const fit = Math.min(Math.tan(half), Math.tan(half) * this.camera.aspect);
+    const dir = this.camera.position.clone().sub(this.controls.target).normalize();
+    this.controls.target.copy(center);
+    this.camera.position.copy(center).addScaledVector(dir, (1.15 * radius) / Math.sin(Math.atan(fit)));
+    this.controls.update();
+    this.updateXray();
+  }
+
+  // The parts in focus (those that fail, are gripped or held): every other
+  // part in front of one of them, as the camera sees it, is drawn
+  // see-through, again whenever the camera stops or the parts move.
+  setFocus(indices) {
+    this.focus = new Set(indices);
+    if (!this.xrayBound) {
+      this.xrayBound = true;
+      this.controls.addEventListener('end', () => this.updateXray());
+    }
+    this.updateXray();
+  }
+
+  updateXray() {
+    const xray = new Set();
+    if (this.dim === 3 && this.focus && this.focus.size) {
+      this.scene.updateMatrixWorld(true);
+      const others = this.parts.filter((p, i) => p.group.visible && !this.focus.has(i)).map((p) => p.mesh);
+      const eye = this.camera.position, ray = new THREE.Raycaster(), v = new THREE.Vector3();
+      for (const i of this.focus) {
+        const part = this.parts[i];
+        if (!part || !part.group.visible) continue;
+        const pos = part.mesh.geometry.attributes.position;
+        const step = Math.max(1, Math.floor(pos.count / kXraySamples));
+        const samples = [part.group.position.clone()];
+        for (let k = 0; k < pos.count; k += step) samples.push(v.fromBufferAttribute(pos, k).applyMatrix4(part.mesh.matrixWorld).clone());
+        for (const q of samples) {
+          // A little inside the part: its own faces are not in front of it.
+          const d = q.lerp(part.group.position, 0.05).sub(eye);
+          const len = d.length();
+          if (!(len > 0)) continue;
+          ray.set(eye, d.divideScalar(len));
+          ray.far = len;
+          for (const h of ray.intersectObjects(others, false)) xray.add(h.object.userData.part);
+        }
+      }
+    }
+    this.parts.forEach((p, i) => {
+      const on = xray.has(i);
+      if (on === !!p.xray) return;
+      p.xray = on;
+      this.applyLook(p);
+    });
+    this.requestRender();
+  }
+
+  // The parts drawn see-through (indices).
+  xrayParts() {
+    return this.parts.map((p, i) => (p.xray ? i : -1)).filter((i) => i >= 0);
+  }
+
+  // The canvas' pixels (RGBA) after drawing a frame.
+  readPixels() {
+    this.render();
+    const src = this.renderer.domElement, c = document.createElement('canvas');
+    c.width = src.width;
+    c.height = src.height;
+    const g = c.getContext('2d');
+    g.drawImage(src, 0, 0);
+    return g.getImageData(0, 0, c.width, c.height).data;
+  }
+
+  // Where part i shows: the pixels that change when it is hidden, those of
+  // them that are red (the failing colour, lit or in shade), and the pixels
+  // it covers when drawn alone (nothing else in the scene).
+  visiblePixels(i) {
+    const part = this.parts[i];
+    if (!part || !part.group.visible) return { pixels: 0, red: 0, alone: 0 };
+    const differ = (x, y, k) => Math.abs(x[k] - y[k]) + Math.abs(x[k + 1] - y[k + 1]) + Math.abs(x[k + 2] - y[k + 2]) > 30;
+    const shown = this.readPixels();
+    part.group.visible = false;
+    const hidden = this.readPixels();
+    const others = this.scene.children.filter((o) => o.visible && o !== part.group && !o.isLight);
+    others.forEach((o) => { o.visible = false; });
+    const empty = this.readPixels();
+    part.group.visible = true;
+    const alone = this.readPixels();
+    others.forEach((o) => { o.visible = true; });
+    this.render();
+    let pixels = 0, red = 0, covers = 0;
+    for (let k = 0; k < shown.length; k += 4) {
+      if (differ(alone, empty, k)) ++covers;
+      if (!differ(shown, hidden, k)) continue;
+      ++pixels;
+      if (shown[k] > 1.6 * shown[k + 1] + 20 && shown[k] > 1.6 * shown[k + 2] + 20) ++red;
+    }
+    return { pixels, red, alone: covers };
   }
 
   // --- picking and drawing -------------------------------------------------
@@ -394,21 +643,22 @@ export class SceneView {
                                   -((clientY - rect.top) / rect.height) * 2 + 1);
     const ray = new THREE.Raycaster();
     ray.setFromCamera(ndc, this.camera);
-    const hits = ray.intersectObjects(this.parts.filter((p) => p.group.visible).map((p) => p.mesh), false);
+    // See-through parts let the pointer through to what they hide.
+    const hits = ray.intersectObjects(this.parts.filter((p) => p.group.visible && !p.xray).map((p) => p.mesh), false);
     const partHit = hits.length ? hits[0] : null;
-    // Contact points by their distance to the ray (thousands of them: no
-    // triangles tested), the nearest along the ray that is not behind the
-    // part the ray hits first.
-    const c = this.contacts, reach = 1.5 * this.mark, p = new THREE.Vector3();
-    let best = -1, bestT = Infinity;
-    for (let k = 0; k < c.a.length; ++k) {
-      p.set(c.p[3 * k], c.p[3 * k + 1], c.p[3 * k + 2]);
-      const t = p.clone().sub(ray.ray.origin).dot(ray.ray.direction);
-      if (t < 0 || t >= bestT || ray.ray.distanceSqToPoint(p) > reach * reach) continue;
-      best = k;
+    // The marks drawn (contact points, pairs' centres of pressure) by their
+    // distance to the ray (thousands of them: no triangles tested), the
+    // nearest along the ray that is not behind the part the ray hits first.
+    const reach = 1.5 * this.mark;
+    let best = null, bestT = Infinity;
+    for (const d of this.dotItems || []) {
+      const t = d.p.clone().sub(ray.ray.origin).dot(ray.ray.direction);
+      if (t < 0 || t >= bestT || ray.ray.distanceSqToPoint(d.p) > reach * reach) continue;
+      best = d;
       bestT = t;
     }
-    if (best >= 0 && (!partHit || bestT <= partHit.distance + 2 * reach)) return { contact: best };
+    if (best && (!partHit || bestT <= partHit.distance + 2 * reach))
+      return best.pair !== undefined ? { pair: best.pair } : { contact: best.contact };
     return partHit ? { part: partHit.object.userData.part } : null;
   }
 
@@ -428,6 +678,7 @@ export class SceneView {
   render() {
     this.needsRender = false;
     this.renderer.render(this.scene, this.camera);
+    this.placeLabels();
   }
 }
 

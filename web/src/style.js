@@ -11,6 +11,8 @@ export const kColors = {
   held: '#4b6ea8',
   normal: '#1f5fd1',
   friction: '#f08a00',
+  pairLight: '#8fbcf2',
+  pairDark: '#0b2566',
   pivot: '#111111',
 };
 
@@ -37,7 +39,7 @@ aside { grid-area:side; border-left:1px solid var(--line); background:var(--pane
 aside h2 { font-size:12px; text-transform:uppercase; letter-spacing:.06em; color:var(--muted); margin:14px 0 6px; }
 aside h2:first-child { margin-top:0; }
 .legend div { display:flex; align-items:center; gap:6px; margin:2px 0; }
-.sw { width:12px; height:12px; border-radius:2px; display:inline-block; border:1px solid rgba(0,0,0,.2); }
+.sw { width:12px; flex:none; height:12px; border-radius:2px; display:inline-block; border:1px solid rgba(0,0,0,.2); }
 #info { white-space:pre-wrap; font-family: ui-monospace, "DejaVu Sans Mono", monospace; font-size:12px;
   background:#f3f2ef; padding:6px; border-radius:4px; min-height:3em; }
 #story { margin:0; padding-left:16px; } #story li { margin:3px 0; }
@@ -59,5 +61,11 @@ footer select { font:inherit; max-width:60%; }
 #seqs li .warn { color:#c27c0e; font-weight:600; }
 .steps { margin:4px 0 0 0; padding-left:18px; } .steps li.now { font-weight:600; }
 .note { color:var(--muted); font-size:12px; }
+.labels { position:absolute; inset:0; pointer-events:none; z-index:2; overflow:hidden; }
+.label { position:absolute; left:0; top:0; display:none; white-space:nowrap; font-size:12px; font-weight:600;
+  padding:1px 6px; border-radius:9px; background:rgba(255,255,255,.92); border:2px solid #8a8f98; color:var(--ink); }
+.label.failed { border-color:#e0312b; } .label.gripped { border-color:#3aa655; } .label.held { border-color:#4b6ea8; }
+.label.fixel { border-color:#d6338a; } .label.carried { border-color:#3bb0b8; }
+.label.joint { border-color:#0b2566; font-weight:500; }
 label.ctl { display:flex; align-items:center; gap:6px; margin:3px 0; }
 `;

@@ -8,7 +8,8 @@
 import { execFileSync } from 'node:child_process';
 import { mkdirSync, writeFileSync, readFileSync, existsSync } from 'node:fs';
 import { join, resolve } from 'node:path';
-import { launch, openPage } from './browser.mjs';
+import { pathToFileURL } from 'node:url';
+import { kChromium, launch, openPage } from './browser.mjs';
 
 const arg = (name, fallback) => {
   const k = process.argv.indexOf(name);
@@ -84,6 +85,7 @@ run(['simulate', ex('jenga.json'), join(root, 'examples/plans/jenga_pull_l9.plan
 run(['simulate', ex('paper_fig1.json'), join(root, 'examples/plans/paper_fig1_b_first.plan.json'), '--html', page('fig1_b_first')]);
 run(['plan', ex('paper_fig1.json'), '--html', page('fig1_plan')]);
 run(['check', ex('jenga.json'), '--html', page('jenga_check')]);
+run(['plan', ex('paper_fig9.json'), '--html', page('fig9_plan')]);
 
 // A scene whose names would break a naive page: quotes, </script>, <!--, &.
 const hostile = {
@@ -129,8 +131,53 @@ const sequences = {
 };
 for (const [name, args] of Object.entries(sequences)) run(['sequence', ...args, '--html', page(name)]);
 
+// Real 3-D failures from ../shared (in CI; said plainly when absent): the
+// compas_cra shelf at μ 0.84, whose struts 9 and 10 slide out, and the
+// 399-block Armadillo vault, which stands.
+const shared = join(root, '..', 'shared', 'datasets', 'compas_cra');
+const haveShared = existsSync(join(shared, 'shelf.json')) && existsSync(join(shared, 'armadillo_cra.json'));
+const shelfArgs = ['check', join(shared, 'shelf.json'), '--format', 'compas', '--friction', '0.84', '--supports', '0'];
+if (haveShared) {
+  run([...shelfArgs, '--html', page('shelf')]);
+  run(['check', join(shared, 'armadillo_cra.json'), '--format', 'compas', '--friction', '0.84', '--interfaces', 'stored',
+       '--html', page('armadillo')]);
+} else {
+  console.log('skip the shelf and the Armadillo: ' + shared + ' is not there (../shared beside the checkout)');
+}
+
 const browser = await launch();
 const open = (name, viewport) => openPage(page(name), viewport, browser);
+
+// The lines of the text summary that say how a part moves ("  10 slides
+// down along (…): centroid …"), up to their colon: the page's story must
+// use the same words.
+const motionLines = (text) => text.split('\n').filter((l) => /^  \S+ (slides|tips|falls|moves|lifts|rotates)\b/.test(l))
+  .map((l) => l.trim().replace(/: centroid .*$/, ''));
+
+// Share of a PNG screenshot's view that is not background, read by the
+// browser itself (no image library in the test).
+async function drawnShare(png) {
+  const ctx = await browser.newContext();
+  const p = await ctx.newPage();
+  const share = await p.evaluate(async (b64) => {
+    const img = new Image();
+    img.src = 'data:image/png;base64,' + b64;
+    await img.decode();
+    const c = document.createElement('canvas');
+    c.width = img.width;
+    c.height = img.height;
+    const g = c.getContext('2d');
+    g.drawImage(img, 0, 0);
+    // The view: left of the side panel (320 px), between header and footer.
+    const w = img.width - 330, top = 60, bottom = img.height - 60;
+    const d = g.getImageData(0, top, w, bottom - top).data;
+    let n = 0;
+    for (let k = 0; k < d.length; k += 4) if (Math.abs(d[k] - 0xf6) + Math.abs(d[k + 1] - 0xf5) + Math.abs(d[k + 2] - 0xf2) > 30) n++;
+    return n / (d.length / 4);
+  }, png.toString('base64'));
+  await ctx.close();
+  return share;
+}
 try {
   // check, 2-D, unstable: Fig. 1 without C. B and D tip: drawn in the
   // failing colour; A stays put: drawn in its own.
@@ -202,12 +249,28 @@ try {
     check(first[3] === 'gripped' && last[3] === 'failed', 'jenga_pull: L09_2 gripped, then failed at the failure (' + first[3] + ', ' + last[3] + ')');
     await o.close();
   }
-  // Clicking a contact point shows its numbers and plots its pair.
+  // Clicking a pair's resultant shows its numbers and plots the pair; with
+  // every contact point drawn, clicking a point does the same for its pair.
   {
     const o = await open('fig1_b_first');
     await common(o, 'fig1_b_first');
     const p = o.page;
     const box = await p.evaluate(() => document.querySelector('#view canvas').getBoundingClientRect().toJSON());
+    const pairs = await p.evaluate(() => cairn.pairCount());
+    let pairClicked = null;
+    for (let j = 0; j < pairs && !pairClicked; ++j) {
+      const parts = await p.evaluate((j) => cairn.pairParts(j), j);
+      if (!parts.includes('D')) continue;
+      const [x, y] = await p.evaluate((j) => cairn.pairScreen(j), j);
+      await p.mouse.click(box.x + x, box.y + y);
+      pairClicked = parts;
+    }
+    const pairInfo = await p.evaluate(() => document.getElementById('info').textContent);
+    check(pairClicked !== null && /pushes/.test(pairInfo) && /resultant on /.test(pairInfo),
+          'fig1_b_first: clicking a pair\'s resultant shows it (' + pairInfo.split('\n')[0] + ')');
+    check(pairClicked && (await p.evaluate(() => cairn.chartPair())).sort().join() === [...pairClicked].sort().join(),
+          'fig1_b_first: and plots its pair');
+    await p.evaluate(() => cairn.setForceMode('points'));
     const n = await p.evaluate(() => cairn.contactCount());
     let clicked = null;
     for (let k = 0; k < n && !clicked; ++k) {
@@ -304,6 +367,91 @@ try {
     check(peak === 0 ? marked === 0 : marked === doc.steps.filter((s) => s.temporary_in_place.length === peak).length,
           name + ': the steps with the most supports (' + peak + ') are marked (' + marked + ')');
     await o.close();
+  }
+
+  // The failing parts always in view and named. On the shelf at μ 0.84
+  // struts 9 and 10 slide out; strut 10 stands behind the frame's top beam.
+  // From the opening camera, each shows at least half of the pixels it
+  // covers when drawn alone, mostly in the failing colour (the frame in
+  // front of it drawn see-through), and carries its name.
+  if (haveShared) {
+    const o = await open('shelf');
+    await common(o, 'shelf');
+    const p = o.page;
+    for (const part of ['9', '10']) {
+      const px = await p.evaluate((part) => cairn.visiblePixels(part), part);
+      check(px.alone > 200 && px.pixels >= 0.5 * px.alone && px.red >= 0.5 * px.pixels,
+            'shelf: strut ' + part + ' shows from the opening camera (' + px.pixels + ' of its ' + px.alone + ' pixels, ' + px.red + ' red)');
+    }
+    const labels = await p.evaluate(() => cairn.labels());
+    check(labels.includes('9') && labels.includes('10'), 'shelf: the struts that slide are named on the drawing (' + labels.join(', ') + ')');
+    check((await p.evaluate(() => cairn.xrayParts())).includes('0'), 'shelf: the frame in front of strut 10 is drawn see-through');
+    // The story in the words of the text summary, with why.
+    const story = await p.evaluate(() => document.getElementById('story').textContent);
+    const lines = motionLines(run(shelfArgs));
+    check(lines.length === 2 && lines.every((l) => story.includes(l + ', because no equilibrium exists')),
+          'shelf: the story says what the CLI says, and why (' + lines.join(' | ') + ')');
+    check(/10 slides down along/.test(story), 'shelf: strut 10 slides down');
+    // The legend lists only the roles drawn.
+    const legend = await p.evaluate(() => document.getElementById('legend').textContent);
+    check(!/gripped|tool|held|fixel/.test(legend) && /moves: fails/.test(legend), 'shelf: the legend shows only the roles present');
+    await o.close();
+  }
+  // The Jenga pull opens on its failure, with L09_2 in view and named.
+  {
+    const o = await open('jenga_pull');
+    const p = o.page;
+    const px = await p.evaluate(() => cairn.visiblePixels('L09_2'));
+    check(px.alone > 200 && px.pixels >= 0.5 * px.alone && px.red >= 0.5 * px.pixels,
+          'jenga_pull: L09_2 shows from the opening camera, in the failing colour (' + px.pixels + ' of ' + px.alone + ' pixels, ' + px.red + ' red)');
+    check((await p.evaluate(() => cairn.labels())).includes('L09_2'), 'jenga_pull: L09_2 is named on the drawing');
+    await o.close();
+  }
+  // Fig. 1 without C: the story's motions are the text summary's.
+  {
+    const o = await open('fig1_check');
+    const story = await o.page.evaluate(() => document.getElementById('story').textContent);
+    const lines = motionLines(run(['check', ex('paper_fig1.json'), '--without', 'C']));
+    check(lines.length === 2 && lines.every((l) => story.includes(l)), 'fig1_check: the story says what the CLI says (' + lines.join(' | ') + ')');
+    await o.close();
+  }
+  // Forces a reader can take in: the Armadillo draws one arrow per pair of
+  // parts with a force (its 5 031 contact points on demand), and names its
+  // most loaded joints.
+  if (haveShared) {
+    const o = await open('armadillo');
+    await common(o, 'armadillo');
+    const p = o.page;
+    const [arrows, pairs] = await p.evaluate(() => [cairn.arrowCount(), cairn.pairCount()]);
+    check(pairs > 300 && arrows <= pairs, 'armadillo: at most one arrow per pair by default (' + arrows + ' arrows, ' + pairs + ' pairs)');
+    const every = await p.evaluate(() => { cairn.setForceMode('points'); const n = cairn.arrowCount(); cairn.setForceMode('pairs'); return n; });
+    check(every > 2 * pairs, 'armadillo: every contact point\'s arrows on demand (' + every + ')');
+    const joints = await p.evaluate(() => cairn.labels());
+    check(joints.length === 3 && joints.every((l) => / pushes .*: [0-9.]+ /.test(l)), 'armadillo: its 3 most loaded joints are named (' + joints.join(' | ') + ')');
+    await o.close();
+  }
+
+  // Drawn on every load: 10 screenshots of each kind of 3-D page, each
+  // taken as soon as the page's load event has fired (not waiting for
+  // data-cairn-ready), and one by Chromium's own --screenshot; none blank.
+  {
+    const kinds = { jenga_check: 'check', jenga_pull: 'simulate', fig9_plan: 'plan', jenga_sequence: 'sequence' };
+    for (const [name, kind] of Object.entries(kinds)) {
+      const shares = [];
+      for (let k = 0; k < 10; ++k) {
+        const ctx = await browser.newContext({ viewport: { width: 1280, height: 760 } });
+        const p = await ctx.newPage();
+        await p.goto(pathToFileURL(page(name)).href, { waitUntil: 'load' });
+        shares.push(await drawnShare(await p.screenshot()));
+        await ctx.close();
+      }
+      const shot = join(out, name + '.cli.png');
+      execFileSync(kChromium, ['--headless', '--no-sandbox', '--screenshot=' + shot, '--window-size=1280,760',
+                               pathToFileURL(page(name)).href], { stdio: 'ignore', timeout: 60000 });
+      shares.push(await drawnShare(readFileSync(shot)));
+      check(shares.every((x) => x > 0.02), 'a ' + kind + ' page (' + name + '): none of 11 screenshots is blank (drawn: ' +
+            shares.map((x) => (100 * x).toFixed(0) + '%').join(' ') + ')');
+    }
   }
 
   // Determinism: the same command writes the same page.

@@ -50,9 +50,10 @@ inline constexpr int kMaxPageFrames = 2000;
 inline constexpr int kMaxPageSequences = 50;
 
 /// `cairn check --html`: the check `doc` (StabilityToJson: the parts taken
-/// away, the contacts and motions are all in it) drawn on the assembly.
+/// away, the contacts and motions are all in it) drawn on the assembly, with
+/// its `story` in words (CheckStory: the parts that move, how and why).
 std::string CheckPage(const Assembly& assembly, const nlohmann::json& doc,
-                      const ReportOptions& options);
+                      const std::vector<std::string>& story, const ReportOptions& options);
 
 /// `cairn simulate --html`: `result` must have been simulated with
 /// SimulationOptions::record_timeline; `frames` in the order analysed.

@@ -7,6 +7,7 @@
 /// same way. Numbers and points are written by cairn/core/format.h.
 
 #include <string>
+#include <vector>
 
 #include "cairn/geometry/assembly.h"
 #include "cairn/motion/simulate.h"
@@ -19,7 +20,20 @@ namespace cairn {
 /// How a part moves: its kind ("tips", ...) and, for a part that tips, its
 /// pivot and turning sense (2-D) or axis (3-D), else the unit direction of its
 /// centroid's motion: "tips about (1, 1.25) clockwise", "slides along (1, 0, 0)".
-std::string DescribeMotion(const PartMotion& m, int dimension);
+/// With the scene's `gravity`, a part that slides more than kVerticalWord off
+/// the horizontal slides "down" or "up": "slides down along (-0.64, 0, -0.77)".
+std::string DescribeMotion(const PartMotion& m, int dimension,
+                           const Vector3& gravity = Vector3::Zero());
+
+/// A sliding direction this far off the horizontal (the sine of its angle
+/// with the plane normal to gravity, dimensionless; 15°) is "down" or "up".
+inline constexpr double kVerticalWord = 0.2588;
+
+/// The story of a static check in words, one line per part that moves, as
+/// the result page says it: the part's name, how it moves (DescribeMotion)
+/// and why, from what decided its component: "10 slides down along (…),
+/// because no equilibrium exists".
+std::vector<std::string> CheckStory(const Assembly& assembly, const StabilityResult& result);
 
 /// A failure of a plan in one line: when, what (who pushes whom, how each
 /// part moves, which gripped part is unsupported, what runs into what), the
