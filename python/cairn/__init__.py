@@ -469,11 +469,12 @@ def sequence(m, temporary="hold", max_temporary=None, direction=None, directions
     return json.loads(doc)
 
 
-def blocking(m, direction=None, without=None):
+def blocking(m, direction=None, without=None, html=None):
     """``cairn blocking --json``: the nondirectional blocking graph. With a
     ``direction`` (2 numbers in 2-D, 3 in 3-D), ``cairn blocking --json
     --direction``: ``cells`` holds the one cell at that direction, which parts
-    can leave along it and which block which."""
+    can leave along it and which block which. ``html``: a file to write the
+    result page to (``--html``: the cells one at a time on the drawing)."""
     _check_model(m)
     d = []
     if direction is not None:
@@ -483,11 +484,14 @@ def blocking(m, direction=None, without=None):
                                             f"{m.dimension}-D scene, not {len(d)}")
         if len(d) == 2:
             d.append(0.0)  # the command's X,Y,Z
-    return json.loads(_cairn.blocking(m, _names(without, "without"), d)[0])
+    doc, _, page, *_ = _cairn.blocking(m, _names(without, "without"), d, html is not None)
+    if html is not None:
+        _write_outputs(m, [(html, page, "html")])
+    return json.loads(doc)
 
 
 def margin(m, friction=False, tilt=None, load=None, point=None, direction=None, without=None,
-           rule="loaded-from-rest"):
+           rule="loaded-from-rest", html=None):
     """``cairn margin --json``: how far from failing the assembly (with the
     parts ``without`` taken away) is, one quantity at a time:
     ``friction=True``, the least friction (μ*, or the factor k* on every
@@ -498,14 +502,19 @@ def margin(m, friction=False, tilt=None, load=None, point=None, direction=None, 
     μ is the one it was loaded with (``cairn.load(..., friction=...)``).
     ``rule`` (``--rule``, as in ``check``) is the verdict whose threshold
     ``verdict_critical`` and ``stands_at_nominal`` give. The dict has the
-    CLI's keys (docs/margin.md); its ``margin`` holds the answer.
+    CLI's keys (docs/margin.md); its ``margin`` holds the answer. ``html``:
+    a file to write the result page to (``--html``: each component's
+    equilibrium at its critical value, the mechanism just past it animated).
     Raises InputError for no quantity or two, an unknown or fixed part, or a
     wrong count of numbers."""
     _check_model(m)
-    return json.loads(_cairn.margin(m, _flag(friction, "friction"), _numbers(tilt, "tilt"),
-                                    "" if load is None else str(load), _numbers(point, "point"),
-                                    _numbers(direction, "direction"),
-                                    _names(without, "without"), str(rule))[0])
+    doc, _, page, *_ = _cairn.margin(m, _flag(friction, "friction"), _numbers(tilt, "tilt"),
+                                     "" if load is None else str(load), _numbers(point, "point"),
+                                     _numbers(direction, "direction"),
+                                     _names(without, "without"), str(rule), html is not None)
+    if html is not None:
+        _write_outputs(m, [(html, page, "html")])
+    return json.loads(doc)
 
 
 _INT_COLUMNS = ("step", "tick", "patch")

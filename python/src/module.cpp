@@ -209,10 +209,10 @@ Answer Sequence(const py::object& model, const py::dict& o) {
 
 // `cairn blocking --json` (with a direction, `--direction`).
 Answer Blocking(const py::object& model, const std::vector<std::string>& without,
-                const std::vector<double>& direction) {
+                const std::vector<double>& direction, bool page) {
   const PyModel& m = ModelOf(model);
   py::gil_scoped_release release;
-  return AnswerOf(app::BlockingDocument(m, {without, direction, "direction"}));
+  return AnswerOf(app::BlockingDocument(m, {without, direction, "direction", page}));
 }
 
 // `cairn margin --json`: friction (a flag), tilt (an axis) or load (a part,
@@ -220,9 +220,9 @@ Answer Blocking(const py::object& model, const std::vector<std::string>& without
 Answer Margin(const py::object& model, bool friction, const std::vector<double>& tilt,
               const std::string& load, const std::vector<double>& point,
               const std::vector<double>& direction, const std::vector<std::string>& without,
-              const std::string& rule) {
+              const std::string& rule, bool page) {
   const PyModel& m = ModelOf(model);
-  const app::MarginQuery q{friction, tilt, load, point, direction, without, RuleOf(rule)};
+  const app::MarginQuery q{friction, tilt, load, point, direction, without, RuleOf(rule), page};
   py::gil_scoped_release release;
   return AnswerOf(app::MarginDocument(m, q));
 }
@@ -333,8 +333,9 @@ PYBIND11_MODULE(_cairn, m) {
         py::arg("max_fixels"), py::arg("max_ticks"), py::arg("margin"), py::arg("page"));
   m.def("plan", &PlanSequences, py::arg("model"), py::arg("options"));
   m.def("sequence", &Sequence, py::arg("model"), py::arg("options"));
-  m.def("blocking", &Blocking, py::arg("model"), py::arg("without"), py::arg("direction"));
+  m.def("blocking", &Blocking, py::arg("model"), py::arg("without"), py::arg("direction"),
+        py::arg("page") = false);
   m.def("margin", &Margin, py::arg("model"), py::arg("friction"), py::arg("tilt"), py::arg("load"),
         py::arg("point"), py::arg("direction"), py::arg("without"),
-        py::arg("rule") = "loaded-from-rest");
+        py::arg("rule") = "loaded-from-rest", py::arg("page") = false);
 }

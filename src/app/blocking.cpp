@@ -7,6 +7,7 @@
 #include "cairn/core/unit_vector.h"
 #include "cairn/planning/blocking.h"
 #include "cairn/report/blocking_report.h"
+#include "cairn/report/html_report.h"
 
 namespace cairn::app {
 
@@ -47,6 +48,7 @@ CommandResult BlockingDocument(const Model& model, const BlockingQuery& query,
   CommandResult out;
   out.document = NdbgToJson(assembly, ndbg, report);
   out.text = NdbgToText(assembly, ndbg, report);
+  if (query.page) out.page = BlockingPage(assembly, out.document, out.text, report);
   return out;
 }
 

@@ -4,6 +4,7 @@
 
 #include "cairn/core/error.h"
 #include "cairn/core/unit_vector.h"
+#include "cairn/report/html_report.h"
 #include "cairn/report/margin_report.h"
 
 namespace cairn::app {
@@ -70,6 +71,7 @@ CommandResult MarginDocument(const Model& model, const MarginQuery& query, const
   CommandResult out;
   out.document = MarginToJson(assembly, request, result, report);
   out.text = MarginToText(assembly, request, result, report);
+  if (query.page) out.page = MarginPage(assembly, out.document, out.text, report);
   if (!result.solved) {
     out.exit = kExitInternalError;
     out.failure = result.message;

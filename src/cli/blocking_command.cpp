@@ -6,6 +6,7 @@
 
 #include "cairn/app/blocking.h"
 #include "cli/command.h"
+#include "cli/output_files.h"
 
 namespace cairn::cli {
 
@@ -17,8 +18,16 @@ CommandDocument BlockingDocument(const BlockingArgs& args, const Checkpoint& che
 
 int RunBlocking(const BlockingArgs& args, std::ostream& out, std::ostream& err) {
   return RunGuarded(err, [&]() -> int {
-    const app::CommandResult r = app::BlockingDocument(LoadModel(args.scene, args.model, &err),
-                                                       {args.without, args.direction});
+    // The output is checked first (never over the input), written last.
+    const std::vector<NamedFile> inputs = ModelInputs(args.scene, args.model, "the model file");
+    CheckOutputs({{args.html, "--html"}}, inputs);
+    app::BlockingQuery query{args.without, args.direction};
+    query.page = !args.html.empty();
+    const app::CommandResult r =
+        app::BlockingDocument(LoadModel(args.scene, args.model, &err), query);
+    OutputFiles files(inputs);
+    if (!args.html.empty()) files.Add(args.html, r.page, "--html");
+    files.Commit();
     out << (args.json ? r.document.dump(2) + "\n" : r.text);
     return r.exit;
   });

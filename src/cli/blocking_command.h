@@ -15,6 +15,7 @@ struct BlockingArgs {
   bool json = false;
   std::vector<std::string> without;  // part names
   std::vector<double> direction;     // --direction X,Y,Z: one direction only; empty: the NDBG
+  std::string html;                  // --html
   ModelArgs model;
 };
 

@@ -285,6 +285,7 @@ CLI::App* AddBlocking(CLI::App& app, cairn::cli::BlockingArgs& blocking) {
                 "Only the blocking graphs at this direction (one cell): X,Y in a 2-D scene, "
                 "X,Y,Z in a 3-D one, e.g. 1,0,0",
                 "X,Y[,Z]");
+  AddHtml(cmd, blocking.html);
   AddModelOptions(cmd, blocking.model);
   return cmd;
 }
@@ -506,6 +507,7 @@ CLI::App* AddMargin(CLI::App& app, cairn::cli::MarginArgs& margin) {
                   "The verdict whose threshold (and exit code) the margin gives, as on check: "
                   "loaded-from-rest (default) or equilibrium")
       ->check(CLI::IsMember({"loaded-from-rest", "equilibrium"}));
+  AddHtml(cmd, margin.html);
   return cmd;
 }
 

@@ -7,6 +7,7 @@
 
 #include "cairn/core/error.h"
 #include "cli/command.h"
+#include "cli/output_files.h"
 
 namespace cairn::cli {
 
@@ -18,6 +19,7 @@ std::pair<app::ModelArgs, app::MarginQuery> Resolve(const MarginArgs& args) {
   app::MarginQuery query = args.query;
   query.without = args.without;
   query.rule = RuleOf(args.rule);
+  query.page = !args.html.empty();
   if (args.friction_given && !args.friction_value.empty()) {
     double mu = 0;
     size_t used = 0;
@@ -61,7 +63,13 @@ CommandDocument MarginDocument(const MarginArgs& args, const Checkpoint& checkpo
 int RunMargin(const MarginArgs& args, std::ostream& out, std::ostream& err) {
   return RunGuarded(err, [&]() -> int {
     const auto [model, query] = Resolve(args);
+    // The output is checked first (never over the input), written last.
+    const std::vector<NamedFile> inputs = ModelInputs(args.scene, model, "the model file");
+    CheckOutputs({{args.html, "--html"}}, inputs);
     const app::CommandResult r = app::MarginDocument(LoadModel(args.scene, model, &err), query);
+    OutputFiles files(inputs);
+    if (!args.html.empty()) files.Add(args.html, r.page, "--html");
+    files.Commit();
     out << (args.json ? r.document.dump(2) + "\n" : r.text);
     if (r.exit == kExitInternalError) err << "cairn: internal error: " << r.failure << '\n';
     return r.exit;

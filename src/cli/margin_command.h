@@ -24,6 +24,7 @@ struct MarginArgs {
   bool friction_given = false;
   std::string friction_value;
   std::string rule;        // --rule
+  std::string html;        // --html
   app::MarginQuery query;  // tilt, load, point, direction (friction from above; without: below)
   app::ModelArgs model;    // --friction's value goes to model.friction
 };

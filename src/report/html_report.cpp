@@ -326,6 +326,42 @@ std::string CheckPage(const Assembly& assembly, const json& doc,
                    {"story", story}});
 }
 
+namespace {
+
+// A command's text summary as the page's story: its lines, without their
+// indentation.
+json StoryOfText(const std::string& text) {
+  json story = json::array();
+  std::istringstream lines(text);
+  for (std::string line; std::getline(lines, line);) {
+    const size_t start = line.find_first_not_of(' ');
+    if (start != std::string::npos) story.push_back(line.substr(start));
+  }
+  return story;
+}
+
+}  // namespace
+
+std::string MarginPage(const Assembly& assembly, const json& doc, const std::string& text,
+                       const ReportOptions& options) {
+  return HtmlPage({{"cairn_page", 1},
+                   {"kind", "margin"},
+                   {"title", Title(assembly, options)},
+                   {"scene", SceneData(assembly, options)},
+                   {"result", doc},
+                   {"story", StoryOfText(text)}});
+}
+
+std::string BlockingPage(const Assembly& assembly, const json& doc, const std::string& text,
+                         const ReportOptions& options) {
+  return HtmlPage({{"cairn_page", 1},
+                   {"kind", "blocking"},
+                   {"title", Title(assembly, options)},
+                   {"scene", SceneData(assembly, options)},
+                   {"result", doc},
+                   {"story", StoryOfText(text)}});
+}
+
 std::string SimulationPage(const Assembly& assembly, const SimulationResult& result,
                            const std::vector<SimulationFrame>& frames, const json& doc,
                            const ReportOptions& options) {

@@ -54,7 +54,9 @@ def test_check_and_blocking_of_every_example(cli, tmp_path, name):
     # The whole NDBG (but of the 100-brick wall, whose 1 056 cells take a
     # minute under the sanitizers: its one direction below).
     if len(m.parts) <= 60:
-        assert cairn.blocking(m) == cli_json(cli, "blocking", scene)
+        assert cairn.blocking(m, html=tmp_path / "py-b.html") == cli_json(
+            cli, "blocking", scene, "--html", str(tmp_path / "cli-b.html"))
+        assert (tmp_path / "py-b.html").read_bytes() == (tmp_path / "cli-b.html").read_bytes()
     # One direction: the cell at it, the resolver the CLI's.
     d = [0.6, 0.8] if m.dimension == 2 else [0.0, 0.6, 0.8]
     assert cairn.blocking(m, direction=d) == cli_json(cli, "blocking", scene, "--direction",
@@ -82,8 +84,10 @@ def test_plan_and_margin_of_every_small_example(cli, tmp_path, name):
         for f in os.listdir(tmp_path / "py"):
             assert (tmp_path / "py" / f).read_bytes() == (tmp_path / "cli" / f).read_bytes()
     axis = [0, 0, 1] if m.dimension == 2 else [1, 0, 0]
-    assert strip(cairn.margin(m, tilt=axis)) == cli_json(cli, "margin", scene, "--tilt",
-                                                         ",".join(map(str, axis)))
+    assert strip(cairn.margin(m, tilt=axis, html=tmp_path / "py-m.html")) == cli_json(
+        cli, "margin", scene, "--tilt", ",".join(map(str, axis)), "--html",
+        str(tmp_path / "cli-m.html"))
+    assert (tmp_path / "py-m.html").read_bytes() == (tmp_path / "cli-m.html").read_bytes()
 
 
 def plans_with_scenes():

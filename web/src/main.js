@@ -23,6 +23,8 @@ const $ = (tag, attrs = {}, ...children) => {
 // On a stable check, this many of the largest resultants per pair of parts
 // are named on the drawing.
 const kMostLoadedJoints = 3;
+// A margin's mechanism is played out to this share of the scene's size.
+const kMechanismReach = 0.05;
 const fmt = (x, digits = 4) => (typeof x === 'number' ? Number(x.toPrecision(digits)).toString() : String(x));
 const vec = (v) => '(' + pad3(v).slice(0, v && v.length === 2 ? 2 : 3).map((x) => fmt(x)).join(', ') + ')';
 
@@ -97,6 +99,8 @@ class Page {
     for (const f of this.data.frames || []) scan(f.contacts.fn);
     for (const c of Object.values((this.data.plan && this.data.plan.nodes) || {})) scan(c.fn);
     for (const c of (this.data.sequence && this.data.sequence.states) || []) for (const k of c || []) m = Math.max(m, k.normal_force || 0);
+    for (const c of (this.result.margin && this.result.margin.certificates) || [])
+      for (const k of (c.equilibrium && c.equilibrium.contacts) || []) m = Math.max(m, k.normal_force || 0);
     return m > 0 ? m : this.scene.force_reference > 0 ? this.scene.force_reference : 1;
   }
 
@@ -104,8 +108,10 @@ class Page {
   buildLayout() {
     const d = this.data, r = this.result;
     const verdict = d.kind === 'plan' ? planVerdict(r) : d.kind === 'sequence' ? (r.complete ? 'built' : 'incomplete')
+      : d.kind === 'margin' ? marginVerdict(r.margin || {})
+      : d.kind === 'blocking' ? (r.cells || []).length + ' cell' + ((r.cells || []).length === 1 ? '' : 's')
       : r.verdict || (r.stable ? 'stable' : 'unstable');
-    const good = verdict === 'stable' || verdict === 'planned' || verdict === 'built';
+    const good = verdict === 'stable' || verdict === 'planned' || verdict === 'built' || /^stands|cell/.test(verdict);
     this.app = document.getElementById('cairn-app') || document.body.appendChild($('div', { id: 'cairn-app' }));
     const head = $('header', {},
       $('h1', {}, d.title || this.scene.name || 'Cairn'),
@@ -132,10 +138,12 @@ class Page {
     const roles = new Set(this.scene.parts.map((p) => (p.fixed ? 'fixed' : p.tool ? 'tool' : 'judged')));
     const d = this.data, r = this.result;
     if (d.kind === 'check' && (r.moving || []).length) roles.add('failed');
+    if (d.kind === 'margin' && ((r.margin || {}).certificates || []).some((c) => c.mechanism && c.mechanism.found)) roles.add('failed');
     for (const f of d.frames || []) for (const [, role] of f.roles || []) roles.add(role);
     if (d.kind === 'simulate' && r.failure) roles.add('failed');
     if (d.kind === 'plan' && (r.sequences || []).length) roles.add('gripped');
     if (d.kind === 'sequence' && (r.steps || []).length) roles.add('gripped');
+    if (d.kind === 'blocking' && (r.cells || []).some((c) => (c.removable || []).length)) roles.add('free');
     const supports = (r.steps || []).flatMap((s) => s.temporary_in_place || []);
     if (supports.some((t) => t.kind === 'hold')) roles.add('held');
     if ((this.scene.fixtures || []).length || supports.some((t) => t.kind === 'prop') ||
@@ -148,10 +156,11 @@ class Page {
     const row = (color, text) => $('div', {}, $('span', { class: 'sw', style: 'background:' + color }), text);
     const words = [['fixed', 'fixed'], ['judged', 'must stay put'], ['gripped', 'gripped (moved by the gripper)'],
                    ['carried', 'carried along'], ['tool', 'tool'], ['failed', 'moves: fails'], ['fixel', 'fixel or prop'],
-                   ['held', 'held (a temporary hold)']];
+                   ['held', 'held (a temporary hold)'], ['free', 'can leave alone along the cell\'s direction']];
     const present = this.rolesPresent();
     const el = this.legendEl;
     el.replaceChildren(...words.filter(([role]) => present.has(role)).map(([role, text]) => row(kColors[role], text)));
+    if (this.data.kind === 'blocking') return;  // no forces
     const ramp = $('span', { class: 'sw', style: 'width:26px;background:linear-gradient(90deg,' + kColors.pairLight + ',' + kColors.pairDark + ')' });
     el.append($('div', {}, ramp, 'per pair of parts: the resultant of its contact forces, at its centre of pressure (darker: larger)'),
               row(kColors.normal, 'normal force at a contact point'), row(kColors.friction, 'friction force at a contact point'));
@@ -178,7 +187,7 @@ class Page {
 
   updateScaleNote() {
     const v = this.view;
-    if (!this.scaleNote) return;
+    if (!this.scaleNote) return;  // a page without forces
     const len = v.forceReference * v.forceScale * v.arrowGain;
     this.scaleNote.textContent = 'An arrow ' + fmt(len, 3) + ' scene units long is ' + fmt(v.forceReference, 3) + ' ' + this.unit +
       ' (the largest normal force shown; the heaviest movable part weighs ' + fmt(this.scene.force_reference, 3) + ').';
@@ -268,6 +277,8 @@ class Page {
     if (this.data.kind === 'simulate') this.startSimulation();
     else if (this.data.kind === 'plan') this.startPlan();
     else if (this.data.kind === 'sequence') this.startSequence();
+    else if (this.data.kind === 'margin') this.startMargin();
+    else if (this.data.kind === 'blocking') this.startBlocking();
     else this.startCheck();
     this.fillLegend();
     this.updateScaleNote();
@@ -291,7 +302,7 @@ class Page {
   // fixel or prop, at the roles and supports drawn now.
   focusParts() {
     const v = this.view, out = new Set();
-    v.parts.forEach((p, i) => { if (['failed', 'gripped', 'held'].includes(p.role) && p.group.visible) out.add(i); });
+    v.parts.forEach((p, i) => { if (['failed', 'gripped', 'held', 'free'].includes(p.role) && p.group.visible) out.add(i); });
     for (const f of v.fixelParts || []) if (f >= 0) out.add(f);
     return [...out];
   }
@@ -747,6 +758,135 @@ class Page {
     requestAnimationFrame(tick);
   }
 
+  // A margin (`cairn margin`): each component's equilibrium at its critical
+  // value, with its forces, and the mechanism just past it (the parts that
+  // move, drawn failing), played back and forth from the assembled pose.
+  // The story is the text summary's lines.
+  startMargin() {
+    const m = this.result.margin || {}, certs = m.certificates || [];
+    this.absent = (this.result.without || []).map(this.indexOf);
+    this.setStory(this.data.story || []);
+    // A tilt has two senses, each with its certificates: one at a time.
+    const senses = [...new Set(certs.map((c) => c.sense || 'critical'))];
+    this.showSense(senses[0]);
+    const moving = new Set(this.mechanism.map((x) => x.part));
+    const row = $('div', { class: 'row' });
+    if (senses.length > 1) {
+      const pick = $('select', { id: 'sense' }, ...senses.map((s) => new Option(s + ' sense', s)));
+      pick.addEventListener('change', () => { this.showSense(pick.value); this.updateLabels(); });
+      row.append(pick);
+    }
+    this.playBtn = $('button', { id: 'play' }, 'Pause');
+    this.playBtn.addEventListener('click', () => this.toggleMechanism());
+    this.scrub = $('input', { type: 'range', id: 'scrub', min: '0', max: '1', step: '0.01', value: '0' });
+    this.scrub.addEventListener('input', () => { if (this.playing) this.toggleMechanism(); this.setMechanismPhase(Number(this.scrub.value)); });
+    this.timeEl = $('span', { id: 'time' });
+    row.append(this.playBtn, $('div', { id: 'scrub-wrap' }, this.scrub), this.timeEl);
+    this.foot.append(row, $('div', { class: 'note' }, (moving.size
+      ? 'The mechanism just past the critical value, exaggerated: its parts move ' + fmt(100 * kMechanismReach, 2) +
+        ' % of the scene at the slider\'s end; the forces drawn are the equilibrium at the critical value.'
+      : 'No mechanism: the forces drawn are the equilibrium at the critical value.') +
+      (m.quantity === 'tilt' ? ' Drawn in the assembly\'s frame: at the critical tilt gravity is turned by the angle about the axis.' : '')));
+    this.setMechanismPhase(0);
+    if (moving.size) this.toggleMechanism();
+  }
+
+  // The certificates of one sense (a tilt's "positive" or "negative"; the
+  // others have one, "critical"): their equilibria's forces and their
+  // mechanisms' parts, drawn failing.
+  showSense(sense) {
+    const certs = ((this.result.margin || {}).certificates || []).filter((c) => (c.sense || 'critical') === sense);
+    const contacts = emptyContacts();
+    this.mechanism = [];
+    for (const c of certs) {
+      const eq = c.equilibrium && c.equilibrium.contacts ? c.equilibrium.contacts : [];
+      const part = contactsFromReport(eq.map((k) => ({ ...k, parts: k.parts || [k.a, k.b] })), this.indexOf);
+      for (const key of Object.keys(contacts)) contacts[key].push(...part[key]);
+      if (c.mechanism && c.mechanism.found)
+        for (const p of c.mechanism.parts || []) this.mechanism.push({ part: this.indexOf(p.part), motion: p.motion, linear: p.linear, angular: p.angular });
+    }
+    const moving = new Set(this.mechanism.map((x) => x.part));
+    this.view.setPoses([], this.absent);
+    this.view.setRoles((i) => (this.scene.parts[i].fixed ? 'fixed' : moving.has(i) ? 'failed' : this.scene.parts[i].tool ? 'tool' : 'judged'));
+    this.view.setContacts(contacts);
+    this.motions = this.mechanism;
+    this.view.setMotions(this.mechanism);
+    if (this.scrub) this.setMechanismPhase(this.mechanismPhase || 0);
+  }
+
+  // s in [0, 1]: the mechanism's parts moved along their motion (a unit
+  // twist: the fastest point moves 1 length unit per unit) by s times
+  // kMechanismReach of the scene.
+  setMechanismPhase(s) {
+    this.mechanismPhase = s;
+    this.scrub.value = String(s);
+    const amount = s * kMechanismReach * this.scene.size;
+    const poses = this.mechanism.map((x) => {
+      const v = pad3(x.linear), w = new THREE.Vector3(...pad3(x.angular));
+      const q = new THREE.Quaternion();
+      if (w.lengthSq() > 0) q.setFromAxisAngle(w.clone().normalize(), w.length() * amount);
+      return [x.part, v[0] * amount, v[1] * amount, v[2] * amount, q.x, q.y, q.z, q.w];
+    });
+    this.view.setPoses(poses, this.absent);
+    this.timeEl.textContent = this.mechanism.length ? (s === 0 ? 'at the critical value: forces shown' : 'the mechanism, ' + fmt(100 * s, 2) + ' %') : '';
+  }
+
+  toggleMechanism() {
+    if (this.playing) { this.playing = false; this.playBtn.textContent = 'Play'; return; }
+    this.playing = true;
+    this.playBtn.textContent = 'Pause';
+    const t0 = performance.now() - Math.acos(1 - 2 * (this.mechanismPhase || 0)) / Math.PI * 1500;
+    const tick = (now) => {
+      if (!this.playing) return;
+      // Out and back in three seconds.
+      this.setMechanismPhase(0.5 - 0.5 * Math.cos((Math.PI * (now - t0)) / 1500));
+      requestAnimationFrame(tick);
+    };
+    requestAnimationFrame(tick);
+  }
+
+  // A blocking graph (`cairn blocking`): its cells listed as the text
+  // summary lists them; the cell chosen is drawn: its direction as an arrow
+  // on every part that can leave alone along it (drawn free), and what
+  // blocks the others in its panel.
+  startBlocking() {
+    const cells = this.result.cells || [];
+    const absent = (this.result.without || []).map(this.indexOf);
+    this.view.setPoses([], absent);
+    const story = this.data.story || [];
+    this.setStory(story.slice(0, 2));
+    const list = $('ol', { class: 'steps', id: 'cells' });
+    this.cellItems = cells.map((c, k) => {
+      const li = $('li', {}, vec(c.direction) + ' leave: ' + ((c.removable || []).join(', ') || 'none'));
+      li.style.cursor = 'pointer';
+      li.addEventListener('click', () => this.selectCell(k));
+      list.append(li);
+      return li;
+    });
+    this.extraSide.append($('h2', {}, 'Cells (directions)'), list);
+    const first = cells.findIndex((c) => (c.removable || []).length);
+    if (cells.length) this.selectCell(Math.max(first, 0));
+  }
+
+  selectCell(k) {
+    const c = this.result.cells[k];
+    this.cell = k;
+    const free = new Set((c.removable || []).map(this.indexOf));
+    this.view.setRoles((i) => (this.scene.parts[i].fixed ? 'fixed' : free.has(i) ? 'free' : this.scene.parts[i].tool ? 'tool' : 'judged'));
+    const d = pad3(c.direction);
+    this.view.setDirections([...free].map((i) => ({ part: i, direction: d })));
+    this.cellItems.forEach((li, j) => li.classList.toggle('now', j === k));
+    const blocked = (pairs) => {
+      const by = new Map();
+      for (const [a, b] of pairs || []) by.set(a, [...(by.get(a) || []), b]);
+      return [...by].map(([a, bs]) => a + ' by ' + bs.join(', ')).join('; ') || 'nothing';
+    };
+    this.infoEl.textContent = 'direction ' + vec(c.direction) + (c.dimension !== undefined ? ' (a cell of dimension ' + c.dimension + ')' : '') +
+      '\nleave alone: ' + ((c.removable || []).join(', ') || 'none') + '\nblocked (to infinity): ' + blocked(c.infinity) +
+      '\nblocked at once (infinitesimally): ' + blocked(c.infinitesimal);
+    if (this.legendEl.childElementCount) this.updateLabels();
+  }
+
   // --- the API for scripts and tests ----------------------------------------
   api() {
     const page = this;
@@ -758,6 +898,9 @@ class Page {
       setFrame: (k) => page.setFrame(k),
       setPlanTime: (t) => page.setPlanTime(t),
       setBuildTime: (t) => page.setBuildTime(t),
+      selectCell: (k) => page.selectCell(k),
+      // A margin page: pause the mechanism and set its phase (0: assembled).
+      setMechanismPhase: (s) => { if (page.playing) page.toggleMechanism(); page.setMechanismPhase(s); },
       // The supports drawn: the parts coloured as held, and the props' points
       // (the fixel arrows beyond the scene's own fixtures).
       supportsDrawn: () => ({
@@ -848,12 +991,21 @@ function sameSet(a, b) {
   return a.length === b.length && a.every((x) => b.includes(x));
 }
 
+// A margin page's badge: the critical value, and whether it stands as given.
+function marginVerdict(m) {
+  const of = m.of === 'mu' ? 'μ*' : m.quantity === 'friction' ? 'k*' : m.quantity === 'tilt' ? 'tilt' : 'load';
+  const crit = m.quantity === 'tilt' ? ' ' + (m.critical_deg || []).map((x) => (x === null ? 'none' : fmt(x, 4) + '°')).join(' / ')
+    : m.critical === null || m.critical === undefined ? ' none' : ' = ' + fmt(m.critical, 4);
+  return (m.stands_at_nominal ? 'stands' : 'does not stand') + ' · ' + of + crit;
+}
+
 function planVerdict(r) {
   return (r.sequences || []).length ? 'planned' : 'no stable sequence';
 }
 
 function roleWords(role) {
-  return { fixed: 'fixed', judged: 'must stay put', gripped: 'gripped', carried: 'carried', tool: 'tool', failed: 'moves (fails)' }[role] || role;
+  return { fixed: 'fixed', judged: 'must stay put', gripped: 'gripped', carried: 'carried', tool: 'tool', failed: 'moves (fails)',
+           free: 'can leave alone along the direction' }[role] || role;
 }
 
 function motionWords(m) {

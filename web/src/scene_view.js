@@ -313,10 +313,11 @@ export class SceneView {
     this.dots.count = 0;
     this.motionArrows = new ArrowSet(kColors.failed, 8, head * 1.6);
     this.fixelArrows = new ArrowSet(kColors.fixel, 8, head * 1.3);
+    this.directionArrows = new ArrowSet(kColors.free, 8, head * 1.6);
     this.motionMarks = new THREE.Group();
     this.overlay = new THREE.Group();
     this.overlay.add(this.resultants.group, this.normals.group, this.frictions.group, this.dots, this.motionArrows.group,
-                     this.fixelArrows.group, this.motionMarks);
+                     this.fixelArrows.group, this.directionArrows.group, this.motionMarks);
     this.overlay.renderOrder = 10;
     this.scene.add(this.overlay);
     this.contacts = emptyContacts();
@@ -479,6 +480,16 @@ export class SceneView {
     this.requestRender();
   }
 
+  // Directions a part can leave along ([{part, direction}]): an arrow from
+  // its centroid, in the colour of the parts that can leave.
+  setDirections(list) {
+    this.directionArrows.set((list || []).map(({ part, direction }) => {
+      const at = this.parts[part].group.position.clone();
+      return [at, at.clone().addScaledVector(new THREE.Vector3(...direction).normalize(), 0.12 * this.size)];
+    }));
+    this.requestRender();
+  }
+
   setFixels(fixels) {  // [{part, point, normal}]: arrows pushing into the part
     this.fixelParts = (fixels || []).map((f) => (typeof f.part === 'number' ? f.part : -1));
     const arrows = (fixels || []).map((f) => {
@@ -510,7 +521,8 @@ export class SceneView {
   }
 
   // Each label above its point, moved down past the labels placed before it
-  // where they would overlap.
+  // where they would overlap, and left out (named on hover) where it would
+  // still overlap one: a label drawn is a label read.
   placeLabels() {
     const placed = [];
     for (const l of this.labels || []) {
@@ -524,7 +536,9 @@ export class SceneView {
       const w = l.el.offsetWidth, h = l.el.offsetHeight;
       const x = ((v.x + 1) / 2) * r.clientWidth - w / 2;
       let y = ((1 - v.y) / 2) * r.clientHeight - 1.35 * h;
-      for (let k = 0; k < 8 && placed.some((q) => Math.abs(q.x - x - w / 2) < (q.w + w) / 2 + 2 && Math.abs(q.y - y) < h + 1); ++k) y += h + 2;
+      const overlaps = () => placed.some((q) => Math.abs(q.x - x - w / 2) < (q.w + w) / 2 + 2 && Math.abs(q.y - y) < h + 1);
+      for (let k = 0; k < 2 && overlaps(); ++k) y += h + 2;
+      if (overlaps()) { l.el.style.display = 'none'; continue; }
       placed.push({ x: x + w / 2, y, w });
       l.el.style.transform = 'translate(' + x.toFixed(1) + 'px,' + y.toFixed(1) + 'px)';
     }

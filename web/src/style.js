@@ -9,6 +9,7 @@ export const kColors = {
   failed: '#e0312b',
   fixel: '#d6338a',
   held: '#4b6ea8',
+  free: '#17a589',
   normal: '#1f5fd1',
   friction: '#f08a00',
   pairLight: '#8fbcf2',
@@ -66,6 +67,7 @@ footer select { font:inherit; max-width:60%; }
   padding:1px 6px; border-radius:9px; background:rgba(255,255,255,.92); border:2px solid #8a8f98; color:var(--ink); }
 .label.failed { border-color:#e0312b; } .label.gripped { border-color:#3aa655; } .label.held { border-color:#4b6ea8; }
 .label.fixel { border-color:#d6338a; } .label.carried { border-color:#3bb0b8; }
+.label.free { border-color:#17a589; }
 .label.joint { border-color:#0b2566; font-weight:500; }
 label.ctl { display:flex; align-items:center; gap:6px; margin:3px 0; }
 `;

@@ -86,6 +86,8 @@ run(['simulate', ex('paper_fig1.json'), join(root, 'examples/plans/paper_fig1_b_
 run(['plan', ex('paper_fig1.json'), '--html', page('fig1_plan')]);
 run(['check', ex('jenga.json'), '--html', page('jenga_check')]);
 run(['plan', ex('paper_fig9.json'), '--html', page('fig9_plan')]);
+run(['margin', ex('jenga.json'), '--tilt', '1,0,0', '--html', page('jenga_tilt')]);
+run(['blocking', ex('paper_fig9.json'), '--html', page('fig9_blocking')]);
 
 // A scene whose names would break a naive page: quotes, </script>, <!--, &.
 const hostile = {
@@ -156,10 +158,10 @@ const motionLines = (text) => text.split('\n').filter((l) => /^  \S+ (slides|tip
 
 // Share of a PNG screenshot's view that is not background, read by the
 // browser itself (no image library in the test).
+let decoder = null;
 async function drawnShare(png) {
-  const ctx = await browser.newContext();
-  const p = await ctx.newPage();
-  const share = await p.evaluate(async (b64) => {
+  decoder = decoder || (await (await browser.newContext()).newPage());
+  return decoder.evaluate(async (b64) => {
     const img = new Image();
     img.src = 'data:image/png;base64,' + b64;
     await img.decode();
@@ -175,8 +177,6 @@ async function drawnShare(png) {
     for (let k = 0; k < d.length; k += 4) if (Math.abs(d[k] - 0xf6) + Math.abs(d[k + 1] - 0xf5) + Math.abs(d[k + 2] - 0xf2) > 30) n++;
     return n / (d.length / 4);
   }, png.toString('base64'));
-  await ctx.close();
-  return share;
 }
 try {
   // check, 2-D, unstable: Fig. 1 without C. B and D tip: drawn in the
@@ -431,19 +431,77 @@ try {
     await o.close();
   }
 
+  // A margin: the critical tilt of the Jenga tower, one sense at a time;
+  // the story is the text summary; the mechanism's parts are drawn failing
+  // and its playback moves each along its own motion.
+  {
+    const o = await open('jenga_tilt');
+    await common(o, 'jenga_tilt');
+    const p = o.page;
+    const doc = JSON.parse(run(['margin', ex('jenga.json'), '--tilt', '1,0,0', '--json'])).margin;
+    const text = run(['margin', ex('jenga.json'), '--tilt', '1,0,0']).split('\n').map((l) => l.trim()).filter((l) => l);
+    const story = await p.evaluate(() => [...document.querySelectorAll('#story li')].map((li) => li.textContent));
+    check(JSON.stringify(story) === JSON.stringify(text), 'jenga_tilt: the story is the text summary, line by line');
+    check(await p.evaluate(() => document.getElementById('verdict').textContent) === 'stands · tilt -15.01° / 15.01°',
+          'jenga_tilt: the badge gives both critical tilts');
+    for (const sense of ['negative', 'positive']) {
+      await p.selectOption('#sense', sense);
+      const cert = doc.certificates.find((c) => c.sense === sense);
+      const moved = cert.mechanism.parts.map((x) => x.part).sort();
+      const failing = await p.evaluate((names) => names.filter((n) => cairn.partRole(n) === 'failed'), moved);
+      const others = await p.evaluate(() => ['L01_1', 'L01_3'].map((n) => cairn.partRole(n)));
+      check(failing.length === moved.length && others.filter((r) => r === 'failed').length === 1,
+            'jenga_tilt: the ' + sense + ' sense draws its mechanism\'s ' + moved.length + ' parts failing, and only those');
+      // Played to its end, a part of the mechanism is moved by its unit
+      // twist times 5 % of the scene (a point at the centroid: its linear part).
+      const x = cert.mechanism.parts[0];
+      const [size, at0, at1] = await p.evaluate((name) => {
+        cairn.setMechanismPhase(0);
+        const a = cairn.partPose(name);
+        cairn.setMechanismPhase(1);
+        const b = cairn.partPose(name);
+        return [JSON.parse(document.getElementById('cairn-data').textContent).scene.size, a, b];
+      }, x.part);
+      const want = x.linear.map((v) => v * 0.05 * size);
+      check([0, 1, 2].every((k) => Math.abs(at1[k] - at0[k] - want[k]) < 1e-6 * size),
+            'jenga_tilt: ' + x.part + ' moves along its mechanism motion (' + want.map((v) => v.toFixed(4)).join(', ') + ')');
+    }
+    await o.close();
+  }
+  // A blocking graph: every cell listed; a cell chosen draws the parts that
+  // can leave along it as free, each with an arrow, and names them.
+  {
+    const o = await open('fig9_blocking');
+    await common(o, 'fig9_blocking');
+    const p = o.page;
+    const doc = JSON.parse(run(['blocking', ex('paper_fig9.json'), '--json']));
+    check(await p.evaluate(() => document.querySelectorAll('#cells li').length) === doc.cells.length,
+          'fig9_blocking: its ' + doc.cells.length + ' cells are listed');
+    let same = true;
+    for (let k = 0; k < doc.cells.length; ++k) {
+      const drawn = await p.evaluate((k) => { cairn.selectCell(k); return [cairn.supportsDrawn(), cairn.labels()]; }, k);
+      const free = await p.evaluate((names) => names.filter((n) => cairn.partRole(n) === 'free'), doc.cells[k].removable);
+      const labels = drawn[1];
+      same = same && free.length === doc.cells[k].removable.length && doc.cells[k].removable.every((n) => labels.includes(n));
+    }
+    check(same, 'fig9_blocking: each cell draws and names the parts that can leave along it');
+    await o.close();
+  }
+
   // Drawn on every load: 10 screenshots of each kind of 3-D page, each
   // taken as soon as the page's load event has fired (not waiting for
   // data-cairn-ready), and one by Chromium's own --screenshot; none blank.
   {
-    const kinds = { jenga_check: 'check', jenga_pull: 'simulate', fig9_plan: 'plan', jenga_sequence: 'sequence' };
+    const kinds = { jenga_check: 'check', jenga_pull: 'simulate', fig9_plan: 'plan', jenga_sequence: 'sequence',
+                    jenga_tilt: 'margin', fig9_blocking: 'blocking' };
+    const ctx = await browser.newContext({ viewport: { width: 1280, height: 760 } });
     for (const [name, kind] of Object.entries(kinds)) {
       const shares = [];
       for (let k = 0; k < 10; ++k) {
-        const ctx = await browser.newContext({ viewport: { width: 1280, height: 760 } });
         const p = await ctx.newPage();
         await p.goto(pathToFileURL(page(name)).href, { waitUntil: 'load' });
         shares.push(await drawnShare(await p.screenshot()));
-        await ctx.close();
+        await p.close();
       }
       const shot = join(out, name + '.cli.png');
       execFileSync(kChromium, ['--headless', '--no-sandbox', '--screenshot=' + shot, '--window-size=1280,760',
@@ -452,6 +510,7 @@ try {
       check(shares.every((x) => x > 0.02), 'a ' + kind + ' page (' + name + '): none of 11 screenshots is blank (drawn: ' +
             shares.map((x) => (100 * x).toFixed(0) + '%').join(' ') + ')');
     }
+    await ctx.close();
   }
 
   // Determinism: the same command writes the same page.

@@ -16,6 +16,7 @@ struct BlockingQuery {
   std::vector<std::string> without;  ///< parts taken away, by name
   std::vector<double> direction;     ///< --direction: one direction only; empty: the NDBG
   std::string direction_option = "--direction";  ///< what errors call it (Python: its keyword)
+  bool page = false;                             ///< also the result page (--html)
 };
 
 /// The direction of `--direction` as the command reads it: X,Y (or X,Y,0)

@@ -22,6 +22,7 @@ struct MarginQuery {
   std::vector<double> direction;                    ///< --direction (2 or 3 numbers)
   std::vector<std::string> without;                 ///< parts taken away, by name
   VerdictRule rule = VerdictRule::kLoadedFromRest;  ///< --rule (the check's)
+  bool page = false;                                ///< also the result page (--html)
 };
 
 /// The request of `query` on `assembly`. @throws InputError naming the flag

@@ -55,6 +55,20 @@ inline constexpr int kMaxPageSequences = 50;
 std::string CheckPage(const Assembly& assembly, const nlohmann::json& doc,
                       const std::vector<std::string>& story, const ReportOptions& options);
 
+/// `cairn margin --html`: the margin `doc` (MarginToJson: each component's
+/// equilibrium at its critical value and the mechanism just past it) drawn on
+/// the assembly, the mechanism animated; its story is `text` (MarginToText),
+/// line by line.
+std::string MarginPage(const Assembly& assembly, const nlohmann::json& doc, const std::string& text,
+                       const ReportOptions& options);
+
+/// `cairn blocking --html`: the NDBG `doc` (NdbgToJson) drawn on the
+/// assembly, a cell at a time: its direction, the parts that can leave along
+/// it and what blocks the others; `text` (NdbgToText), line by line, is the
+/// story.
+std::string BlockingPage(const Assembly& assembly, const nlohmann::json& doc,
+                         const std::string& text, const ReportOptions& options);
+
 /// `cairn simulate --html`: `result` must have been simulated with
 /// SimulationOptions::record_timeline; `frames` in the order analysed.
 std::string SimulationPage(const Assembly& assembly, const SimulationResult& result,
