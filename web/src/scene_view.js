@@ -516,6 +516,13 @@ export class SceneView {
       return { ...l, el };
     });
     this.labelLayer.replaceChildren(...this.labels.map((l) => l.el));
+    // Their sizes, once (reading them at every frame would lay the page out
+    // at every frame).
+    for (const l of this.labels) {
+      l.el.style.display = 'block';
+      l.w = l.el.offsetWidth;
+      l.h = l.el.offsetHeight;
+    }
     this.placeLabels();
     this.requestRender();
   }
@@ -524,18 +531,19 @@ export class SceneView {
   // where they would overlap, and left out (named on hover) where it would
   // still overlap one: a label drawn is a label read.
   placeLabels() {
+    if (!(this.labels || []).length) return;
     const placed = [];
+    const r = this.renderer.domElement, width = r.clientWidth, height = r.clientHeight;
     for (const l of this.labels || []) {
       const part = l.part !== undefined ? this.parts[l.part] : null;
       if (part && !part.group.visible) { l.el.style.display = 'none'; continue; }
       const p = part ? part.group.position : new THREE.Vector3(...pad3(l.point));
       const v = p.clone().project(this.camera);
       if (v.z > 1 || Math.abs(v.x) > 1.2 || Math.abs(v.y) > 1.2) { l.el.style.display = 'none'; continue; }
-      const r = this.renderer.domElement;
       l.el.style.display = 'block';
-      const w = l.el.offsetWidth, h = l.el.offsetHeight;
-      const x = ((v.x + 1) / 2) * r.clientWidth - w / 2;
-      let y = ((1 - v.y) / 2) * r.clientHeight - 1.35 * h;
+      const { w, h } = l;
+      const x = ((v.x + 1) / 2) * width - w / 2;
+      let y = ((1 - v.y) / 2) * height - 1.35 * h;
       const overlaps = () => placed.some((q) => Math.abs(q.x - x - w / 2) < (q.w + w) / 2 + 2 && Math.abs(q.y - y) < h + 1);
       for (let k = 0; k < 2 && overlaps(); ++k) y += h + 2;
       if (overlaps()) { l.el.style.display = 'none'; continue; }
