@@ -125,7 +125,9 @@ CommandResult SimulateDocument(const Model& model, const SimulateQuery& query,
   if (suggestion) out.text += FixtureSuggestionToText(assembly, *suggestion, search, report);
   if (margin) out.text += PlanMarginToText(assembly, *margin);
   if (query.timeline) out.timeline = TimelineToCsv(assembly, result, report);
-  if (query.page) out.page = SimulationPage(assembly, result, frames, out.document, report);
+  if (query.page)
+    out.page = SimulationPage(assembly, result, frames, out.document,
+                              margin ? PlanMarginToText(assembly, *margin) : std::string(), report);
   return out;
 }
 

@@ -364,13 +364,14 @@ std::string BlockingPage(const Assembly& assembly, const json& doc, const std::s
 
 std::string SimulationPage(const Assembly& assembly, const SimulationResult& result,
                            const std::vector<SimulationFrame>& frames, const json& doc,
-                           const ReportOptions& options) {
+                           const std::string& margin_text, const ReportOptions& options) {
   const double force_scale = ForceScale(assembly, options).first;
   return HtmlPage({{"cairn_page", 1},
                    {"kind", "simulate"},
                    {"title", Title(assembly, options)},
                    {"scene", SceneData(assembly, options)},
                    {"result", doc},
+                   {"story", StoryOfText(margin_text)},
                    {"frames", Frames(assembly, result, frames, force_scale)},
                    {"frames_total", frames.size()}});
 }

@@ -1,4 +1,4 @@
-// `--html FILE` on check, simulate and plan (docs/html.md): the page is
+// `--html FILE` on every command that computes a result (docs/html.md): the page is
 // written whole, beside the command's usual output, with the same exit code;
 // a target it cannot write is refused with exit 2 before anything is
 // written. The pages in a real browser: tests/web.
@@ -34,6 +34,10 @@ TEST(Html, EveryCommandWritesItsPageWithItsJsonDocumentAndKeepsItsExitCode) {
       {"check", "check " + fig1, 0},
       {"simulate", "simulate " + fig1 + " " + ExamplePath("plans/paper_fig1_b_first.plan.json"), 1},
       {"plan", "plan " + fig1 + " --threads 1", 0},
+      {"sequence", "sequence " + ExamplePath("paper_fig17.json"), 0},
+      {"margin", "margin " + fig1 + " --tilt 0,0,1", 0},
+      {"margin", "margin " + fig1 + " --without C --tilt 0,0,1", 1},
+      {"blocking", "blocking " + fig1, 0},
   };
   for (const Case& c : cases) {
     const std::string page = dir + "/page.html";
@@ -45,9 +49,14 @@ TEST(Html, EveryCommandWritesItsPageWithItsJsonDocumentAndKeepsItsExitCode) {
     ASSERT_TRUE(fs::exists(page)) << c.args;
     const nlohmann::json data = PageData(Slurp(page));
     EXPECT_EQ(data["kind"], c.kind);
-    // The page holds the document --json prints, but the plan's timing.
+    // The page holds the document --json prints, but the plan's and the
+    // sequence's timings.
     nlohmann::json doc = nlohmann::json::parse(json.out), shown = data["result"];
     EXPECT_EQ(nlohmann::json::parse(run.out).dump(), shown.dump()) << c.args;
+    if (c.kind == "sequence") {
+      doc["stats"].erase("seconds");
+      shown["stats"].erase("seconds");
+    }
     if (c.kind == "plan") {
       doc.erase("stats");
       shown.erase("stats");
@@ -72,6 +81,18 @@ TEST(Html, ATargetThatCannotBeWrittenIsRefusedAndNothingIsWritten) {
   EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 1);
   const CliRun empty = Cairn("check " + ExamplePath("paper_fig1.json") + " --html ''");
   EXPECT_EQ(empty.exit_code, 2) << empty.err;
+  // margin and blocking: a folder, and the model file itself, are refused
+  // before any work, naming the flag.
+  for (const std::string& args :
+       {"margin " + ExamplePath("paper_fig1.json") + " --friction --html " + dir + "/a_folder",
+        "blocking " + ExamplePath("paper_fig1.json") + " --html " + dir + "/a_folder",
+        "margin " + ExamplePath("paper_fig1.json") + " --tilt 0,0,1 --html " +
+            ExamplePath("paper_fig1.json")}) {
+    const CliRun refused = Cairn(args);
+    EXPECT_EQ(refused.exit_code, 2) << args;
+    EXPECT_NE(refused.err.find("--html"), std::string::npos) << refused.err;
+    EXPECT_EQ(refused.out, "") << args;
+  }
   fs::remove_all(dir);
 }
 

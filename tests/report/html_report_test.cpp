@@ -144,7 +144,7 @@ TEST(SimulationPage, OneFramePerTickWithThePosesAndForcesOfThatTick) {
   const SimulationResult result = SimulatePlan(a, plan, options);
   ASSERT_TRUE(result.stable());
   const json doc = SimulationToJson(a, plan, result, {});
-  const json data = PageData(SimulationPage(a, result, frames, doc, {}));
+  const json data = PageData(SimulationPage(a, result, frames, doc, "", {}));
   const json& pf = data["frames"];
   ASSERT_EQ(pf.size(), frames.size());
   int ticks = 0;
@@ -189,7 +189,7 @@ TEST(SimulationPage, TheFailuresWordsCountStepsFromOneAsTheViewerDoes) {
   const SimulationResult result = SimulatePlan(a, plan, options);
   ASSERT_TRUE(result.failure);
   const json doc = SimulationToJson(a, plan, result, {});
-  const json data = PageData(SimulationPage(a, result, frames, doc, {}));
+  const json data = PageData(SimulationPage(a, result, frames, doc, "", {}));
   const json& failure = data["result"]["failure"];
   ASSERT_EQ(failure["step"], 0);  // an index, as steps[].index and frames[].step
   EXPECT_EQ(data["result"]["steps"][0]["index"], 0);

@@ -329,19 +329,22 @@ class Page {
     const focus = this.focusParts();
     for (const i of focus) labels.push({ part: i, text: this.names[i], kind: v.parts[i].role === 'judged' ? 'fixel' : v.parts[i].role });
     v.setFocus(focus);
-    if (!focus.length && this.data.kind === 'check' && this.result.stable) {
-      const name = (i) => (i >= 0 ? this.names[i] : 'the world');
-      // The largest, each at least a tenth of the scene from those named.
-      const named = [];
-      for (const q of [...(v.pairs || [])].sort((x, y) => y.magnitude - x.magnitude)) {
-        if (named.length >= kMostLoadedJoints || !(q.magnitude > 0)) break;
-        if (named.some((p) => p.distanceTo(q.point) < 0.1 * this.scene.size)) continue;
-        named.push(q.point);
-        labels.push({ point: q.point.toArray(), kind: 'joint',
-                      text: name(q.pusher) + ' pushes ' + name(q.pushed) + ': ' + fmt(q.magnitude, 3) + ' ' + this.unit });
-      }
-    }
+    if (!focus.length && this.data.kind === 'check' && this.result.stable)
+      for (const j of this.mostLoadedJoints()) labels.push({ point: j.point.toArray(), kind: 'joint', text: j.text });
     v.setLabels(labels);
+  }
+
+  // The kMostLoadedJoints largest resultants per pair of parts drawn, each
+  // at least a tenth of the scene from those before it: [{point, text}].
+  mostLoadedJoints() {
+    const name = (i) => (i >= 0 ? this.names[i] : 'the world');
+    const out = [];
+    for (const q of [...(this.view.pairs || [])].sort((x, y) => y.magnitude - x.magnitude)) {
+      if (out.length >= kMostLoadedJoints || !(q.magnitude > 0)) break;
+      if (out.some((j) => j.point.distanceTo(q.point) < 0.1 * this.scene.size)) continue;
+      out.push({ point: q.point, text: name(q.pusher) + ' pushes ' + name(q.pushed) + ': ' + fmt(q.magnitude, 3) + ' ' + this.unit });
+    }
+    return out;
   }
 
   motionsOfCheck() {
@@ -368,6 +371,8 @@ class Page {
     if (this.data.story) story.push(...this.data.story.map((l) => l + '.'));
     else for (const m of this.motions) story.push(this.names[m.part] + ' ' + motionWords(m) + '.');
     story.push(...analysisWords(r));
+    const joints = r.stable ? this.mostLoadedJoints() : [];
+    if (joints.length) story.push('The most loaded joints (resultant per pair of parts): ' + joints.map((j) => j.text).join('; ') + '.');
     this.setStory(story);
     this.setSolverNotes(r.diagnostics);
     this.foot.append($('div', { class: 'note' }, (r.contacts || []).length + ' contacts · ' + this.names.length + ' parts'));
@@ -400,6 +405,8 @@ class Page {
     for (const s of this.result.steps || [])
       story.push('Step ' + (s.index + 1) + ': remove ' + (s.parts || []).join(', ') + ' (' + s.verdict + ', ' + (s.time_steps || 0) + ' time steps).');
     if (f && f.description) story.push(brief(f.description));
+    // With --margin friction: the text summary's margin lines.
+    story.push(...(this.data.story || []));
     this.setStory(story);
     this.setSolverNotes(this.result.diagnostics);
 

@@ -70,10 +70,12 @@ std::string BlockingPage(const Assembly& assembly, const nlohmann::json& doc,
                          const std::string& text, const ReportOptions& options);
 
 /// `cairn simulate --html`: `result` must have been simulated with
-/// SimulationOptions::record_timeline; `frames` in the order analysed.
+/// SimulationOptions::record_timeline; `frames` in the order analysed;
+/// `margin_text`, the text summary's margin lines (PlanMarginToText) or
+/// empty, is added to the story.
 std::string SimulationPage(const Assembly& assembly, const SimulationResult& result,
                            const std::vector<SimulationFrame>& frames, const nlohmann::json& doc,
-                           const ReportOptions& options);
+                           const std::string& margin_text, const ReportOptions& options);
 
 /// `cairn plan --html`: the page checks the rest state of every assembly
 /// that the first kMaxPageSequences sequences pass through (one static check
