@@ -340,26 +340,28 @@ json StoryOfText(const std::string& text) {
   return story;
 }
 
-}  // namespace
-
-std::string MarginPage(const Assembly& assembly, const json& doc, const std::string& text,
-                       const ReportOptions& options) {
+// A page of `kind` whose data is the command's document and whose story is
+// its text summary.
+std::string DocumentPage(const char* kind, const Assembly& assembly, const json& doc,
+                         const std::string& text, const ReportOptions& options) {
   return HtmlPage({{"cairn_page", 1},
-                   {"kind", "margin"},
+                   {"kind", kind},
                    {"title", Title(assembly, options)},
                    {"scene", SceneData(assembly, options)},
                    {"result", doc},
                    {"story", StoryOfText(text)}});
 }
 
+}  // namespace
+
+std::string MarginPage(const Assembly& assembly, const json& doc, const std::string& text,
+                       const ReportOptions& options) {
+  return DocumentPage("margin", assembly, doc, text, options);
+}
+
 std::string BlockingPage(const Assembly& assembly, const json& doc, const std::string& text,
                          const ReportOptions& options) {
-  return HtmlPage({{"cairn_page", 1},
-                   {"kind", "blocking"},
-                   {"title", Title(assembly, options)},
-                   {"scene", SceneData(assembly, options)},
-                   {"result", doc},
-                   {"story", StoryOfText(text)}});
+  return DocumentPage("blocking", assembly, doc, text, options);
 }
 
 std::string SimulationPage(const Assembly& assembly, const SimulationResult& result,

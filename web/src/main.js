@@ -897,6 +897,7 @@ class Page {
   // --- the API for scripts and tests ----------------------------------------
   api() {
     const page = this;
+    const loaded = () => (page.view.pairs || []).filter((q) => q.magnitude > 0);
     return {
       kind: this.data.kind,
       get frameCount() { return (page.data.frames || []).length; },
@@ -925,10 +926,11 @@ class Page {
       contactCount: () => page.view.contacts.a.length,
       // Force arrows drawn, and the pairs of parts with a contact force.
       arrowCount: () => page.view.arrowCount(),
-      // Where pair j's resultant is drawn (its centre of pressure), and its parts.
-      pairScreen: (j) => page.view.screenOf(page.view.pairs[j].point.toArray()),
-      pairParts: (j) => [page.view.pairs[j].pushed, page.view.pairs[j].pusher].map((i) => (i >= 0 ? page.names[i] : null)),
-      pairCount: () => (page.view.pairs || []).filter((q) => q.magnitude > 0).length,
+      // Of the pairs with a force (pairCount), where pair j's resultant is
+      // drawn (its centre of pressure), and its parts.
+      pairScreen: (j) => page.view.screenOf(loaded()[j].point.toArray()),
+      pairParts: (j) => [loaded()[j].pushed, loaded()[j].pusher].map((i) => (i >= 0 ? page.names[i] : null)),
+      pairCount: () => loaded().length,
       setForceMode: (mode) => { page.view.forceMode = mode; page.view.drawContacts(); },
       // The names on the drawing, and the parts drawn see-through.
       labels: () => [...document.querySelectorAll('#view .label')].filter((e) => e.style.display !== 'none').map((e) => e.textContent),

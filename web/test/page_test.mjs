@@ -256,30 +256,25 @@ try {
     await common(o, 'fig1_b_first');
     const p = o.page;
     const box = await p.evaluate(() => document.querySelector('#view canvas').getBoundingClientRect().toJSON());
-    const pairs = await p.evaluate(() => cairn.pairCount());
-    let pairClicked = null;
-    for (let j = 0; j < pairs && !pairClicked; ++j) {
-      const parts = await p.evaluate((j) => cairn.pairParts(j), j);
-      if (!parts.includes('D')) continue;
-      const [x, y] = await p.evaluate((j) => cairn.pairScreen(j), j);
-      await p.mouse.click(box.x + x, box.y + y);
-      pairClicked = parts;
-    }
+    // Clicks the first of `count` marks whose parts include D; its parts.
+    const clickOnD = async (count, partsOf, screenOf) => {
+      for (let k = 0; k < count; ++k) {
+        const parts = await p.evaluate(partsOf, k);
+        if (!parts.includes('D')) continue;
+        const [x, y] = await p.evaluate(screenOf, k);
+        await p.mouse.click(box.x + x, box.y + y);
+        return parts;
+      }
+      return null;
+    };
+    const pairClicked = await clickOnD(await p.evaluate(() => cairn.pairCount()), (j) => cairn.pairParts(j), (j) => cairn.pairScreen(j));
     const pairInfo = await p.evaluate(() => document.getElementById('info').textContent);
     check(pairClicked !== null && /pushes/.test(pairInfo) && /resultant on /.test(pairInfo),
           'fig1_b_first: clicking a pair\'s resultant shows it (' + pairInfo.split('\n')[0] + ')');
     check(pairClicked && (await p.evaluate(() => cairn.chartPair())).sort().join() === [...pairClicked].sort().join(),
           'fig1_b_first: and plots its pair');
     await p.evaluate(() => cairn.setForceMode('points'));
-    const n = await p.evaluate(() => cairn.contactCount());
-    let clicked = null;
-    for (let k = 0; k < n && !clicked; ++k) {
-      const parts = await p.evaluate((k) => cairn.contactParts(k), k);
-      if (!parts.includes('D')) continue;
-      const [x, y] = await p.evaluate((k) => cairn.contactScreen(k), k);
-      await p.mouse.click(box.x + x, box.y + y);
-      clicked = parts;
-    }
+    const clicked = await clickOnD(await p.evaluate(() => cairn.contactCount()), (k) => cairn.contactParts(k), (k) => cairn.contactScreen(k));
     check(clicked !== null, 'fig1_b_first: a contact of D is drawn');
     const info = await p.evaluate(() => document.getElementById('info').textContent);
     check(/^contact /.test(info) && /normal force: /.test(info), 'fig1_b_first: clicking it shows its numbers (' + info.split('\n')[0] + ')');
