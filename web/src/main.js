@@ -664,7 +664,8 @@ class Page {
     const kinds = (t.kinds || []).join(' or ');
     story.push(t.max_in_place
       ? t.max_in_place + ' temporary support' + (t.max_in_place === 1 ? '' : 's') + ' (' + kinds + ') in place at once at most, ' +
-        t.placements + ' put in in all; no order needs fewer than ' + t.lower_bound + ' at once' + (t.optimal ? ' (optimal).' : '.')
+        t.placements + ' put in in all; ' + (t.lower_bound > 0 ? 'no order needs fewer than ' + t.lower_bound + ' at once' : 'the lower bound proved is 0') +
+        (t.lower_bound_reason ? ' (' + t.lower_bound_reason + ')' : '') + (t.optimal ? '; optimal.' : '.')
       : 'No temporary support needed' + (t.optimal ? ' (optimal).' : '.'));
     if (r.message) story.push(r.message);
     if (states.some((c) => c === null)) story.push('Forces are drawn for the first states only (the page keeps ' + this.data.sequence.max_contacts + ' contacts).');
