@@ -286,6 +286,9 @@ export class SceneView {
   applyLook(p) {
     p.material.color.set(kColors[p.role] || kColors.judged);
     const see = p.role === 'ghost' || p.xray;
+    // An opaque material's shader forces alpha to 1: a change of
+    // transparency needs the shader built again.
+    if (p.material.transparent !== see) p.material.needsUpdate = true;
     p.material.transparent = see;
     p.material.opacity = p.role === 'ghost' ? 0.25 : p.xray ? kXrayOpacity : 1;
     p.material.depthWrite = !p.xray;

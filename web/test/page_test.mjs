@@ -371,16 +371,17 @@ try {
 
   // The failing parts always in view and named. On the shelf at μ 0.84
   // struts 9 and 10 slide out; strut 10 stands behind the frame's top beam.
-  // From the opening camera, each shows at least half of the pixels it
-  // covers when drawn alone, mostly in the failing colour (the frame in
-  // front of it drawn see-through), and carries its name.
+  // From the opening camera, each shows at least 90 % of the pixels it
+  // covers when drawn alone, mostly in the failing colour (the frame and
+  // strut 8 in front of it drawn see-through: opaque, strut 10 showed 64 %),
+  // and carries its name.
   if (haveShared) {
     const o = await open('shelf');
     await common(o, 'shelf');
     const p = o.page;
     for (const part of ['9', '10']) {
       const px = await p.evaluate((part) => cairn.visiblePixels(part), part);
-      check(px.alone > 200 && px.pixels >= 0.5 * px.alone && px.red >= 0.5 * px.pixels,
+      check(px.alone > 200 && px.pixels >= 0.9 * px.alone && px.red >= 0.5 * px.pixels,
             'shelf: strut ' + part + ' shows from the opening camera (' + px.pixels + ' of its ' + px.alone + ' pixels, ' + px.red + ' red)');
     }
     const labels = await p.evaluate(() => cairn.labels());
@@ -402,7 +403,7 @@ try {
     const o = await open('jenga_pull');
     const p = o.page;
     const px = await p.evaluate(() => cairn.visiblePixels('L09_2'));
-    check(px.alone > 200 && px.pixels >= 0.5 * px.alone && px.red >= 0.5 * px.pixels,
+    check(px.alone > 200 && px.pixels >= 0.9 * px.alone && px.red >= 0.5 * px.pixels,
           'jenga_pull: L09_2 shows from the opening camera, in the failing colour (' + px.pixels + ' of ' + px.alone + ' pixels, ' + px.red + ' red)');
     check((await p.evaluate(() => cairn.labels())).includes('L09_2'), 'jenga_pull: L09_2 is named on the drawing');
     await o.close();
