@@ -287,6 +287,7 @@ class Page {
     // then has it); ready once a frame has been drawn by the browser's own
     // loop too (scripts and tests wait on it).
     this.view.resize();
+    this.started = true;
     this.openingCamera();
     this.view.render();
     requestAnimationFrame(() => {
@@ -298,8 +299,9 @@ class Page {
     });
   }
 
-  // The parts in focus: those that fail, are gripped or held, or carry a
-  // fixel or prop, at the roles and supports drawn now.
+  // The parts in focus: those that fail, are gripped or held, can leave (a
+  // blocking page's cell), or carry a fixel or prop, at the roles and
+  // supports drawn now.
   focusParts() {
     const v = this.view, out = new Set();
     v.parts.forEach((p, i) => { if (['failed', 'gripped', 'held', 'free'].includes(p.role) && p.group.visible) out.add(i); });
@@ -347,6 +349,13 @@ class Page {
     return out;
   }
 
+  // Part i's role: `role` when i is in `set` (and not fixed), else fixed,
+  // tool or must stay put.
+  roleUnless(i, set, role) {
+    const p = this.scene.parts[i];
+    return p.fixed ? 'fixed' : set.has(i) ? role : p.tool ? 'tool' : 'judged';
+  }
+
   motionsOfCheck() {
     return (this.result.parts || []).filter((p) => p.moving).map((p) => ({
       part: this.indexOf(p.name), motion: p.motion, pivot: p.pivot, axis: p.axis,
@@ -360,7 +369,7 @@ class Page {
     const moving = new Set((r.moving || []).map(this.indexOf));
     this.motions = this.motionsOfCheck();
     this.view.setPoses([], absent);
-    this.view.setRoles((i) => (this.scene.parts[i].fixed ? 'fixed' : moving.has(i) ? 'failed' : this.scene.parts[i].tool ? 'tool' : 'judged'));
+    this.view.setRoles((i) => this.roleUnless(i, moving, 'failed'));
     this.view.setContacts(contactsFromReport(r.contacts, this.indexOf));
     this.view.setMotions(this.motions);
     const story = [];
@@ -368,8 +377,7 @@ class Page {
                (absent.length ? ' without ' + absent.map((i) => this.names[i]).join(', ') : '') + '.');
     // The parts that move, how and why, in the words of the text summary
     // (the command writes them: CheckStory).
-    if (this.data.story) story.push(...this.data.story.map((l) => l + '.'));
-    else for (const m of this.motions) story.push(this.names[m.part] + ' ' + motionWords(m) + '.');
+    story.push(...(this.data.story || []).map((l) => l + '.'));
     story.push(...analysisWords(r));
     const joints = r.stable ? this.mostLoadedJoints() : [];
     if (joints.length) story.push('The most loaded joints (resultant per pair of parts): ' + joints.map((j) => j.text).join('; ') + '.');
@@ -489,7 +497,7 @@ class Page {
     this.timeEl.textContent = 't = ' + fmt(fr.time, 4) + ' s · step ' + (fr.step + 1) + ' · tick ' + fr.tick +
       (k === this.failureFrame ? ' · FAILS' : '');
     this.chart.setFrame(k);
-    if (this.legendEl.childElementCount) this.updateLabels();
+    if (this.started) this.updateLabels();
     if (this.selected) this.infoEl.textContent = this.selected.part !== undefined ? this.describe(this.selected) : this.infoEl.textContent;
   }
 
@@ -628,7 +636,7 @@ class Page {
     this.view.setContacts(node && frac === 0 ? node : emptyContacts());
     this.view.setMotions([]);
     [...this.stepList.children].forEach((li, j) => li.classList.toggle('now', j === k && !done));
-    if (this.legendEl.childElementCount) this.updateLabels();
+    if (this.started) this.updateLabels();
     this.timeEl.textContent = done ? 'done' : 'step ' + (k + 1) + ' of ' + n + ': ' + step.remove.join('+') + (frac === 0 ? ' (at rest: forces shown)' : '');
   }
 
@@ -743,7 +751,7 @@ class Page {
     this.view.setContacts(c);
     this.view.setMotions([]);
     this.stepItems.forEach((li, j) => li.classList.toggle('now', arriving ? j === k : j === k - 1));
-    if (this.legendEl.childElementCount) this.updateLabels();
+    if (this.started) this.updateLabels();
     this.timeEl.textContent = arriving ? 'step ' + (k + 1) + ' of ' + n + ': ' + arriving.place + ' comes in'
       : k === 0 ? 'the fixed parts' : 'after step ' + k + ' of ' + n + ' (' + supports.length + ' support' + (supports.length === 1 ? '' : 's') + ' in place; forces shown)';
   }
@@ -777,7 +785,6 @@ class Page {
     // A tilt has two senses, each with its certificates: one at a time.
     const senses = [...new Set(certs.map((c) => c.sense || 'critical'))];
     this.showSense(senses[0]);
-    const moving = new Set(this.mechanism.map((x) => x.part));
     const row = $('div', { class: 'row' });
     if (senses.length > 1) {
       const pick = $('select', { id: 'sense' }, ...senses.map((s) => new Option(s + ' sense', s)));
@@ -790,13 +797,13 @@ class Page {
     this.scrub.addEventListener('input', () => { if (this.playing) this.toggleMechanism(); this.setMechanismPhase(Number(this.scrub.value)); });
     this.timeEl = $('span', { id: 'time' });
     row.append(this.playBtn, $('div', { id: 'scrub-wrap' }, this.scrub), this.timeEl);
-    this.foot.append(row, $('div', { class: 'note' }, (moving.size
+    this.foot.append(row, $('div', { class: 'note' }, (this.mechanism.length
       ? 'The mechanism just past the critical value, exaggerated: its parts move ' + fmt(100 * kMechanismReach, 2) +
         ' % of the scene at the slider\'s end; the forces drawn are the equilibrium at the critical value.'
       : 'No mechanism: the forces drawn are the equilibrium at the critical value.') +
       (m.quantity === 'tilt' ? ' Drawn in the assembly\'s frame: at the critical tilt gravity is turned by the angle about the axis.' : '')));
     this.setMechanismPhase(0);
-    if (moving.size) this.toggleMechanism();
+    if (this.mechanism.length) this.toggleMechanism();
   }
 
   // The certificates of one sense (a tilt's "positive" or "negative"; the
@@ -815,7 +822,7 @@ class Page {
     }
     const moving = new Set(this.mechanism.map((x) => x.part));
     this.view.setPoses([], this.absent);
-    this.view.setRoles((i) => (this.scene.parts[i].fixed ? 'fixed' : moving.has(i) ? 'failed' : this.scene.parts[i].tool ? 'tool' : 'judged'));
+    this.view.setRoles((i) => this.roleUnless(i, moving, 'failed'));
     this.view.setContacts(contacts);
     this.motions = this.mechanism;
     this.view.setMotions(this.mechanism);
@@ -880,7 +887,7 @@ class Page {
     const c = this.result.cells[k];
     this.cell = k;
     const free = new Set((c.removable || []).map(this.indexOf));
-    this.view.setRoles((i) => (this.scene.parts[i].fixed ? 'fixed' : free.has(i) ? 'free' : this.scene.parts[i].tool ? 'tool' : 'judged'));
+    this.view.setRoles((i) => this.roleUnless(i, free, 'free'));
     const d = pad3(c.direction);
     this.view.setDirections([...free].map((i) => ({ part: i, direction: d })));
     this.cellItems.forEach((li, j) => li.classList.toggle('now', j === k));
@@ -892,7 +899,7 @@ class Page {
     this.infoEl.textContent = 'direction ' + vec(c.direction) + (c.dimension !== undefined ? ' (a cell of dimension ' + c.dimension + ')' : '') +
       '\nleave alone: ' + ((c.removable || []).join(', ') || 'none') + '\nblocked (to infinity): ' + blocked(c.infinity) +
       '\nblocked at once (infinitesimally): ' + blocked(c.infinitesimal);
-    if (this.legendEl.childElementCount) this.updateLabels();
+    if (this.started) this.updateLabels();
   }
 
   // --- the API for scripts and tests ----------------------------------------

@@ -263,7 +263,7 @@ export class SceneView {
       p.group.position.set(p.centroid.x + tx, p.centroid.y + ty, p.centroid.z + tz);
       p.group.quaternion.set(qx, qy, qz, qw);
     }
-    if (this.focus && this.focus.size) this.updateXray();
+    if (this.focus && this.focus.size) this.xrayStale = true;
     this.requestRender();
   }
 
@@ -414,7 +414,7 @@ export class SceneView {
         resultants.push([p.clone().addScaledVector(q.force, -s), p, color, 0.6 + 0.8 * Math.sqrt(t)]);
       });
       const sel = this.selectedPart;
-      if (sel !== undefined && sel >= 0) for (let k = 0; k < count; ++k) if (c.a[k] === sel || c.b[k] === sel) point(k);
+      if (sel >= 0) for (let k = 0; k < count; ++k) if (c.a[k] === sel || c.b[k] === sel) point(k);
     }
     const dots = this.dotItems.length;
     if (dots > this.dots.instanceMatrix.count) {
@@ -537,7 +537,7 @@ export class SceneView {
     if (!(this.labels || []).length) return;
     const placed = [];
     const r = this.renderer.domElement, width = r.clientWidth, height = r.clientHeight;
-    for (const l of this.labels || []) {
+    for (const l of this.labels) {
       const part = l.part !== undefined ? this.parts[l.part] : null;
       if (part && !part.group.visible) { l.el.style.display = 'none'; continue; }
       const p = part ? part.group.position : new THREE.Vector3(...pad3(l.point));
@@ -570,22 +570,29 @@ export class SceneView {
     this.controls.target.copy(center);
     this.camera.position.copy(center).addScaledVector(dir, (1.15 * radius) / Math.sin(Math.atan(fit)));
     this.controls.update();
-    this.updateXray();
+    this.xrayStale = true;
   }
 
-  // The parts in focus (those that fail, are gripped or held): every other
-  // part in front of one of them, as the camera sees it, is drawn
-  // see-through, again whenever the camera stops or the parts move.
+  // The parts in focus (those that fail, are gripped or held, can leave,
+  // carry a support): every other part in front of one of them, as the
+  // camera sees it, is drawn see-through, found again before the next frame
+  // whenever the focus changes, the camera stops or the parts move (once a
+  // frame however many of those happen).
   setFocus(indices) {
     this.focus = new Set(indices);
     if (!this.xrayBound) {
       this.xrayBound = true;
-      this.controls.addEventListener('end', () => this.updateXray());
+      this.controls.addEventListener('end', () => {
+        this.xrayStale = true;
+        this.requestRender();
+      });
     }
-    this.updateXray();
+    this.xrayStale = true;
+    this.requestRender();
   }
 
   updateXray() {
+    this.xrayStale = false;
     const xray = new Set();
     if (this.dim === 3 && this.focus && this.focus.size) {
       this.scene.updateMatrixWorld(true);
@@ -615,11 +622,11 @@ export class SceneView {
       p.xray = on;
       this.applyLook(p);
     });
-    this.requestRender();
   }
 
   // The parts drawn see-through (indices).
   xrayParts() {
+    if (this.xrayStale) this.updateXray();
     return this.parts.map((p, i) => (p.xray ? i : -1)).filter((i) => i >= 0);
   }
 
@@ -702,6 +709,7 @@ export class SceneView {
 
   render() {
     this.needsRender = false;
+    if (this.xrayStale) this.updateXray();
     this.renderer.render(this.scene, this.camera);
     this.placeLabels();
   }
