@@ -48,7 +48,8 @@ CommandResult BlockingDocument(const Model& model, const BlockingQuery& query,
   CommandResult out;
   out.document = NdbgToJson(assembly, ndbg, report);
   out.text = NdbgToText(assembly, ndbg, report);
-  if (query.page) out.page = BlockingPage(assembly, out.document, out.text, report);
+  if (query.page)
+    out.page = BlockingPage(assembly, out.document, NdbgHeadline(assembly, ndbg, report), report);
   return out;
 }
 

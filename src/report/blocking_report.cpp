@@ -87,7 +87,7 @@ nlohmann::json NdbgToJson(const Assembly& assembly, const Ndbg& ndbg,
   return doc;
 }
 
-std::string NdbgToText(const Assembly& assembly, const Ndbg& ndbg, const ReportOptions& options) {
+std::string NdbgHeadline(const Assembly& assembly, const Ndbg& ndbg, const ReportOptions& options) {
   const int dim = ndbg.dimension;
   std::ostringstream os;
   os << (assembly.name().empty() ? options.scene_file : assembly.name()) << ": NDBG (" << dim
@@ -99,6 +99,13 @@ std::string NdbgToText(const Assembly& assembly, const Ndbg& ndbg, const ReportO
     for (const int i : options.without) os << ' ' << assembly.part(i).name;
     os << '\n';
   }
+  return os.str();
+}
+
+std::string NdbgToText(const Assembly& assembly, const Ndbg& ndbg, const ReportOptions& options) {
+  const int dim = ndbg.dimension;
+  std::ostringstream os;
+  os << NdbgHeadline(assembly, ndbg, options);
   os << "per cell: its directions, a representative direction, the parts that can leave alone\n"
      << "to infinity, and which parts are blocked by which (* also infinitesimally)\n";
   constexpr int kMaxBlocked = 12;  // the JSON document has them all

@@ -868,8 +868,7 @@ class Page {
     const cells = this.result.cells || [];
     const absent = (this.result.without || []).map(this.indexOf);
     this.view.setPoses([], absent);
-    const story = this.data.story || [];
-    this.setStory(story.slice(0, 2));
+    this.setStory(this.data.story || []);
     const list = $('ol', { class: 'steps', id: 'cells' });
     this.cellItems = cells.map((c, k) => {
       const li = $('li', {}, vec(c.direction) + ' leave: ' + ((c.removable || []).join(', ') || 'none'));

@@ -486,6 +486,11 @@ try {
       same = same && free.length === doc.cells[k].removable.length && doc.cells[k].removable.every((n) => labels.includes(n));
     }
     check(same, 'fig9_blocking: each cell draws and names the parts that can leave along it');
+    // The story is the text summary's headline, whole (its explanation of
+    // the text's columns is not the page's).
+    const headline = run(['blocking', ex('paper_fig9.json')]).split('\n')[0];
+    const story = await p.evaluate(() => [...document.querySelectorAll('#story li')].map((li) => li.textContent));
+    check(story.length === 1 && story[0] === headline, 'fig9_blocking: the story is the summary\'s headline (' + story.join(' | ') + ')');
     await o.close();
   }
 

@@ -23,7 +23,11 @@ namespace cairn {
 /// `options.without`.
 nlohmann::json NdbgToJson(const Assembly& assembly, const Ndbg& ndbg, const ReportOptions& options);
 
-/// The human-readable summary: a headline, then one line per cell: its
+/// The summary's headline: the scene, the NDBG's dimension, its cells and
+/// distinct normals, and the parts taken away (the blocking page's story).
+std::string NdbgHeadline(const Assembly& assembly, const Ndbg& ndbg, const ReportOptions& options);
+
+/// The human-readable summary: the headline (NdbgHeadline), then one line per cell: its
 /// angles (2-D) or kind and signs (3-D), its direction, the parts that can
 /// leave, and which parts are blocked by which to infinity (marked `*` when
 /// infinitesimally too).

@@ -64,8 +64,8 @@ std::string MarginPage(const Assembly& assembly, const nlohmann::json& doc, cons
 
 /// `cairn blocking --html`: the NDBG `doc` (NdbgToJson) drawn on the
 /// assembly, a cell at a time: its direction, the parts that can leave along
-/// it and what blocks the others; `text` (NdbgToText), line by line, is the
-/// story.
+/// it and what blocks the others; `text` (NdbgHeadline), line by line, is
+/// the story.
 std::string BlockingPage(const Assembly& assembly, const nlohmann::json& doc,
                          const std::string& text, const ReportOptions& options);
 
